@@ -1,0 +1,470 @@
+"""Broad phases: boxes and layer ids in, candidate index pairs out.
+
+Every broad phase here has one method, ``find_pairs(boxes, layers, table)``:
+
+* ``boxes`` : (n, 4) float64 rows ``(xmin, ymin, xmax, ymax)``, closed, any finite values
+  (negative and far outside any field are fine);
+* ``layers`` : (n,) int, each object's layer id;
+* ``table`` : a :class:`LayerTable`, saying which layers test which;
+
+and returns an ``(m, 2)`` int64 array of object indices. For a table entry ``(a, b)`` the
+first column holds the layer-``a`` object; for ``(a, a)`` the first index is the smaller.
+Each pair comes out once. Every phase is *conservative*: it returns every pair of the
+table whose boxes overlap (it may return more). :class:`BruteForce` returns exactly those.
+
+The phases, after the paper's section 1.2-1.3:
+
+* :class:`BinGrid` -- the paper's binning: a flat grid; every object registers in every bin
+  its box overlaps; a pair is reported only from the first bin the two share, so it comes
+  out once however many bins they share.
+* :class:`QuadTree` -- each object at the smallest node that fully contains its box (the
+  paper's Figure 1 "other schemes"): straddlers of a split line rise to the top.
+* :class:`LooseQuadTree` -- Ulrich's loose quadtree (looseness 2): each object at the level
+  whose nodes are at least its size, in the node holding its centre; neighbours are the
+  3x3 loose nodes around it.
+* :class:`BruteForce` -- every pair, box-tested; the reference.
+
+All of them run as a few numpy passes per table entry (and per tree level), never a Python
+loop per object or pair.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterable, Sequence
+
+import numpy as np
+
+__all__ = ["LayerTable", "BinGrid", "QuadTree", "LooseQuadTree", "BruteForce", "BROAD_PHASES", "auto_bin_size"]
+
+_EMPTY = np.empty((0, 2), dtype=np.int64)
+
+
+@dataclass(frozen=True)
+class LayerTable:
+    """Which layers test which.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Layer names; a layer's id is its index here.
+    tests : iterable of (str, str)
+        Layer pairs to test. ``(a, a)`` tests a layer against itself. Pairs not listed are
+        never tested: bullets never test bullets unless a scene says so.
+
+    >>> t = LayerTable.shmup()
+    >>> t.names
+    ('player', 'enemy_ship', 'enemy_bullet', 'player_bullet')
+    >>> t.entries
+    ((0, 1), (0, 2), (1, 3))
+    """
+
+    names: tuple[str, ...]
+    entries: tuple[tuple[int, int], ...]
+
+    def __init__(self, names: Sequence[str], tests: Iterable[tuple[str, str]]):
+        names = tuple(names)
+        if len(set(names)) != len(names):
+            raise ValueError(f"layer names must be unique, got {names}")
+        index = {n: i for i, n in enumerate(names)}
+        entries = []
+        for pair in tests:
+            try:
+                a, b = pair
+            except (TypeError, ValueError):
+                raise ValueError(f"a layer test must be a pair of layer names, got {pair!r}") from None
+            for name in (a, b):
+                if name not in index:
+                    raise ValueError(f"layer test {pair!r} names unknown layer {name!r}; layers are {names}")
+            e = (index[a], index[b])
+            if e in entries or e[::-1] in entries:
+                raise ValueError(f"layer test {pair!r} is listed twice")
+            entries.append(e)
+        object.__setattr__(self, "names", names)
+        object.__setattr__(self, "entries", tuple(entries))
+
+    @classmethod
+    def shmup(cls) -> "LayerTable":
+        """The paper's table: the player against enemy ships and enemy bullets, enemy ships
+        against player bullets; bullets never test bullets."""
+        return cls(
+            ("player", "enemy_ship", "enemy_bullet", "player_bullet"),
+            [("player", "enemy_ship"), ("player", "enemy_bullet"), ("enemy_ship", "player_bullet")],
+        )
+
+    def id(self, name: str) -> int:
+        """The id of layer ``name``."""
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise ValueError(f"unknown layer {name!r}; layers are {self.names}") from None
+
+    def possible_pairs(self, layers: np.ndarray) -> int:
+        """How many pairs the table allows among objects with these layer ids."""
+        counts = np.bincount(np.asarray(layers, dtype=np.int64), minlength=len(self.names))
+        total = 0
+        for a, b in self.entries:
+            total += counts[a] * (counts[a] - 1) // 2 if a == b else counts[a] * counts[b]
+        return int(total)
+
+
+def auto_bin_size(boxes: np.ndarray, layers: np.ndarray | None = None) -> float:
+    """The default bin size: twice the larger of the layers' median box extents.
+
+    The paper's advice is bins "larger, but not significantly larger, than the objects"
+    (section 1.3). Taking the median per layer and then the largest keeps a crowd of small
+    bullets from shrinking the bins below the ships they are tested against; see
+    docs/PERFORMANCE.md for the measured bin-size curve.
+    """
+    if len(boxes) == 0:
+        return 1.0
+    ext = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])
+    if layers is None:
+        m = float(np.median(ext))
+    else:
+        layers = np.asarray(layers)
+        m = max(float(np.median(ext[layers == k])) for k in np.unique(layers))
+    return 2.0 * m if m > 0 and np.isfinite(m) else 1.0
+
+
+def _join(index_keys: np.ndarray, query_keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """All ``(q, i)`` with ``query_keys[q] == index_keys[i]``, as two int64 arrays.
+
+    Sorts the index side (pass the smaller side as the index) and finds each query's run
+    with a binary search; the runs are expanded without a Python loop.
+    """
+    if not len(index_keys) or not len(query_keys):
+        e = np.empty(0, dtype=np.int64)
+        return e, e
+    order = np.argsort(index_keys, kind="stable")
+    sorted_keys = index_keys[order]
+    lo = np.searchsorted(sorted_keys, query_keys, "left")
+    hi = np.searchsorted(sorted_keys, query_keys, "right")
+    count = hi - lo
+    hits = np.flatnonzero(count)
+    if not hits.size:
+        e = np.empty(0, dtype=np.int64)
+        return e, e
+    count, lo = count[hits], lo[hits]
+    q = np.repeat(hits, count)
+    ends = np.cumsum(count)
+    pos = np.arange(ends[-1]) + np.repeat(lo - (ends - count), count)
+    return q, order[pos]
+
+
+def _expand(x0, y0, x1, y1):
+    """Expand integer cell ranges into one entry per covered cell.
+
+    ``x0..x1`` and ``y0..y1`` are inclusive ranges, shape (n,). Returns ``(obj, cx, cy)``.
+    """
+    nx = x1 - x0 + 1
+    count = nx * (y1 - y0 + 1)
+    n = len(x0)
+    if not n or count.max() == 1:
+        return np.arange(n), x0, y0
+    obj = np.repeat(np.arange(n), count)
+    ends = np.cumsum(count)
+    local = np.arange(ends[-1]) - np.repeat(ends - count, count)
+    w = nx[obj]
+    return obj, x0[obj] + local % w, y0[obj] + local // w
+
+
+class _BroadPhase:
+    """Shared driver: split the objects by layer and find pairs per table entry."""
+
+    name = "broadphase"
+
+    def find_pairs(self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable) -> np.ndarray:
+        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
+        if len(boxes) != len(layers):
+            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
+        if not np.isfinite(boxes).all():
+            raise ValueError("boxes must be finite")
+        members = {}
+        for a, b in table.entries:
+            for k in (a, b):
+                if k not in members:
+                    members[k] = np.flatnonzero(layers == k)
+        present = [members[k] for k in members if len(members[k])]
+        if not present:
+            return _EMPTY.copy()
+        sel = np.concatenate(present)
+        self._prepare(boxes[sel], layers[sel])
+        out = []
+        for a, b in table.entries:
+            ia, ib = members[a], members[b]
+            if a == b:
+                if len(ia) < 2:
+                    continue
+                i, j = self._within(boxes[ia])
+                lo, hi = np.minimum(ia[i], ia[j]), np.maximum(ia[i], ia[j])
+                out.append(np.column_stack([lo, hi]))
+            elif len(ia) and len(ib):
+                i, j = self._between(boxes[ia], boxes[ib])
+                out.append(np.column_stack([ia[i], ib[j]]))
+        if not out:
+            return _EMPTY.copy()
+        return np.concatenate(out).astype(np.int64, copy=False)
+
+    def _prepare(self, boxes: np.ndarray, layers: np.ndarray) -> None:
+        """Fix the frame's spatial layout from all boxes (and their layers) taking part."""
+
+    def _between(self, a: np.ndarray, b: np.ndarray):
+        raise NotImplementedError
+
+    def _within(self, a: np.ndarray):
+        raise NotImplementedError
+
+
+class BruteForce(_BroadPhase):
+    """Every pair of the table, box-tested. Exact reference; O(n_a n_b) work and memory.
+
+    Pairs are tested in chunks of ``chunk`` first-side objects to bound memory.
+    """
+
+    name = "brute"
+
+    def __init__(self, chunk: int = 256):
+        self.chunk = chunk
+
+    def _between(self, a, b):
+        out_i, out_j = [], []
+        for s in range(0, len(a), self.chunk):
+            c = a[s : s + self.chunk]
+            hit = (
+                (c[:, None, 0] <= b[None, :, 2]) & (b[None, :, 0] <= c[:, None, 2])
+                & (c[:, None, 1] <= b[None, :, 3]) & (b[None, :, 1] <= c[:, None, 3])
+            )
+            i, j = np.nonzero(hit)
+            out_i.append(i + s)
+            out_j.append(j)
+        return np.concatenate(out_i), np.concatenate(out_j)
+
+    def _within(self, a):
+        i, j = self._between(a, a)
+        keep = i < j
+        return i[keep], j[keep]
+
+
+class BinGrid(_BroadPhase):
+    """The paper's bin grid (section 1.3, Figure 3).
+
+    Parameters
+    ----------
+    bin_size : float or None
+        Side of a square bin. ``None`` (the default) picks :func:`auto_bin_size` from the
+        boxes every frame: bins larger, but not much larger, than the objects.
+    field : (x0, y0, x1, y1) or None
+        The area the grid covers. ``None`` covers the boxes of the frame. Boxes outside the
+        field register in the bins along its border (clamping keeps every overlap).
+    max_cells : int
+        Upper bound on bins; a frame whose field would need more uses larger bins.
+
+    Each object registers in every bin its box overlaps. For each table entry the side
+    with fewer bin entries is indexed and the other looks its bins up; a pair found in a
+    bin is kept only if that bin is the first (lowest x, then y) of the bins the two
+    share, so each pair comes out once without a sort or a set.
+    """
+
+    name = "bins"
+
+    def __init__(self, bin_size: float | None = None, field: Sequence[float] | None = None, max_cells: int = 1 << 16):
+        if bin_size is not None and not (np.isfinite(bin_size) and bin_size > 0):
+            raise ValueError(f"bin_size must be a positive number or None, got {bin_size!r}")
+        self.bin_size = bin_size
+        self.field = None if field is None else tuple(float(v) for v in field)
+        self.max_cells = int(max_cells)
+        self.size = 1.0
+        self.origin = (0.0, 0.0)
+        self.shape = (1, 1)  # (cols, rows)
+
+    def _prepare(self, boxes, layers):
+        size = self.bin_size
+        if size is None:
+            size = auto_bin_size(boxes, layers)
+        if self.field is not None:
+            x0, y0, x1, y1 = self.field
+        else:
+            x0, y0 = float(boxes[:, 0].min()), float(boxes[:, 1].min())
+            x1, y1 = float(boxes[:, 2].max()), float(boxes[:, 3].max())
+        cols = max(1, int(np.ceil((x1 - x0) / size)))
+        rows = max(1, int(np.ceil((y1 - y0) / size)))
+        while cols * rows > self.max_cells:
+            size *= 2.0
+            cols = max(1, int(np.ceil((x1 - x0) / size)))
+            rows = max(1, int(np.ceil((y1 - y0) / size)))
+        self.size, self.origin, self.shape = size, (x0, y0), (cols, rows)
+
+    def cell_ranges(self, boxes: np.ndarray) -> tuple[np.ndarray, ...]:
+        """Inclusive bin ranges ``(ix0, iy0, ix1, iy1)`` of each box, clamped to the grid."""
+        inv = 1.0 / self.size
+        cols, rows = self.shape
+        ox, oy = self.origin
+        ix0 = np.clip(np.floor((boxes[:, 0] - ox) * inv), 0, cols - 1).astype(np.int64)
+        iy0 = np.clip(np.floor((boxes[:, 1] - oy) * inv), 0, rows - 1).astype(np.int64)
+        ix1 = np.clip(np.floor((boxes[:, 2] - ox) * inv), 0, cols - 1).astype(np.int64)
+        iy1 = np.clip(np.floor((boxes[:, 3] - oy) * inv), 0, rows - 1).astype(np.int64)
+        return ix0, iy0, ix1, iy1
+
+    def _between(self, a, b):
+        ra, rb = self.cell_ranges(a), self.cell_ranges(b)
+        cols = self.shape[0]
+        oa, xa, ya = _expand(*ra)
+        ob, xb, yb = _expand(*rb)
+        # Index the side with fewer entries; look the other side's bins up in it.
+        if len(oa) <= len(ob):
+            q, i = _join(ya * cols + xa, yb * cols + xb)
+            ia, ib, cx, cy = oa[i], ob[q], xb[q], yb[q]
+        else:
+            q, i = _join(yb * cols + xb, ya * cols + xa)
+            ia, ib, cx, cy = oa[q], ob[i], xa[q], ya[q]
+        first = (cx == np.maximum(ra[0][ia], rb[0][ib])) & (cy == np.maximum(ra[1][ia], rb[1][ib]))
+        return ia[first], ib[first]
+
+    def _within(self, a):
+        r = self.cell_ranges(a)
+        o, x, y = _expand(*r)
+        q, i = _join(y * self.shape[0] + x, y * self.shape[0] + x)
+        oq, oi = o[q], o[i]
+        keep = (oq < oi) & (x[q] == np.maximum(r[0][oq], r[0][oi])) & (y[q] == np.maximum(r[1][oq], r[1][oi]))
+        return oq[keep], oi[keep]
+
+
+class _Tree(_BroadPhase):
+    """Shared layout of the quadtrees: a square root over the frame's boxes, ``depth`` levels.
+
+    Node ``(nx, ny)`` of level ``l`` covers ``[x0 + nx s_l, x0 + (nx + 1) s_l)`` (and the same
+    in y) with ``s_l = side / 2**l``. The root covers every box of the frame, so nothing is
+    ever clamped.
+    """
+
+    def __init__(self, max_depth: int = 8, leaf_size: float | None = None):
+        self.max_depth = int(max_depth)
+        self.leaf_size = leaf_size
+
+    def _prepare(self, boxes, layers):
+        x0, y0 = float(boxes[:, 0].min()), float(boxes[:, 1].min())
+        x1, y1 = float(boxes[:, 2].max()), float(boxes[:, 3].max())
+        side = max(x1 - x0, y1 - y0)
+        side = side * (1 + 2**-20) + 1e-9 * (abs(x0) + abs(y0) + 1)  # keep the max edge inside
+        leaf = self.leaf_size or auto_bin_size(boxes, layers) / 2.0
+        depth = int(np.clip(np.ceil(np.log2(max(side / leaf, 1.0))), 0, self.max_depth))
+        self.origin, self.side, self.depth = (x0, y0), side, depth
+
+    def _leaf_coords(self, boxes):
+        """Leaf-level integer coordinates of each box's corners, clipped to the root."""
+        n = 1 << self.depth
+        inv = n / self.side
+        ox, oy = self.origin
+        f = lambda v, o: np.clip(np.floor((v - o) * inv), 0, n - 1).astype(np.int64)  # noqa: E731
+        return f(boxes[:, 0], ox), f(boxes[:, 1], oy), f(boxes[:, 2], ox), f(boxes[:, 3], oy)
+
+    def _levels(self, boxes):
+        """(level, nx, ny) of each object's node: subclasses decide where objects live."""
+        raise NotImplementedError
+
+    def _key(self, level_nx, ny, level):
+        return (ny << level) + level_nx
+
+    def _between(self, a, b):
+        la, xa, ya = self._levels(a)
+        lb, xb, yb = self._levels(b)
+        out_i, out_j = [], []
+        for lvl in range(self.depth + 1):
+            # a at this level against b at this level or deeper, then b at this level
+            # against a strictly deeper: every pair once.
+            for (lx, xx, yy), (ly, xq, yq), swap, strict in (
+                ((la, xa, ya), (lb, xb, yb), False, False),
+                ((lb, xb, yb), (la, xa, ya), True, True),
+            ):
+                at = np.flatnonzero(lx == lvl)
+                deeper = np.flatnonzero(ly > lvl if strict else ly >= lvl)
+                if not at.size or not deeper.size:
+                    continue
+                shift = ly[deeper] - lvl
+                q, i = self._match(xx[at], yy[at], xq[deeper] >> shift, yq[deeper] >> shift, lvl)
+                first, second = at[i], deeper[q]
+                if swap:
+                    first, second = second, first
+                out_i.append(first)
+                out_j.append(second)
+        if not out_i:
+            e = np.empty(0, dtype=np.int64)
+            return e, e
+        return np.concatenate(out_i), np.concatenate(out_j)
+
+    def _within(self, a):
+        i, j = self._between(a, a)
+        keep = i != j
+        i, j = i[keep], j[keep]
+        lo, hi = np.minimum(i, j), np.maximum(i, j)
+        # Same-level pairs come out twice (once from each side); keep one.
+        key = np.unique(lo * len(a) + hi)
+        return key // len(a), key % len(a)
+
+
+class QuadTree(_Tree):
+    """Classic quadtree (paper section 1.2): each object at the smallest node containing its box.
+
+    Two objects can overlap only if one's node is an ancestor of (or equal to) the
+    other's, so candidates are exactly those pairs.
+    """
+
+    name = "quadtree"
+
+    def _levels(self, boxes):
+        x0, y0, x1, y1 = self._leaf_coords(boxes)
+        differ = (x0 ^ x1) | (y0 ^ y1)
+        climb = np.zeros(len(boxes), dtype=np.int64)
+        nz = differ > 0
+        climb[nz] = np.floor(np.log2(differ[nz])).astype(np.int64) + 1
+        level = self.depth - climb
+        return level, x0 >> climb, y0 >> climb
+
+    def _match(self, ix, iy, qx, qy, lvl):
+        return _join(self._key(ix, iy, lvl), self._key(qx, qy, lvl))
+
+
+class LooseQuadTree(_Tree):
+    """Ulrich's loose quadtree ("Loose Octrees", Game Programming Gems, 2000), looseness 2.
+
+    An object of extent ``e`` lives at the deepest level whose node side is at least
+    ``e``, in the node holding its centre; the node's loose bounds (its square grown by
+    half a side all round) then contain it. Two loose nodes of one level can only hold
+    overlapping objects if they are neighbours, so a query looks at the 3x3 nodes around
+    the ancestor of the deeper object.
+    """
+
+    name = "loose_quadtree"
+
+    def _levels(self, boxes):
+        # The node side must exceed the extent with room to spare, so that rounding the
+        # centre into a neighbouring node never lets the box leave the loose bounds.
+        ext = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]) * (1 + 1e-9)
+        with np.errstate(divide="ignore"):
+            lv = np.floor(np.log2(self.side / np.maximum(ext, 1e-300)))
+        level = np.clip(lv, 0, self.depth).astype(np.int64)
+        level -= (level > 0) & (self.side / (1 << level).astype(np.float64) < ext)
+        n = 1 << level
+        inv = n / self.side
+        ox, oy = self.origin
+        cx = 0.5 * (boxes[:, 0] + boxes[:, 2])
+        cy = 0.5 * (boxes[:, 1] + boxes[:, 3])
+        nx = np.clip(np.floor((cx - ox) * inv), 0, n - 1).astype(np.int64)
+        ny = np.clip(np.floor((cy - oy) * inv), 0, n - 1).astype(np.int64)
+        return level, nx, ny
+
+    def _match(self, ix, iy, qx, qy, lvl):
+        # Expand the query side to its 3x3 neighbourhood (out-of-range keys match nothing).
+        off = np.array([-1, 0, 1])
+        qx9, qy9 = np.broadcast_arrays(qx[:, None, None] + off[None, None, :], qy[:, None, None] + off[None, :, None])
+        qx9, qy9 = qx9.reshape(len(qx), 9), qy9.reshape(len(qy), 9)
+        n = 1 << lvl
+        ok = (qx9 >= 0) & (qx9 < n) & (qy9 >= 0) & (qy9 < n)
+        src = np.nonzero(ok)
+        q, i = _join(self._key(ix, iy, lvl), self._key(qx9[src], qy9[src], lvl))
+        return src[0][q], i
+
+
+BROAD_PHASES = {cls.name: cls for cls in (BinGrid, QuadTree, LooseQuadTree, BruteForce)}
