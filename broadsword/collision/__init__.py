@@ -6,7 +6,7 @@ the game. Modules, one idea each:
 * ``predicates``  exact scalar predicates (and the paper's Figure 8 test)
 * ``tolerance``   every numerical tolerance, with its proof
 * ``armature``    validated hit polygons in an object's local frame
-* ``pose``        posing (``exact`` or the paper's ``lut`` rotation) and sweeps, vectorised
+* ``posing``      posing (``exact`` or the paper's ``lut`` rotation) and sweeps, vectorised
 * ``bounds``      boxes, circles, object-aligned boxes and their conservative pair tests
 * ``broadphase``  the bin grid, quadtrees and brute force behind one interface
 * ``narrow``      the exact narrow phase over many pairs at once
@@ -17,7 +17,7 @@ from .armature import Armature, convex_hull, lut_max_displacement
 from .broadphase import BROAD_PHASES, BinGrid, BruteForce, LayerTable, LooseQuadTree, QuadTree, auto_bin_size
 from .narrow import polygons_collide_padded
 from .pipeline import BOUND_TIERS, EXACT_TIERS, FrameResult, Pipeline, TierStats, collide_pairs
-from .pose import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
+from .posing import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
 from .predicates import orient, paper_segments_intersect, point_in_polygon, polygons_collide, segments_intersect
 
 __all__ = [

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .pose import Posed
+from .posing import Posed
 from .tolerance import BOUND_SLACK
 
 __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriented_boxes", "oriented_boxes_overlap"]
@@ -21,14 +21,16 @@ __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriente
 
 def aabbs(posed: Posed) -> np.ndarray:
     """Axis-aligned boxes of every posed polygon, (n, 4) float64. Exact (min/max of vertices)."""
-    out = np.empty((posed.n, 4))
+    out = np.empty((4, posed.n))  # built column-wise: each row is one contiguous write
     for k, idx in posed.members.items():
         x, y = posed.xs[k], posed.ys[k]
-        out[idx, 0] = x.min(axis=0)
-        out[idx, 1] = y.min(axis=0)
-        out[idx, 2] = x.max(axis=0)
-        out[idx, 3] = y.max(axis=0)
-    return out
+        whole = len(idx) == posed.n
+        for row, v in enumerate((x.min(axis=0), y.min(axis=0), x.max(axis=0), y.max(axis=0))):
+            if whole:
+                out[row] = v
+            else:
+                out[row, idx] = v
+    return out.T
 
 
 def circle_boxes(posed: Posed) -> np.ndarray:
@@ -39,18 +41,28 @@ def circle_boxes(posed: Posed) -> np.ndarray:
 
 def boxes_overlap(boxes: np.ndarray, pairs: np.ndarray) -> np.ndarray:
     """(m,) bool: the closed boxes of each pair ``(i, j)`` in ``pairs`` (m, 2) overlap."""
-    a, b = boxes[pairs[:, 0]], boxes[pairs[:, 1]]
-    return (
-        (a[:, 0] <= b[:, 2]) & (b[:, 0] <= a[:, 2]) & (a[:, 1] <= b[:, 3]) & (b[:, 1] <= a[:, 3])
-    )
+    cols = boxes.T  # (4, n); a view when boxes came from aabbs()
+    i, j = pairs[:, 0], pairs[:, 1]
+    keep = np.take(cols[0], i) <= np.take(cols[2], j)
+    keep &= np.take(cols[0], j) <= np.take(cols[2], i)
+    keep &= np.take(cols[1], i) <= np.take(cols[3], j)
+    keep &= np.take(cols[1], j) <= np.take(cols[3], i)
+    return keep
 
 
 def circles_overlap(posed: Posed, pairs: np.ndarray) -> np.ndarray:
     """(m,) bool: the bounding circles of each pair overlap (closed, with slack)."""
     i, j = pairs[:, 0], pairs[:, 1]
-    d = posed.centre[i] - posed.centre[j]
-    r = posed.radius[i] + posed.radius[j]
-    return d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= (r * r) * (1.0 + BOUND_SLACK)
+    cx, cy = posed.centre[:, 0], posed.centre[:, 1]
+    dx = np.take(cx, i) - np.take(cx, j)
+    dy = np.take(cy, i) - np.take(cy, j)
+    r = np.take(posed.radius, i) + np.take(posed.radius, j)
+    dx *= dx
+    dy *= dy
+    dx += dy
+    r *= r
+    r *= 1.0 + BOUND_SLACK
+    return dx <= r
 
 
 def oriented_boxes(posed: Posed) -> np.ndarray:

@@ -38,6 +38,9 @@ import numpy as np
 __all__ = ["LayerTable", "BinGrid", "QuadTree", "LooseQuadTree", "BruteForce", "BROAD_PHASES", "auto_bin_size"]
 
 _EMPTY = np.empty((0, 2), dtype=np.int64)
+_MEDIAN_SAMPLE = 512
+#: Key spaces up to this size are joined with a counting sort instead of binary search.
+_DENSE_KEYS = 1 << 17
 
 
 @dataclass(frozen=True)
@@ -119,37 +122,48 @@ def auto_bin_size(boxes: np.ndarray, layers: np.ndarray | None = None) -> float:
     if len(boxes) == 0:
         return 1.0
     ext = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])
-    if layers is None:
-        m = float(np.median(ext))
-    else:
-        layers = np.asarray(layers)
-        m = max(float(np.median(ext[layers == k])) for k in np.unique(layers))
+    layers = np.zeros(len(ext), dtype=np.int64) if layers is None else np.asarray(layers)
+    m = 0.0
+    for k in np.flatnonzero(np.bincount(layers)):
+        e = ext[layers == k]
+        # A strided sample of at most ~_MEDIAN_SAMPLE boxes: deterministic and cheap.
+        m = max(m, float(np.median(e[:: max(1, len(e) // _MEDIAN_SAMPLE)])))
     return 2.0 * m if m > 0 and np.isfinite(m) else 1.0
 
 
-def _join(index_keys: np.ndarray, query_keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _join(index_keys: np.ndarray, query_keys: np.ndarray, nkeys: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """All ``(q, i)`` with ``query_keys[q] == index_keys[i]``, as two int64 arrays.
 
-    Sorts the index side (pass the smaller side as the index) and finds each query's run
-    with a binary search; the runs are expanded without a Python loop.
+    Sorts the index side (pass the smaller side as the index). Keys in ``0..nkeys-1``
+    with a small ``nkeys`` use a counting sort and two gathers per query; otherwise each
+    query's run is found by binary search. Runs are expanded without a Python loop.
     """
     if not len(index_keys) or not len(query_keys):
         e = np.empty(0, dtype=np.int64)
         return e, e
     order = np.argsort(index_keys, kind="stable")
-    sorted_keys = index_keys[order]
-    lo = np.searchsorted(sorted_keys, query_keys, "left")
-    hi = np.searchsorted(sorted_keys, query_keys, "right")
-    count = hi - lo
+    if nkeys is not None and nkeys <= _DENSE_KEYS:
+        per_key = np.bincount(index_keys, minlength=nkeys)
+        start = np.cumsum(per_key)
+        start -= per_key
+        count = np.take(per_key, query_keys)
+        lo = np.take(start, query_keys)
+    else:
+        sorted_keys = index_keys[order]
+        lo = np.searchsorted(sorted_keys, query_keys, "left")
+        count = np.searchsorted(sorted_keys, query_keys, "right") - lo
     hits = np.flatnonzero(count)
     if not hits.size:
         e = np.empty(0, dtype=np.int64)
         return e, e
-    count, lo = count[hits], lo[hits]
+    count, lo = np.take(count, hits), np.take(lo, hits)
     q = np.repeat(hits, count)
     ends = np.cumsum(count)
-    pos = np.arange(ends[-1]) + np.repeat(lo - (ends - count), count)
-    return q, order[pos]
+    lo -= ends
+    lo += count
+    pos = np.repeat(lo, count)
+    pos += np.arange(ends[-1])
+    return q, np.take(order, pos)
 
 
 def _expand(x0, y0, x1, y1):
@@ -160,13 +174,20 @@ def _expand(x0, y0, x1, y1):
     nx = x1 - x0 + 1
     count = nx * (y1 - y0 + 1)
     n = len(x0)
-    if not n or count.max() == 1:
+    multi = np.flatnonzero(count > 1)
+    if not multi.size:
         return np.arange(n), x0, y0
-    obj = np.repeat(np.arange(n), count)
-    ends = np.cumsum(count)
-    local = np.arange(ends[-1]) - np.repeat(ends - count, count)
-    w = nx[obj]
-    return obj, x0[obj] + local % w, y0[obj] + local // w
+    # Every object's first cell, then the extra cells of the few that span several.
+    c = np.take(count, multi) - 1
+    obj = np.repeat(multi, c)
+    ends = np.cumsum(c)
+    local = np.arange(1, ends[-1] + 1) - np.repeat(ends - c, c)
+    w = np.take(nx, obj)
+    return (
+        np.concatenate([np.arange(n), obj]),
+        np.concatenate([x0, np.take(x0, obj) + local % w]),
+        np.concatenate([y0, np.take(y0, obj) + local // w]),
+    )
 
 
 class _BroadPhase:
@@ -189,31 +210,39 @@ class _BroadPhase:
         present = [members[k] for k in members if len(members[k])]
         if not present:
             return _EMPTY.copy()
-        sel = np.concatenate(present)
-        self._prepare(boxes[sel], layers[sel])
+        sel = np.concatenate(present) if len(present) > 1 else present[0]
+        self._prepare(boxes, sel, layers)
         out = []
         for a, b in table.entries:
             ia, ib = members[a], members[b]
             if a == b:
                 if len(ia) < 2:
                     continue
-                i, j = self._within(boxes[ia])
+                i, j = self._within(ia, a)
                 lo, hi = np.minimum(ia[i], ia[j]), np.maximum(ia[i], ia[j])
                 out.append(np.column_stack([lo, hi]))
             elif len(ia) and len(ib):
-                i, j = self._between(boxes[ia], boxes[ib])
-                out.append(np.column_stack([ia[i], ib[j]]))
+                i, j = self._between(ia, ib, a, b)
+                out.append(np.column_stack([np.take(ia, i), np.take(ib, j)]))
         if not out:
             return _EMPTY.copy()
         return np.concatenate(out).astype(np.int64, copy=False)
 
-    def _prepare(self, boxes: np.ndarray, layers: np.ndarray) -> None:
-        """Fix the frame's spatial layout from all boxes (and their layers) taking part."""
+    def _prepare(self, boxes: np.ndarray, sel: np.ndarray, layers: np.ndarray) -> None:
+        """Fix the frame's layout from the boxes of the objects ``sel`` taking part.
 
-    def _between(self, a: np.ndarray, b: np.ndarray):
+        ``boxes`` and ``layers`` cover every object; per-object data the phase derives is
+        computed here once per frame, not once per table entry.
+        """
+        self.boxes = boxes
+
+    def _between(self, ia: np.ndarray, ib: np.ndarray, la: int, lb: int):
+        """Pairs between the objects ``ia`` (layer ``la``) and ``ib`` (layer ``lb``),
+        as positions into ``ia`` and ``ib``."""
         raise NotImplementedError
 
-    def _within(self, a: np.ndarray):
+    def _within(self, ia: np.ndarray, la: int):
+        """Pairs among the objects ``ia`` (layer ``la``), as positions into ``ia``, first < second."""
         raise NotImplementedError
 
 
@@ -228,7 +257,10 @@ class BruteForce(_BroadPhase):
     def __init__(self, chunk: int = 256):
         self.chunk = chunk
 
-    def _between(self, a, b):
+    def _between(self, ia, ib, la, lb):
+        return self._boxes_between(self.boxes[ia], self.boxes[ib])
+
+    def _boxes_between(self, a, b):
         out_i, out_j = [], []
         for s in range(0, len(a), self.chunk):
             c = a[s : s + self.chunk]
@@ -241,8 +273,9 @@ class BruteForce(_BroadPhase):
             out_j.append(j)
         return np.concatenate(out_i), np.concatenate(out_j)
 
-    def _within(self, a):
-        i, j = self._between(a, a)
+    def _within(self, ia, la):
+        a = self.boxes[ia]
+        i, j = self._boxes_between(a, a)
         keep = i < j
         return i[keep], j[keep]
 
@@ -279,15 +312,16 @@ class BinGrid(_BroadPhase):
         self.origin = (0.0, 0.0)
         self.shape = (1, 1)  # (cols, rows)
 
-    def _prepare(self, boxes, layers):
+    def _prepare(self, boxes, sel, layers):
+        part = boxes if len(sel) == len(boxes) else boxes[sel]
         size = self.bin_size
         if size is None:
-            size = auto_bin_size(boxes, layers)
+            size = auto_bin_size(part, layers if len(sel) == len(boxes) else layers[sel])
         if self.field is not None:
             x0, y0, x1, y1 = self.field
         else:
-            x0, y0 = float(boxes[:, 0].min()), float(boxes[:, 1].min())
-            x1, y1 = float(boxes[:, 2].max()), float(boxes[:, 3].max())
+            x0, y0 = float(part[:, 0].min()), float(part[:, 1].min())
+            x1, y1 = float(part[:, 2].max()), float(part[:, 3].max())
         cols = max(1, int(np.ceil((x1 - x0) / size)))
         rows = max(1, int(np.ceil((y1 - y0) / size)))
         while cols * rows > self.max_cells:
@@ -295,40 +329,61 @@ class BinGrid(_BroadPhase):
             cols = max(1, int(np.ceil((x1 - x0) / size)))
             rows = max(1, int(np.ceil((y1 - y0) / size)))
         self.size, self.origin, self.shape = size, (x0, y0), (cols, rows)
+        self.ranges = self.cell_ranges(boxes)
+        self._entries = {}
+
+    def _layer_entries(self, ia, layer):
+        """Bin entries ``(position in ia, bin key)`` of a layer's objects, once per frame."""
+        got = self._entries.get(layer)
+        if got is None:
+            o, x, y = _expand(*(np.take(r, ia) for r in self.ranges))
+            got = self._entries[layer] = (o, y * self.shape[0] + x)
+        return got
 
     def cell_ranges(self, boxes: np.ndarray) -> tuple[np.ndarray, ...]:
         """Inclusive bin ranges ``(ix0, iy0, ix1, iy1)`` of each box, clamped to the grid."""
         inv = 1.0 / self.size
         cols, rows = self.shape
         ox, oy = self.origin
-        ix0 = np.clip(np.floor((boxes[:, 0] - ox) * inv), 0, cols - 1).astype(np.int64)
-        iy0 = np.clip(np.floor((boxes[:, 1] - oy) * inv), 0, rows - 1).astype(np.int64)
-        ix1 = np.clip(np.floor((boxes[:, 2] - ox) * inv), 0, cols - 1).astype(np.int64)
-        iy1 = np.clip(np.floor((boxes[:, 3] - oy) * inv), 0, rows - 1).astype(np.int64)
-        return ix0, iy0, ix1, iy1
+        out = []
+        for col, o, hi in ((0, ox, cols - 1), (1, oy, rows - 1), (2, ox, cols - 1), (3, oy, rows - 1)):
+            v = boxes[:, col] - o
+            v *= inv
+            np.floor(v, out=v)
+            np.clip(v, 0, hi, out=v)
+            out.append(v.astype(np.int64))
+        return tuple(out)
 
-    def _between(self, a, b):
-        ra, rb = self.cell_ranges(a), self.cell_ranges(b)
+    def _first_shared(self, ga, gb, key):
+        """Keep a pair only in the first bin (lowest row, then column) its two boxes share."""
+        x0, y0 = self.ranges[0], self.ranges[1]
         cols = self.shape[0]
-        oa, xa, ya = _expand(*ra)
-        ob, xb, yb = _expand(*rb)
+        return (key % cols == np.maximum(np.take(x0, ga), np.take(x0, gb))) & (
+            key // cols == np.maximum(np.take(y0, ga), np.take(y0, gb))
+        )
+
+    def _between(self, ia, ib, la, lb):
+        oa, ka = self._layer_entries(ia, la)
+        ob, kb = self._layer_entries(ib, lb)
+        nkeys = self.shape[0] * self.shape[1]
         # Index the side with fewer entries; look the other side's bins up in it.
         if len(oa) <= len(ob):
-            q, i = _join(ya * cols + xa, yb * cols + xb)
-            ia, ib, cx, cy = oa[i], ob[q], xb[q], yb[q]
+            q, i = _join(ka, kb, nkeys)
+            pa, pb, key = np.take(oa, i), np.take(ob, q), np.take(kb, q)
         else:
-            q, i = _join(yb * cols + xb, ya * cols + xa)
-            ia, ib, cx, cy = oa[q], ob[i], xa[q], ya[q]
-        first = (cx == np.maximum(ra[0][ia], rb[0][ib])) & (cy == np.maximum(ra[1][ia], rb[1][ib]))
-        return ia[first], ib[first]
+            q, i = _join(kb, ka, nkeys)
+            pa, pb, key = np.take(oa, q), np.take(ob, i), np.take(ka, q)
+        if len(oa) == len(ia) and len(ob) == len(ib):
+            return pa, pb  # every object sits in one bin: each pair is found once already
+        first = self._first_shared(np.take(ia, pa), np.take(ib, pb), key)
+        return pa[first], pb[first]
 
-    def _within(self, a):
-        r = self.cell_ranges(a)
-        o, x, y = _expand(*r)
-        q, i = _join(y * self.shape[0] + x, y * self.shape[0] + x)
-        oq, oi = o[q], o[i]
-        keep = (oq < oi) & (x[q] == np.maximum(r[0][oq], r[0][oi])) & (y[q] == np.maximum(r[1][oq], r[1][oi]))
-        return oq[keep], oi[keep]
+    def _within(self, ia, la):
+        o, k = self._layer_entries(ia, la)
+        q, i = _join(k, k, self.shape[0] * self.shape[1])
+        pq, pi = np.take(o, q), np.take(o, i)
+        keep = (pq < pi) & self._first_shared(np.take(ia, pq), np.take(ia, pi), np.take(k, q))
+        return pq[keep], pi[keep]
 
 
 class _Tree(_BroadPhase):
@@ -343,14 +398,16 @@ class _Tree(_BroadPhase):
         self.max_depth = int(max_depth)
         self.leaf_size = leaf_size
 
-    def _prepare(self, boxes, layers):
-        x0, y0 = float(boxes[:, 0].min()), float(boxes[:, 1].min())
-        x1, y1 = float(boxes[:, 2].max()), float(boxes[:, 3].max())
+    def _prepare(self, boxes, sel, layers):
+        part = boxes[sel]
+        x0, y0 = float(part[:, 0].min()), float(part[:, 1].min())
+        x1, y1 = float(part[:, 2].max()), float(part[:, 3].max())
         side = max(x1 - x0, y1 - y0)
         side = side * (1 + 2**-20) + 1e-9 * (abs(x0) + abs(y0) + 1)  # keep the max edge inside
-        leaf = self.leaf_size or auto_bin_size(boxes, layers) / 2.0
+        leaf = self.leaf_size or auto_bin_size(part, layers[sel]) / 2.0
         depth = int(np.clip(np.ceil(np.log2(max(side / leaf, 1.0))), 0, self.max_depth))
         self.origin, self.side, self.depth = (x0, y0), side, depth
+        self.boxes = boxes
 
     def _leaf_coords(self, boxes):
         """Leaf-level integer coordinates of each box's corners, clipped to the root."""
@@ -367,7 +424,10 @@ class _Tree(_BroadPhase):
     def _key(self, level_nx, ny, level):
         return (ny << level) + level_nx
 
-    def _between(self, a, b):
+    def _between(self, ia, ib, la_, lb_):
+        return self._boxes_between(self.boxes[ia], self.boxes[ib])
+
+    def _boxes_between(self, a, b):
         la, xa, ya = self._levels(a)
         lb, xb, yb = self._levels(b)
         out_i, out_j = [], []
@@ -394,8 +454,9 @@ class _Tree(_BroadPhase):
             return e, e
         return np.concatenate(out_i), np.concatenate(out_j)
 
-    def _within(self, a):
-        i, j = self._between(a, a)
+    def _within(self, ia, la_):
+        a = self.boxes[ia]
+        i, j = self._boxes_between(a, a)
         keep = i != j
         i, j = i[keep], j[keep]
         lo, hi = np.minimum(i, j), np.maximum(i, j)

@@ -33,11 +33,12 @@ import numpy as np
 
 from .predicates import _orient_exact, _polygons_collide
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
+from .workspace import Workspace
 
 __all__ = ["polygons_collide_padded"]
 
 #: Pairs per block: keeps the (K1+1, K2+1, block) temporaries inside a core's L2 cache.
-BLOCK = 512
+BLOCK = 1024
 
 
 def _wrap(a: np.ndarray) -> np.ndarray:
@@ -59,71 +60,83 @@ def _exact_signs(sign, uncertain, ax, ay, bx, by, cx, cy):
     sign[where] = [_orient_exact(*args) for args in zip(*coords)]
 
 
-def _block(px, py, qx, qy) -> np.ndarray:
+def _block(px, py, qx, qy, ws: Workspace) -> np.ndarray:
     k1, n = px.shape
     k2 = qx.shape[0]
-    pxe, pye, qxe, qye = _wrap(px), _wrap(py), _wrap(qx), _wrap(qy)
+    # Wrapped vertex lists (first vertex repeated at the end): (K+1, P).
+    pxe, pye = ws.get("pxe", (k1 + 1, n)), ws.get("pye", (k1 + 1, n))
+    qxe, qye = ws.get("qxe", (k2 + 1, n)), ws.get("qye", (k2 + 1, n))
+    for w, v, k in ((pxe, px, k1), (pye, py, k1), (qxe, qx, k2), (qye, qy, k2)):
+        w[:k] = v
+        w[k] = v[0]
     epx, epy = pxe[1:] - px, pye[1:] - py  # (K1, P) edge vectors of P
     eqx, eqy = qxe[1:] - qx, qye[1:] - qy  # (K2, P)
     valid_p = (epx != 0) | (epy != 0)
     valid_q = (eqx != 0) | (eqy != 0)
 
-    # Per-pair static error bound (tolerance.py): |l| + |r| <= 2 E D for every entry.
-    e = np.maximum(
-        np.maximum(np.abs(epx).max(0), np.abs(epy).max(0)),
-        np.maximum(np.abs(eqx).max(0), np.abs(eqy).max(0)),
-    )
-    pxmin, pxmax, pymin, pymax = px.min(0), px.max(0), py.min(0), py.max(0)
-    qxmin, qxmax, qymin, qymax = qx.min(0), qx.max(0), qy.min(0), qy.max(0)
-    d = np.maximum(
-        np.maximum(qxmax - pxmin, pxmax - qxmin), np.maximum(qymax - pymin, pymax - qymin)
-    )
-    scale = e * d
+    # Per-pair static error bound (tolerance.py): every edge component and every
+    # difference Q_j - P_i is at most D, the larger side of the pair's joint box.
     with np.errstate(invalid="ignore", over="ignore"):
+        dxr = np.maximum(px.max(0), qx.max(0)) - np.minimum(px.min(0), qx.min(0))
+        dyr = np.maximum(py.max(0), qy.max(0)) - np.minimum(py.min(0), qy.min(0))
+        d = np.maximum(dxr, dyr)
+        scale = d * d
         err = np.where(scale >= UNDERFLOW_GUARD, PAIR_EPS * scale, np.inf)  # nan -> inf
 
-        # Differences Q_j - P_i for the wrapped vertex lists: (K1+1, K2+1, P).
-        dx = qxe[None, :, :] - pxe[:, None, :]
-        dy = qye[None, :, :] - pye[:, None, :]
-        # A[i, j] = orient(P_i, P_i+1, Q_j): (K1, K2+1, P)
-        a = epx[:, None, :] * dy[:-1] - epy[:, None, :] * dx[:-1]
-        # B[i, j] = orient(Q_j, Q_j+1, P_i): (K1+1, K2, P)
-        b = eqy[None, :, :] * dx[:, :-1] - eqx[None, :, :] * dy[:, :-1]
-        a_pos, a_neg = a > err, a < -err
-        b_pos, b_neg = b > err, b < -err
+        # Differences Q_j - P_i: (K1+1, K2+1, P).
+        dx = np.subtract(qxe[None, :, :], pxe[:, None, :], out=ws.get("dx", (k1 + 1, k2 + 1, n)))
+        dy = np.subtract(qye[None, :, :], pye[:, None, :], out=ws.get("dy", (k1 + 1, k2 + 1, n)))
+        # A[i, j] = orient(P_i, P_i+1, Q_j) = epx dy - epy dx: (K1, K2+1, P)
+        a = np.multiply(epx[:, None, :], dy[:-1], out=ws.get("a", (k1, k2 + 1, n)))
+        a -= np.multiply(epy[:, None, :], dx[:-1], out=ws.get("t", (k1, k2 + 1, n)))
+        # B[i, j] = orient(Q_j, Q_j+1, P_i) = eqy dx - eqx dy: (K1+1, K2, P)
+        b = np.multiply(eqy[None, :, :], dx[:, :-1], out=ws.get("b", (k1 + 1, k2, n)))
+        b -= np.multiply(eqx[None, :, :], dy[:, :-1], out=ws.get("t", (k1 + 1, k2, n)))
+        a_pos, b_pos = a > err, b > err
+        np.negative(err, out=err)
+        a_neg, b_neg = a < err, b < err
     sa = a_pos.view(np.int8) - a_neg.view(np.int8)
     sb = b_pos.view(np.int8) - b_neg.view(np.int8)
-    unc_a = ~(a_pos | a_neg) & valid_p[:, None, :]
-    unc_b = ~(b_pos | b_neg) & valid_q[None, :, :]
-    if unc_a.any():
+    # Entries the filter left undecided, on real edges: recompute exactly (rare).
+    unc_a = ~(a_pos | a_neg)
+    unc_a &= valid_p[:, None, :]
+    unc_b = ~(b_pos | b_neg)
+    unc_b &= valid_q[None, :, :]
+    undecided = unc_a.any() | unc_b.any()
+    if undecided:
         _exact_signs(sa, unc_a, pxe[:-1, None], pye[:-1, None], pxe[1:, None], pye[1:, None], qxe[None], qye[None])
-    if unc_b.any():
         _exact_signs(sb, unc_b, qxe[None, :-1], qye[None, :-1], qxe[None, 1:], qye[None, 1:], pxe[:, None], pye[:, None])
 
     # Edge i of P against edge j of Q (Cormen et al. 33.1 with exact signs).
     o1, o2 = sa[:, :-1], sa[:, 1:]  # Q_j, Q_j+1 against edge i of P
     o3, o4 = sb[:-1], sb[1:]  # P_i, P_i+1 against edge j of Q
     valid = valid_p[:, None, :] & valid_q[None, :, :]
-    proper = ((o1 * o2) < 0) & ((o3 * o4) < 0) & valid
+    proper = (o1 * o2) < 0
+    proper &= (o3 * o4) < 0
+    proper &= valid
     hit = proper.any(axis=(0, 1))
 
-    zero = ((o1 == 0) | (o2 == 0) | (o3 == 0) | (o4 == 0)) & valid
-    touchy = np.flatnonzero(zero.any(axis=(0, 1)) & ~hit)
-    if touchy.size:
-        hit[touchy] = _touching(
-            o1[..., touchy], o2[..., touchy], o3[..., touchy], o4[..., touchy], valid[..., touchy],
-            pxe[:, touchy], pye[:, touchy], qxe[:, touchy], qye[:, touchy],
-        )
+    # A zero sign on a real edge can only come from an exact evaluation, so the touching
+    # cases need looking at only when the filter left something undecided.
+    if undecided:
+        zero = ((o1 == 0) | (o2 == 0) | (o3 == 0) | (o4 == 0)) & valid
+        touchy = np.flatnonzero(zero.any(axis=(0, 1)) & ~hit)
+        if touchy.size:
+            hit[touchy] = _touching(
+                o1[..., touchy], o2[..., touchy], o3[..., touchy], o4[..., touchy], valid[..., touchy],
+                pxe[:, touchy], pye[:, touchy], qxe[:, touchy], qye[:, touchy],
+            )
 
     # Boundaries apart: containment by crossing number (Haines, Graphics Gems IV), with the
     # half-open y rule; the sign of a straddling edge against the point is a matrix entry.
     p0y, q0y = py[0], qy[0]
-    straddle_q = (qye[:-1] > p0y) != (qye[1:] > p0y)  # (K2, P)
-    cross_q = straddle_q & ((sb[0] > 0) == (qye[1:] > qye[:-1]))
-    straddle_p = (pye[:-1] > q0y) != (pye[1:] > q0y)  # (K1, P)
-    cross_p = straddle_p & ((sa[:, 0] > 0) == (pye[1:] > pye[:-1]))
-    inside = (np.count_nonzero(cross_q, axis=0) & 1) | (np.count_nonzero(cross_p, axis=0) & 1)
-    result = hit | inside.astype(bool)
+    cross_q = (qye[:-1] > p0y) != (qye[1:] > p0y)  # edge j of Q straddles P_0's y: (K2, P)
+    cross_q &= (sb[0] > 0) == (qye[1:] > qye[:-1])
+    cross_p = (pye[:-1] > q0y) != (pye[1:] > q0y)  # (K1, P)
+    cross_p &= (sa[:, 0] > 0) == (pye[1:] > pye[:-1])
+    inside = np.logical_xor.reduce(cross_q, axis=0)
+    inside |= np.logical_xor.reduce(cross_p, axis=0)
+    result = hit | inside
 
     degenerate = np.flatnonzero(~valid_p.any(0) | ~valid_q.any(0))
     for k in degenerate.tolist():
@@ -155,7 +168,7 @@ def _touching(o1, o2, o3, o4, valid, pxe, pye, qxe, qye) -> np.ndarray:
     return (touch & valid).any(axis=(0, 1))
 
 
-def polygons_collide_padded(px, py, qx, qy) -> np.ndarray:
+def polygons_collide_padded(px, py, qx, qy, workspace: Workspace | None = None) -> np.ndarray:
     """Exact closed-polygon collision for many pairs at once.
 
     Parameters
@@ -166,6 +179,9 @@ def polygons_collide_padded(px, py, qx, qy) -> np.ndarray:
     qx, qy : (K2, P) float64
         The second polygon of each pair.
 
+    workspace : Workspace, optional
+        Scratch buffers to reuse across calls (a pipeline passes its own).
+
     Returns
     -------
     (P,) bool
@@ -173,11 +189,12 @@ def polygons_collide_padded(px, py, qx, qy) -> np.ndarray:
         unpadded polygons, for every finite input.
     """
     px, py, qx, qy = (np.asarray(a, dtype=np.float64) for a in (px, py, qx, qy))
+    ws = workspace or Workspace()
     n = px.shape[1]
     if n <= BLOCK:
-        return _block(px, py, qx, qy)
+        return _block(px, py, qx, qy, ws)
     out = np.empty(n, dtype=bool)
     for s in range(0, n, BLOCK):
         sl = slice(s, s + BLOCK)
-        out[sl] = _block(px[:, sl], py[:, sl], qx[:, sl], qy[:, sl])
+        out[sl] = _block(px[:, sl], py[:, sl], qx[:, sl], qy[:, sl], ws)
     return out

@@ -37,7 +37,8 @@ from . import bounds
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, LayerTable
 from .narrow import polygons_collide_padded
-from .pose import ROTATION_MODES, ArmatureSet, Posed, pose
+from .posing import ROTATION_MODES, ArmatureSet, Posed, pose
+from .workspace import Workspace
 
 __all__ = ["Pipeline", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS"]
 
@@ -104,7 +105,7 @@ class Pipeline:
         Tier names, cheapest first (see the module docstring). Default
         ``("bins", "circle", "armature")``, the product's default.
     rotation : {"lut", "exact"}
-        How armatures are rotated (see :mod:`broadsword.collision.pose`).
+        How armatures are rotated (see :mod:`broadsword.collision.posing`).
     bin_size : float or None
         For ``bins``: bin side, or ``None`` for the automatic size.
     field : (x0, y0, x1, y1) or None
@@ -133,6 +134,7 @@ class Pipeline:
         broad = self.tiers[0]
         self.broad_phase = BinGrid(bin_size, field) if broad == "bins" else BROAD_PHASES[broad]()
         self.needs_vertices = any(t in ("aabb", "obb", "armature") for t in self.tiers)
+        self.workspace = Workspace()
 
     def _check_tiers(self) -> None:
         if self.rotation not in ROTATION_MODES:
@@ -187,7 +189,7 @@ class Pipeline:
 
         t0 = clock()
         posed = pose(self.armatures, armature, positions, angles, self.rotation,
-                     prev_positions, prev_angles, swept, vertices=self.needs_vertices)
+                     prev_positions, prev_angles, swept, vertices=self.needs_vertices, workspace=self.workspace)
         boxes = bounds.aabbs(posed) if self.needs_vertices else bounds.circle_boxes(posed)
         if self.needs_vertices:
             stats.append(TierStats("pose", n, n, (clock() - t0) * 1e3))
@@ -211,7 +213,7 @@ class Pipeline:
                 obbs = bounds.oriented_boxes(posed) if obbs is None else obbs
                 keep = bounds.oriented_boxes_overlap(obbs, pairs)
             else:  # armature
-                keep = collide_pairs(posed, pairs)
+                keep = collide_pairs(posed, pairs, self.workspace)
             pairs = pairs[keep]
             stats.append(TierStats(tier, n_in, len(pairs), (clock() - t0) * 1e3))
             if self.keep_tier_pairs:
@@ -219,7 +221,7 @@ class Pipeline:
         return FrameResult(pairs, candidates, tuple(stats), posed if self.needs_vertices else None, boxes, tier_pairs)
 
 
-def collide_pairs(posed: Posed, pairs: np.ndarray) -> np.ndarray:
+def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None) -> np.ndarray:
     """(m,) bool: exact collision of the posed polygons of each pair in ``pairs`` (m, 2).
 
     Pairs are grouped by the two objects' size classes so each group is one padded batch
@@ -231,12 +233,14 @@ def collide_pairs(posed: Posed, pairs: np.ndarray) -> np.ndarray:
     i, j = pairs[:, 0], pairs[:, 1]
     ki, kj = posed.klass[i], posed.klass[j]
     group = ki * 4096 + kj
-    for g in np.unique(group).tolist():
-        sel = np.flatnonzero(group == g) if g != group[0] or not (group == g).all() else slice(None)
-        a, b = i[sel], j[sel]
+    ws = workspace or Workspace()
+    for g in np.flatnonzero(np.bincount(group)).tolist():
+        sel = np.flatnonzero(group == g)
+        a, b = np.take(i, sel), np.take(j, sel)
         k1, k2 = g // 4096, g % 4096
-        sa, sb = posed.slot[a], posed.slot[b]
+        sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
         out[sel] = polygons_collide_padded(
-            posed.xs[k1][:, sa], posed.ys[k1][:, sa], posed.xs[k2][:, sb], posed.ys[k2][:, sb]
+            np.take(posed.xs[k1], sa, axis=1), np.take(posed.ys[k1], sa, axis=1),
+            np.take(posed.xs[k2], sb, axis=1), np.take(posed.ys[k2], sb, axis=1), ws,
         )
     return out

@@ -39,12 +39,14 @@ number of extra exact evaluations and buys the underflow slack above.
 
 Static (per-pair) filter for the vectorised narrow phase
 --------------------------------------------------------
-The batch narrow phase bounds ``|l| + |r| <= 2 * E * D`` per polygon pair, where ``E`` is
-the largest edge-vector component and ``D`` the largest coordinate difference between the
-two polygons (from their boxes), and uses ``PAIR_EPS * E * D`` as the error bound for every
-orientation of that pair: ``PAIR_EPS = 16 eps`` covers ``4 eps * 2 E D`` with a factor 2 to
-spare for the rounding of ``E`` and ``D`` themselves. The same underflow guard applies to
-``E * D``.
+For one polygon pair let ``D`` be the larger side of the box around both polygons,
+computed in floating point from the vertices. Rounding is monotone, so every computed
+edge component ``fl(P_i+1 - P_i)`` and every computed difference ``fl(Q_j - P_i)`` is at
+most ``D`` in magnitude, hence ``|l| + |r| <= 2 D^2 (1 + eps)^2`` for every orientation of
+the pair, and ``PAIR_EPS * D^2`` with ``PAIR_EPS = 16 eps`` exceeds Shewchuk's
+``(3 + 16 eps) eps (|l| + |r|)`` with room for the rounding of ``D^2`` itself. The same
+underflow guard applies to ``D^2``, and an infinite or nan ``D`` (overflow) makes every
+entry of the pair undecided.
 """
 
 from __future__ import annotations

@@ -43,6 +43,7 @@ import numpy as np
 
 from .armature import Armature
 from .tolerance import BOUND_SLACK
+from .workspace import Workspace
 
 __all__ = ["ArmatureSet", "Posed", "pose", "rotation_table", "ROTATION_MODES"]
 
@@ -108,6 +109,7 @@ class ArmatureSet:
         self._lx, self._ly = _padded([a.vertices for a in self.armatures], kmax)
         self._hx, self._hy = _padded([a.hull for a in self.armatures], hmax)
         self.hull_count = hulls
+        self.classes = tuple(sorted({*self.size_class.tolist(), *self.swept_class.tolist(), self.rotating_swept_class}))
         self._cos, self._sin = rotation_table()
 
     def __len__(self) -> int:
@@ -116,8 +118,9 @@ class ArmatureSet:
     def rotations(self, angles: np.ndarray, mode: str) -> tuple[np.ndarray, np.ndarray]:
         """``(cos, sin)`` of ``angles`` (degrees, shape (n,)) under rotation ``mode``."""
         if mode == "lut":
-            idx = np.floor(angles + 0.5).astype(np.int64) % 360
-            return self._cos[idx], self._sin[idx]
+            idx = np.floor(angles + 0.5).astype(np.int64)
+            idx %= 360
+            return np.take(self._cos, idx), np.take(self._sin, idx)
         if mode == "exact":
             rad = np.radians(angles)
             return np.cos(rad), np.sin(rad)
@@ -209,6 +212,7 @@ def pose(
     prev_angles: np.ndarray | None = None,
     swept: np.ndarray | None = None,
     vertices: bool = True,
+    workspace: Workspace | None = None,
 ) -> Posed:
     """Pose every object's armature in one vectorised pass per size class.
 
@@ -233,6 +237,9 @@ def pose(
     vertices : bool
         ``False`` computes only the bounding circles (for scenes whose tiers need no
         vertex): the class arrays stay empty.
+    workspace : Workspace, optional
+        Where the vertex arrays are written. With one, the returned arrays are only valid
+        until the next call with the same workspace.
 
     Returns
     -------
@@ -248,11 +255,12 @@ def pose(
         raise ValueError(f"pose: armature ids must lie in 0..{len(shapes) - 1}")
     if not np.isfinite(positions).all() or not np.isfinite(angles).all():
         raise ValueError("pose: positions and angles must be finite")
+    ws = workspace or Workspace()
     cos, sin = shapes.rotations(angles, rotation)
     px, py = positions[:, 0], positions[:, 1]
-    radius = shapes.radius[armature]
+    radius = np.take(shapes.radius, armature)
     centre = positions
-    klass = shapes.size_class[armature].copy()
+    klass = np.take(shapes.size_class, armature)
     if swept is None or not np.any(swept):
         swept = np.zeros(n, dtype=bool)
         turning = swept
@@ -269,18 +277,20 @@ def pose(
         half = 0.5 * (positions - prev_positions)
         centre = np.where(swept[:, None], positions - half, positions)
         radius = np.where(swept, radius / math.cos(math.pi / _OCTAGON) + np.hypot(half[:, 0], half[:, 1]), radius)
-    radius = radius * (1.0 + BOUND_SLACK) + BOUND_SLACK * (np.abs(centre).sum(axis=1) + 1.0)
+    radius = radius * (1.0 + BOUND_SLACK) + BOUND_SLACK * (np.abs(centre[:, 0]) + np.abs(centre[:, 1]) + 1.0)
 
     slot = np.zeros(n, dtype=np.int64)
     xs, ys, members = {}, {}, {}
-    for k in np.unique(klass).tolist() if vertices else ():
+    for k in shapes.classes if vertices else ():
         idx = np.flatnonzero(klass == k)
+        if not idx.size:
+            continue
         slot[idx] = np.arange(len(idx))
-        x = np.empty((k, len(idx)))
-        y = np.empty((k, len(idx)))
+        x = ws.get(f"pose_x{k}", (k, len(idx)))
+        y = ws.get(f"pose_y{k}", (k, len(idx)))
         plain = ~swept[idx]
         if plain.all():
-            _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x, y)
+            _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x, y, ws)
         else:
             cols = np.flatnonzero(plain)
             if cols.size:
@@ -300,21 +310,28 @@ def _pad_rows(a: np.ndarray, k: int) -> np.ndarray:
     return np.concatenate([a, np.repeat(a[-1:], k - len(a), axis=0)])
 
 
-def _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x=None, y=None):
-    arm = armature[idx]
-    lx = shapes._lx[:k, arm]
-    ly = shapes._ly[:k, arm]
-    c, s = cos[idx], sin[idx]
+def _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x=None, y=None, ws=None):
+    """x = px + lx cos - ly sin ; y = py + lx sin + ly cos, into (k, len(idx)) arrays."""
+    whole = len(idx) == len(armature)  # one class holds every object: no gathers needed
+    arm = armature if whole else np.take(armature, idx)
+    if arm[0] == arm.min() == arm.max():
+        # One armature for the whole class (a bullet pool): broadcast, no gather.
+        lx = shapes._lx[:k, arm[0], None]
+        ly = shapes._ly[:k, arm[0], None]
+    else:
+        lx = np.take(shapes._lx[:k], arm, axis=1)
+        ly = np.take(shapes._ly[:k], arm, axis=1)
+    c, s = (cos, sin) if whole else (np.take(cos, idx), np.take(sin, idx))
     if x is None:
-        x = np.empty_like(lx)
-        y = np.empty_like(ly)
-    # x = px + lx c - ly s ; y = py + lx s + ly c, with few temporaries.
+        x = np.empty((k, len(idx)))
+        y = np.empty((k, len(idx)))
+    t = np.empty_like(x) if ws is None else ws.get("pose_t", x.shape)
     np.multiply(lx, c, out=x)
-    x -= ly * s
-    x += px[idx]
+    x -= np.multiply(ly, s, out=t)
+    x += px if whole else np.take(px, idx)
     np.multiply(lx, s, out=y)
-    y += ly * c
-    y += py[idx]
+    y += np.multiply(ly, c, out=t)
+    y += py if whole else np.take(py, idx)
     return x, y
 
 
