@@ -41,6 +41,8 @@ _EMPTY = np.empty((0, 2), dtype=np.int64)
 _MEDIAN_SAMPLE = 512
 #: Key spaces up to this size are joined with a counting sort instead of binary search.
 _DENSE_KEYS = 1 << 17
+#: A table entry with at most this many objects on one side skips the bins (see _ranges_meet).
+_DIRECT_SIDE = 8
 
 
 @dataclass(frozen=True)
@@ -111,23 +113,25 @@ class LayerTable:
         return int(total)
 
 
-def auto_bin_size(boxes: np.ndarray, layers: np.ndarray | None = None) -> float:
-    """The default bin size: twice the larger of the layers' median box extents.
+def auto_bin_size(boxes: np.ndarray, groups: Iterable[np.ndarray] | None = None) -> float:
+    """The default bin size: twice the largest of the groups' median box extents.
 
-    The paper's advice is bins "larger, but not significantly larger, than the objects"
-    (section 1.3). Taking the median per layer and then the largest keeps a crowd of small
-    bullets from shrinking the bins below the ships they are tested against; see
-    docs/PERFORMANCE.md for the measured bin-size curve.
+    ``groups`` are index arrays into ``boxes`` (the broad phases pass one per layer; by
+    default all boxes form one group). The paper's advice is bins "larger, but not
+    significantly larger, than the objects" (section 1.3). Taking the median per layer
+    and then the largest keeps a crowd of small bullets from shrinking the bins below the
+    ships they are tested against; see docs/PERFORMANCE.md for the measured bin-size
+    curve. Each median is taken over an evenly strided sample of at most about 512
+    boxes: deterministic, and cheap for 10,000 bullets.
     """
-    if len(boxes) == 0:
-        return 1.0
-    ext = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])
-    layers = np.zeros(len(ext), dtype=np.int64) if layers is None else np.asarray(layers)
+    if groups is None:
+        groups = [np.arange(len(boxes))]
     m = 0.0
-    for k in np.flatnonzero(np.bincount(layers)):
-        e = ext[layers == k]
-        # A strided sample of at most ~_MEDIAN_SAMPLE boxes: deterministic and cheap.
-        m = max(m, float(np.median(e[:: max(1, len(e) // _MEDIAN_SAMPLE)])))
+    for idx in groups:
+        if not len(idx):
+            continue
+        b = boxes[idx[:: max(1, len(idx) // _MEDIAN_SAMPLE)]]
+        m = max(m, float(np.median(np.maximum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]))))
     return 2.0 * m if m > 0 and np.isfinite(m) else 1.0
 
 
@@ -210,6 +214,7 @@ class _BroadPhase:
         present = [members[k] for k in members if len(members[k])]
         if not present:
             return _EMPTY.copy()
+        self.groups = present
         sel = np.concatenate(present) if len(present) > 1 else present[0]
         self._prepare(boxes, sel, layers)
         out = []
@@ -316,7 +321,7 @@ class BinGrid(_BroadPhase):
         part = boxes if len(sel) == len(boxes) else boxes[sel]
         size = self.bin_size
         if size is None:
-            size = auto_bin_size(part, layers if len(sel) == len(boxes) else layers[sel])
+            size = auto_bin_size(boxes, self.groups)
         if self.field is not None:
             x0, y0, x1, y1 = self.field
         else:
@@ -330,6 +335,8 @@ class BinGrid(_BroadPhase):
             rows = max(1, int(np.ceil((y1 - y0) / size)))
         self.size, self.origin, self.shape = size, (x0, y0), (cols, rows)
         self.ranges = self.cell_ranges(boxes)
+        x0, y0, x1, y1 = self.ranges
+        self.multi = (x0 != x1) | (y0 != y1)  # objects spanning more than one bin
         self._entries = {}
 
     def _layer_entries(self, ia, layer):
@@ -349,10 +356,24 @@ class BinGrid(_BroadPhase):
         for col, o, hi in ((0, ox, cols - 1), (1, oy, rows - 1), (2, ox, cols - 1), (3, oy, rows - 1)):
             v = boxes[:, col] - o
             v *= inv
-            np.floor(v, out=v)
-            np.clip(v, 0, hi, out=v)
+            np.clip(v, 0, hi, out=v)  # clipped to >= 0 first, truncation is floor
             out.append(v.astype(np.int64))
         return tuple(out)
+
+    def _ranges_meet(self, ia, ib):
+        """Pairs whose bin ranges intersect -- "share a bin" -- tested directly.
+
+        For a table entry with a handful of objects on one side (the player against
+        thousands of bullets) this beats registering the crowd in bins: a few vectorised
+        comparisons per object of the small side, and no pair can come out twice.
+        """
+        x0, y0, x1, y1 = (r[:, None] for r in self.ranges)  # (n, 1) views
+        a = ia[:, None] if len(ia) <= len(ib) else ib[:, None]
+        b = ib[None, :] if len(ia) <= len(ib) else ia[None, :]
+        meet = (np.take(x0, a) <= np.take(x1, b)) & (np.take(x0, b) <= np.take(x1, a))
+        meet &= (np.take(y0, a) <= np.take(y1, b)) & (np.take(y0, b) <= np.take(y1, a))
+        i, j = np.nonzero(meet)
+        return (i, j) if len(ia) <= len(ib) else (j, i)
 
     def _first_shared(self, ga, gb, key):
         """Keep a pair only in the first bin (lowest row, then column) its two boxes share."""
@@ -363,6 +384,8 @@ class BinGrid(_BroadPhase):
         )
 
     def _between(self, ia, ib, la, lb):
+        if min(len(ia), len(ib)) <= _DIRECT_SIDE:
+            return self._ranges_meet(ia, ib)
         oa, ka = self._layer_entries(ia, la)
         ob, kb = self._layer_entries(ib, lb)
         nkeys = self.shape[0] * self.shape[1]
@@ -373,10 +396,17 @@ class BinGrid(_BroadPhase):
         else:
             q, i = _join(kb, ka, nkeys)
             pa, pb, key = np.take(oa, q), np.take(ob, i), np.take(ka, q)
-        if len(oa) == len(ia) and len(ob) == len(ib):
-            return pa, pb  # every object sits in one bin: each pair is found once already
-        first = self._first_shared(np.take(ia, pa), np.take(ib, pb), key)
-        return pa[first], pb[first]
+        if len(oa) == len(ia) or len(ob) == len(ib):
+            return pa, pb  # one side sits in one bin each: no pair can meet twice
+        # Only pairs of two multi-bin objects can share several bins.
+        ga, gb = np.take(ia, pa), np.take(ib, pb)
+        both = np.flatnonzero(np.take(self.multi, ga) & np.take(self.multi, gb))
+        if not both.size:
+            return pa, pb
+        drop = both[~self._first_shared(np.take(ga, both), np.take(gb, both), np.take(key, both))]
+        keep = np.ones(len(pa), dtype=bool)
+        keep[drop] = False
+        return pa[keep], pb[keep]
 
     def _within(self, ia, la):
         o, k = self._layer_entries(ia, la)
@@ -404,7 +434,7 @@ class _Tree(_BroadPhase):
         x1, y1 = float(part[:, 2].max()), float(part[:, 3].max())
         side = max(x1 - x0, y1 - y0)
         side = side * (1 + 2**-20) + 1e-9 * (abs(x0) + abs(y0) + 1)  # keep the max edge inside
-        leaf = self.leaf_size or auto_bin_size(part, layers[sel]) / 2.0
+        leaf = self.leaf_size or auto_bin_size(boxes, self.groups) / 2.0
         depth = int(np.clip(np.ceil(np.log2(max(side / leaf, 1.0))), 0, self.max_depth))
         self.origin, self.side, self.depth = (x0, y0), side, depth
         self.boxes = boxes

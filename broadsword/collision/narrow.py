@@ -38,7 +38,7 @@ from .workspace import Workspace
 __all__ = ["polygons_collide_padded"]
 
 #: Pairs per block: keeps the (K1+1, K2+1, block) temporaries inside a core's L2 cache.
-BLOCK = 1024
+BLOCK = 4096
 
 
 def _wrap(a: np.ndarray) -> np.ndarray:
@@ -91,7 +91,7 @@ def _block(px, py, qx, qy, ws: Workspace) -> np.ndarray:
         a -= np.multiply(epy[:, None, :], dx[:-1], out=ws.get("t", (k1, k2 + 1, n)))
         # B[i, j] = orient(Q_j, Q_j+1, P_i) = eqy dx - eqx dy: (K1+1, K2, P)
         b = np.multiply(eqy[None, :, :], dx[:, :-1], out=ws.get("b", (k1 + 1, k2, n)))
-        b -= np.multiply(eqx[None, :, :], dy[:, :-1], out=ws.get("t", (k1 + 1, k2, n)))
+        b -= np.multiply(eqx[None, :, :], dy[:, :-1], out=ws.get("u", (k1 + 1, k2, n)))
         a_pos, b_pos = a > err, b > err
         np.negative(err, out=err)
         a_neg, b_neg = a < err, b < err

@@ -297,9 +297,9 @@ def pose(
                 x[:, cols], y[:, cols] = _pose_plain(shapes, k, idx[cols], armature, px, py, cos, sin)
             cols = np.flatnonzero(~plain)
             obj = idx[cols]
-            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj])
-            sx, sy = _sweep(hx, hy, px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1])
-            x[:, cols], y[:, cols] = _pad_rows(sx, k), _pad_rows(sy, k)
+            # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
+            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2)
+            x[:, cols], y[:, cols] = _sweep(hx, hy, px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1])
         xs[k], ys[k], members[k] = x, y, idx
     return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
 
@@ -335,11 +335,12 @@ def _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x=None, y=None, ws=N
     return x, y
 
 
-def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning):
-    """Current-pose convex shape of each swept object: its hull, or an octagon if it turned."""
+def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
+    """Current-pose convex shape of each swept object, as (rows, m) arrays: its hull
+    (padded with its last vertex), or the circumscribed octagon if it turned."""
     arm = armature[obj]
-    hx = shapes._hx[:, arm]
-    hy = shapes._hy[:, arm]
+    hx = _pad_rows(shapes._hx[:rows, arm], rows)
+    hy = _pad_rows(shapes._hy[:rows, arm], rows)
     c, s = cos[obj], sin[obj]
     x = px[obj] + hx * c - hy * s
     y = py[obj] + hx * s + hy * c
