@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .posing import Posed
+from .posing import Posed, selector
 from .tolerance import BOUND_SLACK
 
 __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriented_boxes", "oriented_boxes_overlap"]
@@ -21,15 +21,14 @@ __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriente
 
 def aabbs(posed: Posed) -> np.ndarray:
     """Axis-aligned boxes of every posed polygon, (n, 4) float64. Exact (min/max of vertices)."""
-    out = np.empty((4, posed.n))  # built column-wise: each row is one contiguous write
+    out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
     for k, idx in posed.members.items():
-        x, y = posed.xs[k], posed.ys[k]
-        whole = len(idx) == posed.n
-        for row, v in enumerate((x.min(axis=0), y.min(axis=0), x.max(axis=0), y.max(axis=0))):
-            if whole:
-                out[row] = v
+        x, y, sel = posed.xs[k], posed.ys[k], selector(idx)
+        for row, (v, reduce) in enumerate(((x, np.min), (y, np.min), (x, np.max), (y, np.max))):
+            if isinstance(sel, slice):
+                reduce(v, axis=0, out=out[row, sel])  # a pool: straight into place
             else:
-                out[row, idx] = v
+                out[row, sel] = reduce(v, axis=0)
     return out.T
 
 

@@ -60,29 +60,30 @@ def _exact_signs(sign, uncertain, ax, ay, bx, by, cx, cy):
     sign[where] = [_orient_exact(*args) for args in zip(*coords)]
 
 
-def _block(px, py, qx, qy, ws: Workspace) -> np.ndarray:
-    k1, n = px.shape
-    k2 = qx.shape[0]
-    # Wrapped vertex lists (first vertex repeated at the end): (K+1, P).
-    pxe, pye = ws.get("pxe", (k1 + 1, n)), ws.get("pye", (k1 + 1, n))
-    qxe, qye = ws.get("qxe", (k2 + 1, n)), ws.get("qye", (k2 + 1, n))
-    for w, v, k in ((pxe, px, k1), (pye, py, k1), (qxe, qx, k2), (qye, qy, k2)):
-        w[:k] = v
-        w[k] = v[0]
+def _error_bounds(px, py, qx, qy) -> np.ndarray:
+    """(P,) per-pair orientation error bound, ``inf`` where the filter must not answer.
+
+    Every edge component and every difference ``Q_j - P_i`` is at most ``D``, the larger
+    side of the pair's joint box (tolerance.py, "Static (per-pair) filter").
+    """
+    with np.errstate(invalid="ignore", over="ignore"):
+        dxr = np.maximum(px.max(0), qx.max(0)) - np.minimum(px.min(0), qx.min(0))
+        dyr = np.maximum(py.max(0), qy.max(0)) - np.minimum(py.min(0), qy.min(0))
+        d = np.maximum(dxr, dyr)
+        d *= d
+        return np.where(d >= UNDERFLOW_GUARD, PAIR_EPS * d, np.inf)  # nan (overflow) -> inf
+
+
+def _block(pxe, pye, qxe, qye, err, ws: Workspace) -> np.ndarray:
+    """Exact collision for the pairs of one block; arrays are wrapped: (K+1, P)."""
+    k1, k2, n = pxe.shape[0] - 1, qxe.shape[0] - 1, pxe.shape[1]
+    px, py, qx, qy = pxe[:-1], pye[:-1], qxe[:-1], qye[:-1]
     epx, epy = pxe[1:] - px, pye[1:] - py  # (K1, P) edge vectors of P
     eqx, eqy = qxe[1:] - qx, qye[1:] - qy  # (K2, P)
     valid_p = (epx != 0) | (epy != 0)
     valid_q = (eqx != 0) | (eqy != 0)
 
-    # Per-pair static error bound (tolerance.py): every edge component and every
-    # difference Q_j - P_i is at most D, the larger side of the pair's joint box.
     with np.errstate(invalid="ignore", over="ignore"):
-        dxr = np.maximum(px.max(0), qx.max(0)) - np.minimum(px.min(0), qx.min(0))
-        dyr = np.maximum(py.max(0), qy.max(0)) - np.minimum(py.min(0), qy.min(0))
-        d = np.maximum(dxr, dyr)
-        scale = d * d
-        err = np.where(scale >= UNDERFLOW_GUARD, PAIR_EPS * scale, np.inf)  # nan -> inf
-
         # Differences Q_j - P_i: (K1+1, K2+1, P).
         dx = np.subtract(qxe[None, :, :], pxe[:, None, :], out=ws.get("dx", (k1 + 1, k2 + 1, n)))
         dy = np.subtract(qye[None, :, :], pye[:, None, :], out=ws.get("dy", (k1 + 1, k2 + 1, n)))
@@ -93,17 +94,17 @@ def _block(px, py, qx, qy, ws: Workspace) -> np.ndarray:
         b = np.multiply(eqy[None, :, :], dx[:, :-1], out=ws.get("b", (k1 + 1, k2, n)))
         b -= np.multiply(eqx[None, :, :], dy[:, :-1], out=ws.get("u", (k1 + 1, k2, n)))
         a_pos, b_pos = a > err, b > err
-        np.negative(err, out=err)
-        a_neg, b_neg = a < err, b < err
+        nerr = -err
+        a_neg, b_neg = a < nerr, b < nerr
     sa = a_pos.view(np.int8) - a_neg.view(np.int8)
     sb = b_pos.view(np.int8) - b_neg.view(np.int8)
-    # Entries the filter left undecided, on real edges: recompute exactly (rare).
-    unc_a = ~(a_pos | a_neg)
-    unc_a &= valid_p[:, None, :]
-    unc_b = ~(b_pos | b_neg)
-    unc_b &= valid_q[None, :, :]
-    undecided = unc_a.any() | unc_b.any()
+    # Every entry on a real edge certain? Zero-length edges give exactly 0 (never certain),
+    # overflow gives nan (never certain): count the certain ones against the real ones.
+    certain = np.count_nonzero(a_pos) + np.count_nonzero(a_neg) + np.count_nonzero(b_pos) + np.count_nonzero(b_neg)
+    undecided = certain != np.count_nonzero(valid_p) * (k2 + 1) + np.count_nonzero(valid_q) * (k1 + 1)
     if undecided:
+        unc_a = ~(a_pos | a_neg) & valid_p[:, None, :]
+        unc_b = ~(b_pos | b_neg) & valid_q[None, :, :]
         _exact_signs(sa, unc_a, pxe[:-1, None], pye[:-1, None], pxe[1:, None], pye[1:, None], qxe[None], qye[None])
         _exact_signs(sb, unc_b, qxe[None, :-1], qye[None, :-1], qxe[None, 1:], qye[None, 1:], pxe[:, None], pye[:, None])
 
@@ -190,11 +191,18 @@ def polygons_collide_padded(px, py, qx, qy, workspace: Workspace | None = None) 
     """
     px, py, qx, qy = (np.asarray(a, dtype=np.float64) for a in (px, py, qx, qy))
     ws = workspace or Workspace()
-    n = px.shape[1]
+    k1, n = px.shape
+    k2 = qx.shape[0]
+    pxe, pye = ws.get("pxe", (k1 + 1, n)), ws.get("pye", (k1 + 1, n))
+    qxe, qye = ws.get("qxe", (k2 + 1, n)), ws.get("qye", (k2 + 1, n))
+    for w, v, k in ((pxe, px, k1), (pye, py, k1), (qxe, qx, k2), (qye, qy, k2)):
+        w[:k] = v
+        w[k] = v[0]
+    err = _error_bounds(px, py, qx, qy)
     if n <= BLOCK:
-        return _block(px, py, qx, qy, ws)
+        return _block(pxe, pye, qxe, qye, err, ws)
     out = np.empty(n, dtype=bool)
     for s in range(0, n, BLOCK):
         sl = slice(s, s + BLOCK)
-        out[sl] = _block(px[:, sl], py[:, sl], qx[:, sl], qy[:, sl], ws)
+        out[sl] = _block(pxe[:, sl], pye[:, sl], qxe[:, sl], qye[:, sl], err[sl], ws)
     return out

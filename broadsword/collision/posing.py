@@ -285,12 +285,13 @@ def pose(
         idx = np.flatnonzero(klass == k)
         if not idx.size:
             continue
-        slot[idx] = np.arange(len(idx))
+        sel = selector(idx)
+        slot[sel] = np.arange(len(idx))
         x = ws.get(f"pose_x{k}", (k, len(idx)))
         y = ws.get(f"pose_y{k}", (k, len(idx)))
-        plain = ~swept[idx]
+        plain = ~swept[sel]
         if plain.all():
-            _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x, y, ws)
+            _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x, y, ws)
         else:
             cols = np.flatnonzero(plain)
             if cols.size:
@@ -304,16 +305,29 @@ def pose(
     return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
 
 
+def selector(idx: np.ndarray):
+    """A slice for a sorted run of consecutive indices (the usual case: objects live in
+    pools, so a size class is a contiguous range), else the index array itself.
+    Slicing is a view where a gather would copy."""
+    if len(idx) and idx[-1] - idx[0] + 1 == len(idx):
+        return slice(int(idx[0]), int(idx[-1]) + 1)
+    return idx
+
+
+def _pick(a: np.ndarray, sel):
+    return a[sel] if isinstance(sel, slice) else np.take(a, sel)
+
+
 def _pad_rows(a: np.ndarray, k: int) -> np.ndarray:
     if len(a) == k:
         return a
     return np.concatenate([a, np.repeat(a[-1:], k - len(a), axis=0)])
 
 
-def _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x=None, y=None, ws=None):
-    """x = px + lx cos - ly sin ; y = py + lx sin + ly cos, into (k, len(idx)) arrays."""
-    whole = len(idx) == len(armature)  # one class holds every object: no gathers needed
-    arm = armature if whole else np.take(armature, idx)
+def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=None):
+    """x = px + lx cos - ly sin ; y = py + lx sin + ly cos, into (k, m) arrays for the
+    objects ``sel`` (a slice or an index array)."""
+    arm = _pick(armature, sel)
     if arm[0] == arm.min() == arm.max():
         # One armature for the whole class (a bullet pool): broadcast, no gather.
         lx = shapes._lx[:k, arm[0], None]
@@ -321,17 +335,17 @@ def _pose_plain(shapes, k, idx, armature, px, py, cos, sin, x=None, y=None, ws=N
     else:
         lx = np.take(shapes._lx[:k], arm, axis=1)
         ly = np.take(shapes._ly[:k], arm, axis=1)
-    c, s = (cos, sin) if whole else (np.take(cos, idx), np.take(sin, idx))
+    c, s = _pick(cos, sel), _pick(sin, sel)
     if x is None:
-        x = np.empty((k, len(idx)))
-        y = np.empty((k, len(idx)))
+        x = np.empty((k, len(arm)))
+        y = np.empty((k, len(arm)))
     t = np.empty_like(x) if ws is None else ws.get("pose_t", x.shape)
     np.multiply(lx, c, out=x)
     x -= np.multiply(ly, s, out=t)
-    x += px if whole else np.take(px, idx)
+    x += _pick(px, sel)
     np.multiply(lx, s, out=y)
     y += np.multiply(ly, c, out=t)
-    y += py if whole else np.take(py, idx)
+    y += _pick(py, sel)
     return x, y
 
 
