@@ -25,16 +25,17 @@ from ..collision import Pipeline
 from .scenes import ReferenceScene
 
 #: The product's default pipeline: the paper's bins, a cheap bound, the exact armature test.
-DEFAULT = ("bins", "aabb", "armature")
+DEFAULT = ("bins", "circle", "aabb", "armature")
 
 #: name -> (tiers, rotation). Approximate methods (no armature tier) accept their last tier's pairs.
 METHODS = {
-    "default (bins+aabb+armature, lut)": (DEFAULT, "lut"),
-    "bins+aabb+armature, exact rotation": (DEFAULT, "exact"),
+    "default (bins+circle+aabb+armature, lut)": (DEFAULT, "lut"),
+    "default, exact rotation": (DEFAULT, "exact"),
     "bins+circle+armature, lut": (("bins", "circle", "armature"), "lut"),
-    "brute+armature, lut": (("brute", "aabb", "armature"), "lut"),
-    "quadtree+aabb+armature, lut": (("quadtree", "aabb", "armature"), "lut"),
-    "loose quadtree+aabb+armature, lut": (("loose_quadtree", "aabb", "armature"), "lut"),
+    "bins+aabb+armature, lut": (("bins", "aabb", "armature"), "lut"),
+    "brute+circle+aabb+armature, lut": (("brute",) + DEFAULT[1:], "lut"),
+    "quadtree+circle+aabb+armature, lut": (("quadtree",) + DEFAULT[1:], "lut"),
+    "loose quadtree+circle+aabb+armature, lut": (("loose_quadtree",) + DEFAULT[1:], "lut"),
     "AABB only (bins+aabb)": (("bins", "aabb"), "lut"),
     "circle only (bins+circle)": (("bins", "circle"), "lut"),
 }

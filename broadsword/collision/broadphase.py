@@ -39,6 +39,8 @@ __all__ = ["LayerTable", "BinGrid", "QuadTree", "LooseQuadTree", "BruteForce", "
 
 _EMPTY = np.empty((0, 2), dtype=np.int64)
 _MEDIAN_SAMPLE = 512
+#: Bins this much larger than the largest layer's median object (docs/PERFORMANCE.md).
+_AUTO_BIN_FACTOR = 1.25
 #: Key spaces up to this size are joined with a counting sort instead of binary search.
 _DENSE_KEYS = 1 << 17
 #: A table entry with at most this many objects on one side skips the bins (see _ranges_meet).
@@ -114,7 +116,7 @@ class LayerTable:
 
 
 def auto_bin_size(boxes: np.ndarray, groups: Iterable[np.ndarray] | None = None) -> float:
-    """The default bin size: twice the largest of the groups' median box extents.
+    """The default bin size: 1.25 times the largest of the groups' median box extents.
 
     ``groups`` are index arrays into ``boxes`` (the broad phases pass one per layer; by
     default all boxes form one group). The paper's advice is bins "larger, but not
@@ -134,7 +136,7 @@ def auto_bin_size(boxes: np.ndarray, groups: Iterable[np.ndarray] | None = None)
         ext = np.maximum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1])
         half = len(ext) // 2  # the upper median: np.median costs ten times more
         m = max(m, float(np.partition(ext, half)[half]))
-    return 2.0 * m if m > 0 and np.isfinite(m) else 1.0
+    return _AUTO_BIN_FACTOR * m if m > 0 and np.isfinite(m) else 1.0
 
 
 def _join(index_keys: np.ndarray, query_keys: np.ndarray, nkeys: int | None = None) -> tuple[np.ndarray, np.ndarray]:

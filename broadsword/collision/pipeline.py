@@ -44,6 +44,8 @@ __all__ = ["Pipeline", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS"]
 
 BOUND_TIERS = ("aabb", "circle", "obb")
 EXACT_TIERS = ("armature",)
+#: Tiers that need posed polygons; the first of them poses the objects still in play.
+VERTEX_TIERS = ("aabb", "obb", "armature")
 
 
 @dataclass(frozen=True)
@@ -72,17 +74,28 @@ class FrameResult:
     candidates : (c, 2) int64
         The broad phase's pairs (for the debug overlay).
     stats : tuple of TierStats
-        ``layers``, ``pose`` (when posing was needed), then each named tier, in order.
+        ``layers``, the broad phase, then each named tier in order, with a ``pose`` row
+        just before the first tier that needs polygons (it counts the objects posed).
     posed : Posed or None
-        The posed polygons, when a tier needed them.
+        The posed polygons of the objects that reached a polygon tier (``aabb``, ``obb``,
+        ``armature``); ``None`` if the scene names none. Its arrays live in the
+        pipeline's workspace: valid until the next step.
+    posed_index : (n,) int64 or None
+        Column of each object in ``posed``, -1 for objects that were not posed.
+    circles : Posed
+        Bounding circles (``centre``, ``radius``) of every object; no vertices.
     boxes : (n, 4) float64
-        The boxes the broad phase used.
+        The boxes the broad phase used: the bounding circles' boxes.
+    tier_pairs : dict
+        Each tier's surviving pairs, when the pipeline keeps them.
     """
 
     hits: np.ndarray
     candidates: np.ndarray
     stats: tuple
     posed: Posed | None
+    posed_index: np.ndarray | None
+    circles: Posed
     boxes: np.ndarray
     tier_pairs: dict = field(default_factory=dict)
 
@@ -103,7 +116,8 @@ class Pipeline:
         Which layers test which. Defaults to :meth:`LayerTable.shmup`.
     tiers : sequence of str
         Tier names, cheapest first (see the module docstring). Default
-        ``("bins", "circle", "armature")``, the product's default.
+        ``("bins", "circle", "aabb", "armature")``, the product's default: circles need
+        no posing, so only the objects that survive them are posed.
     rotation : {"lut", "exact"}
         How armatures are rotated (see :mod:`broadsword.collision.posing`).
     bin_size : float or None
@@ -119,7 +133,7 @@ class Pipeline:
         self,
         armatures: ArmatureSet | Sequence[Armature],
         layers: LayerTable | None = None,
-        tiers: Sequence[str] = ("bins", "circle", "armature"),
+        tiers: Sequence[str] = ("bins", "circle", "aabb", "armature"),
         rotation: str = "lut",
         bin_size: float | None = None,
         field: Sequence[float] | None = None,
@@ -133,7 +147,6 @@ class Pipeline:
         self._check_tiers()
         broad = self.tiers[0]
         self.broad_phase = BinGrid(bin_size, field) if broad == "bins" else BROAD_PHASES[broad]()
-        self.needs_vertices = any(t in ("aabb", "obb", "armature") for t in self.tiers)
         self.workspace = Workspace()
 
     def _check_tiers(self) -> None:
@@ -188,37 +201,64 @@ class Pipeline:
         clock = time.perf_counter
 
         t0 = clock()
-        posed = pose(self.armatures, armature, positions, angles, self.rotation,
-                     prev_positions, prev_angles, swept, vertices=self.needs_vertices, workspace=self.workspace)
-        boxes = bounds.aabbs(posed) if self.needs_vertices else bounds.circle_boxes(posed)
-        if self.needs_vertices:
-            stats.append(TierStats("pose", n, n, (clock() - t0) * 1e3))
-            t0 = clock()
-
+        # Circles need no vertex: the broad phase works on circle boxes, and polygons are
+        # posed only when a tier needs them, only for the objects still in play.
+        circles = pose(self.armatures, armature, positions, angles, self.rotation,
+                       prev_positions, prev_angles, swept, vertices=False)
+        boxes = bounds.circle_boxes(circles)
         pairs = self.broad_phase.find_pairs(boxes, layer, self.layers)
         candidates = pairs
         stats.append(TierStats(self.tiers[0], stats[0].pairs_out, len(pairs), (clock() - t0) * 1e3))
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0]] = pairs
 
-        obbs = None
+        posed = posed_index = local = tight = obbs = None
         for tier in self.tiers[1:]:
+            if tier in VERTEX_TIERS and posed is None:
+                t0 = clock()
+                posed, posed_index = self._pose_objects_in(pairs, circles.n, armature, positions, angles,
+                                                           prev_positions, prev_angles, swept)
+                local = np.take(posed_index, pairs)
+                stats.append(TierStats("pose", n, posed.n, (clock() - t0) * 1e3))
             t0 = clock()
             n_in = len(pairs)
             if tier == "aabb":
-                keep = bounds.boxes_overlap(boxes, pairs)
+                tight = bounds.aabbs(posed)
+                keep = bounds.boxes_overlap(tight, local)
             elif tier == "circle":
-                keep = bounds.circles_overlap(posed, pairs)
+                keep = bounds.circles_overlap(circles, pairs)
             elif tier == "obb":
-                obbs = bounds.oriented_boxes(posed) if obbs is None else obbs
-                keep = bounds.oriented_boxes_overlap(obbs, pairs)
+                obbs = bounds.oriented_boxes(posed)
+                keep = bounds.oriented_boxes_overlap(obbs, local)
             else:  # armature
-                keep = collide_pairs(posed, pairs, self.workspace)
+                keep = collide_pairs(posed, local, self.workspace)
             pairs = pairs[keep]
+            if local is not None:
+                local = local[keep]
             stats.append(TierStats(tier, n_in, len(pairs), (clock() - t0) * 1e3))
             if self.keep_tier_pairs:
                 tier_pairs[tier] = pairs
-        return FrameResult(pairs, candidates, tuple(stats), posed if self.needs_vertices else None, boxes, tier_pairs)
+        return FrameResult(pairs, candidates, tuple(stats), posed, posed_index, circles, boxes, tier_pairs)
+
+    def _pose_objects_in(self, pairs, n, armature, positions, angles, prev_positions, prev_angles, swept):
+        """Pose the objects that appear in ``pairs``; return the Posed and an (n,) map from
+        object index to its column in it (-1 for objects not posed)."""
+        mark = np.zeros(n, dtype=bool)
+        mark[pairs[:, 0]] = True
+        mark[pairs[:, 1]] = True
+        objs = np.flatnonzero(mark)
+
+        def pick(a, width=None):
+            if a is None:
+                return None
+            a = np.asarray(a)
+            return np.take(a.reshape(n, width) if width else a.reshape(n), objs, axis=0)
+
+        posed = pose(self.armatures, pick(armature), pick(positions, 2), pick(angles), self.rotation,
+                     pick(prev_positions, 2), pick(prev_angles), pick(swept), workspace=self.workspace)
+        index = np.full(n, -1, dtype=np.int64)
+        index[objs] = np.arange(len(objs))
+        return posed, index
 
 
 def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None) -> np.ndarray:
