@@ -14,14 +14,14 @@ the game. Modules, one idea each:
 """
 
 from .armature import Armature, convex_hull, lut_max_displacement
-from .broadphase import BROAD_PHASES, BinGrid, BruteForce, LayerTable, LooseQuadTree, QuadTree, auto_bin_size
+from .broadphase import AUTO_BIN_FACTOR, BROAD_PHASES, BinGrid, BruteForce, LayerTable, LooseQuadTree, QuadTree, auto_bin_size
 from .narrow import polygons_collide_padded
 from .pipeline import BOUND_TIERS, EXACT_TIERS, FrameResult, Pipeline, TierStats, collide_pairs
 from .posing import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
 from .predicates import orient, paper_segments_intersect, point_in_polygon, polygons_collide, segments_intersect
 
 __all__ = [
-    "Armature", "ArmatureSet", "BinGrid", "BruteForce", "BROAD_PHASES", "BOUND_TIERS", "EXACT_TIERS",
+    "AUTO_BIN_FACTOR", "Armature", "ArmatureSet", "BinGrid", "BruteForce", "BROAD_PHASES", "BOUND_TIERS", "EXACT_TIERS",
     "FrameResult", "LayerTable", "LooseQuadTree", "Pipeline", "Posed", "QuadTree", "ROTATION_MODES",
     "TierStats", "auto_bin_size", "collide_pairs", "convex_hull", "lut_max_displacement", "orient",
     "paper_segments_intersect", "point_in_polygon", "polygons_collide", "polygons_collide_padded",

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 import numpy as np
 
@@ -20,10 +21,14 @@ from .predicates import _segments_intersect, orient
 __all__ = ["Armature", "convex_hull"]
 
 
-def _signed_area2(v: np.ndarray) -> float:
-    """Twice the signed area of the polygon ``v`` of shape (n, 2) (shoelace formula)."""
-    x, y = v[:, 0], v[:, 1]
-    return float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+def _signed_area2(v: np.ndarray) -> Fraction:
+    """Twice the signed area of the polygon ``v`` (n, 2), exactly (shoelace formula).
+
+    Exact so that a thin but valid sliver is neither called zero-area nor stored with the
+    wrong winding; armatures are built once, so the rational sum costs nothing per frame.
+    """
+    pts = [(Fraction(x), Fraction(y)) for x, y in v.tolist()]
+    return sum((a[0] * b[1] - b[0] * a[1] for a, b in zip(pts, pts[1:] + pts[:1])), Fraction(0))
 
 
 def convex_hull(points: np.ndarray) -> np.ndarray:
@@ -138,7 +143,7 @@ class Armature:
     @property
     def area(self) -> float:
         """Area of the polygon (positive)."""
-        return 0.5 * _signed_area2(self.vertices)
+        return float(_signed_area2(self.vertices) / 2)
 
     @classmethod
     def box(cls, width: float, height: float, name: str = "box") -> "Armature":

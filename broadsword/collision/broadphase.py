@@ -35,12 +35,13 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-__all__ = ["LayerTable", "BinGrid", "QuadTree", "LooseQuadTree", "BruteForce", "BROAD_PHASES", "auto_bin_size"]
+__all__ = ["LayerTable", "BinGrid", "QuadTree", "LooseQuadTree", "BruteForce", "BROAD_PHASES", "auto_bin_size",
+           "AUTO_BIN_FACTOR"]
 
 _EMPTY = np.empty((0, 2), dtype=np.int64)
 _MEDIAN_SAMPLE = 512
 #: Bins this much larger than the largest layer's median object (docs/PERFORMANCE.md).
-_AUTO_BIN_FACTOR = 1.25
+AUTO_BIN_FACTOR = 1.25
 #: Key spaces up to this size are joined with a counting sort instead of binary search.
 _DENSE_KEYS = 1 << 17
 #: A table entry with at most this many objects on one side skips the bins (see _ranges_meet).
@@ -133,10 +134,11 @@ def auto_bin_size(boxes: np.ndarray, groups: Iterable[np.ndarray] | None = None)
         if not len(idx):
             continue
         b = boxes[idx[:: max(1, len(idx) // _MEDIAN_SAMPLE)]]
-        ext = np.maximum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1])
-        half = len(ext) // 2  # the upper median: np.median costs ten times more
-        m = max(m, float(np.partition(ext, half)[half]))
-    return _AUTO_BIN_FACTOR * m if m > 0 and np.isfinite(m) else 1.0
+        # Half extents, which cannot overflow; the upper median (np.median costs 10x more).
+        ext = np.maximum(0.5 * b[:, 2] - 0.5 * b[:, 0], 0.5 * b[:, 3] - 0.5 * b[:, 1])
+        m = max(m, float(np.partition(ext, len(ext) // 2)[len(ext) // 2]))
+    size = AUTO_BIN_FACTOR * 2.0 * m if m < 1e300 else 1.0  # absurd extents: let max_cells size the bins
+    return size if size > 0 else 1.0
 
 
 def _join(index_keys: np.ndarray, query_keys: np.ndarray, nkeys: int | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -331,12 +333,15 @@ class BinGrid(_BroadPhase):
         else:
             x0, y0 = float(part[:, 0].min()), float(part[:, 1].min())
             x1, y1 = float(part[:, 2].max()), float(part[:, 3].max())
-        cols = max(1, int(np.ceil((x1 - x0) / size)))
-        rows = max(1, int(np.ceil((y1 - y0) / size)))
+        # Half-spans: finite even when x1 - x0 overflows (boxes near +-1e308).
+        hw, hh = 0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0
+        size = max(size, max(hw, hh) / (0.5 * self.max_cells))  # at most max_cells a side
+        cols = max(1, int(np.ceil(hw / (0.5 * size))))
+        rows = max(1, int(np.ceil(hh / (0.5 * size))))
         while cols * rows > self.max_cells:
             size *= 2.0
-            cols = max(1, int(np.ceil((x1 - x0) / size)))
-            rows = max(1, int(np.ceil((y1 - y0) / size)))
+            cols = max(1, int(np.ceil(hw / (0.5 * size))))
+            rows = max(1, int(np.ceil(hh / (0.5 * size))))
         self.size, self.origin, self.shape = size, (x0, y0), (cols, rows)
         self.ranges = self.cell_ranges(boxes)
         x0, y0, x1, y1 = self.ranges
@@ -359,11 +364,12 @@ class BinGrid(_BroadPhase):
         cols, rows = self.shape
         ox, oy = self.origin
         out = []
-        for col, o, hi in ((0, ox, cols - 1), (1, oy, rows - 1), (2, ox, cols - 1), (3, oy, rows - 1)):
-            v = boxes[:, col] - o
-            v *= inv
-            np.clip(v, 0, hi, out=v)  # clipped to >= 0 first, truncation is floor
-            out.append(v.astype(np.int64))
+        with np.errstate(over="ignore"):  # v - o may overflow to +-inf: clipping handles it
+            for col, o, hi in ((0, ox, cols - 1), (1, oy, rows - 1), (2, ox, cols - 1), (3, oy, rows - 1)):
+                v = boxes[:, col] - o
+                v *= inv
+                np.clip(v, 0, hi, out=v)  # clipped to >= 0 first, truncation is floor
+                out.append(v.astype(np.int64))
         return tuple(out)
 
     def _ranges_meet(self, ia, ib):
@@ -429,7 +435,8 @@ class _Tree(_BroadPhase):
 
     Node ``(nx, ny)`` of level ``l`` covers ``[x0 + nx s_l, x0 + (nx + 1) s_l)`` (and the same
     in y) with ``s_l = side / 2**l``. The root covers every box of the frame, so nothing is
-    ever clamped.
+    ever clamped. Coordinates are mapped through half-values (``0.5 v - 0.5 x0`` against
+    ``half = side / 2``), which stay finite when a span overflows a double.
     """
 
     def __init__(self, max_depth: int = 8, leaf_size: float | None = None):
@@ -440,20 +447,24 @@ class _Tree(_BroadPhase):
         part = boxes[sel]
         x0, y0 = float(part[:, 0].min()), float(part[:, 1].min())
         x1, y1 = float(part[:, 2].max()), float(part[:, 3].max())
-        side = max(x1 - x0, y1 - y0)
-        side = side * (1 + 2**-20) + 1e-9 * (abs(x0) + abs(y0) + 1)  # keep the max edge inside
+        self.magnitude = max(abs(x0), abs(y0), abs(x1), abs(y1))
+        half = max(0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0)
+        half = half * (1 + 2**-20) + 1e-9 * self.magnitude + 1e-300  # keep the max edge inside
         leaf = self.leaf_size or auto_bin_size(boxes, self.groups) / 2.0
-        depth = int(np.clip(np.ceil(np.log2(max(side / leaf, 1.0))), 0, self.max_depth))
-        self.origin, self.side, self.depth = (x0, y0), side, depth
+        depth = int(np.clip(np.ceil(np.log2(half) + 1 - np.log2(leaf)), 0, self.max_depth))
+        self.origin, self.half, self.depth = (x0, y0), half, depth
         self.boxes = boxes
+
+    def _node(self, v, o, level):
+        """Index along one axis of the level-``level`` node holding coordinate ``v``."""
+        n = 1 << level
+        return np.clip(np.floor((0.5 * v - 0.5 * o) * (n / self.half)), 0, n - 1).astype(np.int64)
 
     def _leaf_coords(self, boxes):
         """Leaf-level integer coordinates of each box's corners, clipped to the root."""
-        n = 1 << self.depth
-        inv = n / self.side
-        ox, oy = self.origin
-        f = lambda v, o: np.clip(np.floor((v - o) * inv), 0, n - 1).astype(np.int64)  # noqa: E731
-        return f(boxes[:, 0], ox), f(boxes[:, 1], oy), f(boxes[:, 2], ox), f(boxes[:, 3], oy)
+        ox, oy, d = *self.origin, self.depth
+        return (self._node(boxes[:, 0], ox, d), self._node(boxes[:, 1], oy, d),
+                self._node(boxes[:, 2], ox, d), self._node(boxes[:, 3], oy, d))
 
     def _levels(self, boxes):
         """(level, nx, ny) of each object's node: subclasses decide where objects live."""
@@ -538,20 +549,20 @@ class LooseQuadTree(_Tree):
     name = "loose_quadtree"
 
     def _levels(self, boxes):
-        # The node side must exceed the extent with room to spare, so that rounding the
-        # centre into a neighbouring node never lets the box leave the loose bounds.
-        ext = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]) * (1 + 1e-9)
-        with np.errstate(divide="ignore"):
-            lv = np.floor(np.log2(self.side / np.maximum(ext, 1e-300)))
-        level = np.clip(lv, 0, self.depth).astype(np.int64)
-        level -= (level > 0) & (self.side / (1 << level).astype(np.float64) < ext)
-        n = 1 << level
-        inv = n / self.side
+        # The node side must exceed the extent with room to spare -- relative, and absolute
+        # for the rounding of coordinates of this magnitude -- so that rounding the centre
+        # into a neighbouring node never lets the box leave the loose bounds. Half-values
+        # throughout, so nothing overflows.
+        ext = np.maximum(0.5 * boxes[:, 2] - 0.5 * boxes[:, 0], 0.5 * boxes[:, 3] - 0.5 * boxes[:, 1])
+        ext = ext * (1 + 1e-9) + 1e-12 * self.magnitude + 1e-300
+        level = np.clip(np.floor(np.log2(self.half / ext)), 0, self.depth).astype(np.int64)
+        level -= (level > 0) & (self.half / (1 << level).astype(np.float64) < ext)
+        cx = 0.5 * boxes[:, 0] + 0.5 * boxes[:, 2]
+        cy = 0.5 * boxes[:, 1] + 0.5 * boxes[:, 3]
         ox, oy = self.origin
-        cx = 0.5 * (boxes[:, 0] + boxes[:, 2])
-        cy = 0.5 * (boxes[:, 1] + boxes[:, 3])
-        nx = np.clip(np.floor((cx - ox) * inv), 0, n - 1).astype(np.int64)
-        ny = np.clip(np.floor((cy - oy) * inv), 0, n - 1).astype(np.int64)
+        n = 1 << level
+        nx = np.clip(np.floor((0.5 * cx - 0.5 * ox) * (n / self.half)), 0, n - 1).astype(np.int64)
+        ny = np.clip(np.floor((0.5 * cy - 0.5 * oy) * (n / self.half)), 0, n - 1).astype(np.int64)
         return level, nx, ny
 
     def _match(self, ix, iy, qx, qy, lvl):

@@ -76,6 +76,13 @@ def _error_bounds(px, py, qx, qy) -> np.ndarray:
 
 def _block(pxe, pye, qxe, qye, err, ws: Workspace) -> np.ndarray:
     """Exact collision for the pairs of one block; arrays are wrapped: (K+1, P)."""
+    # Differences may overflow to inf (and inf - inf to nan): the filter declines those
+    # entries and the exact path decides them, so the warnings carry no news.
+    with np.errstate(invalid="ignore", over="ignore"):
+        return _block_body(pxe, pye, qxe, qye, err, ws)
+
+
+def _block_body(pxe, pye, qxe, qye, err, ws):
     k1, k2, n = pxe.shape[0] - 1, qxe.shape[0] - 1, pxe.shape[1]
     px, py, qx, qy = pxe[:-1], pye[:-1], qxe[:-1], qye[:-1]
     epx, epy = pxe[1:] - px, pye[1:] - py  # (K1, P) edge vectors of P
