@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .posing import Posed, selector
+from ._indexing import selector
+from .posing import Posed
 from .tolerance import BOUND_SLACK
 
 __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriented_boxes", "oriented_boxes_overlap"]

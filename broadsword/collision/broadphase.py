@@ -35,6 +35,8 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from ._indexing import pick, selector
+
 __all__ = ["LayerTable", "BinGrid", "QuadTree", "LooseQuadTree", "BruteForce", "BROAD_PHASES", "auto_bin_size",
            "AUTO_BIN_FACTOR"]
 
@@ -234,7 +236,7 @@ class _BroadPhase:
                 out.append(np.column_stack([lo, hi]))
             elif len(ia) and len(ib):
                 i, j = self._between(ia, ib, a, b)
-                out.append(np.column_stack([np.take(ia, i), np.take(ib, j)]))
+                out.append(np.column_stack([_positions_to_objects(ia, i), _positions_to_objects(ib, j)]))
         if not out:
             return _EMPTY.copy()
         return np.concatenate(out).astype(np.int64, copy=False)
@@ -255,6 +257,12 @@ class _BroadPhase:
     def _within(self, ia: np.ndarray, la: int):
         """Pairs among the objects ``ia`` (layer ``la``), as positions into ``ia``, first < second."""
         raise NotImplementedError
+
+
+def _positions_to_objects(members: np.ndarray, pos: np.ndarray) -> np.ndarray:
+    """Object indices of positions into a layer's member list (an add for a pooled layer)."""
+    sel = selector(members)
+    return pos + sel.start if isinstance(sel, slice) else np.take(members, pos)
 
 
 class BruteForce(_BroadPhase):
@@ -353,8 +361,9 @@ class BinGrid(_BroadPhase):
         whether that object spans several bins)``, one row per (object, bin)."""
         got = self._entries.get(layer)
         if got is None:
-            o, x, y = _expand(*(np.take(r, ia) for r in self.ranges))
-            multi = np.take(self.multi, np.take(ia, o)) if len(o) > len(ia) else None
+            sel = selector(ia)
+            o, x, y = _expand(*(pick(r, sel) for r in self.ranges))
+            multi = np.take(pick(self.multi, sel), o) if len(o) > len(ia) else None
             got = self._entries[layer] = (o, y * self.shape[0] + x, multi)
         return got
 
@@ -379,11 +388,11 @@ class BinGrid(_BroadPhase):
         thousands of bullets) this beats registering the crowd in bins: a few vectorised
         comparisons per object of the small side, and no pair can come out twice.
         """
-        x0, y0, x1, y1 = (r[:, None] for r in self.ranges)  # (n, 1) views
-        a = ia[:, None] if len(ia) <= len(ib) else ib[:, None]
-        b = ib[None, :] if len(ia) <= len(ib) else ia[None, :]
-        meet = (np.take(x0, a) <= np.take(x1, b)) & (np.take(x0, b) <= np.take(x1, a))
-        meet &= (np.take(y0, a) <= np.take(y1, b)) & (np.take(y0, b) <= np.take(y1, a))
+        small, big = (ia, ib) if len(ia) <= len(ib) else (ib, ia)
+        s0, s1, s2, s3 = (pick(r, selector(small))[:, None] for r in self.ranges)
+        b0, b1, b2, b3 = (pick(r, selector(big))[None, :] for r in self.ranges)
+        meet = (s0 <= b2) & (b0 <= s2)
+        meet &= (s1 <= b3) & (b1 <= s3)
         i, j = np.nonzero(meet)
         return (i, j) if len(ia) <= len(ib) else (j, i)
 

@@ -42,6 +42,7 @@ from typing import Sequence
 import numpy as np
 
 from .armature import Armature
+from ._indexing import pick, selector
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
@@ -305,19 +306,6 @@ def pose(
     return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
 
 
-def selector(idx: np.ndarray):
-    """A slice for a sorted run of consecutive indices (the usual case: objects live in
-    pools, so a size class is a contiguous range), else the index array itself.
-    Slicing is a view where a gather would copy."""
-    if len(idx) and idx[-1] - idx[0] + 1 == len(idx):
-        return slice(int(idx[0]), int(idx[-1]) + 1)
-    return idx
-
-
-def _pick(a: np.ndarray, sel):
-    return a[sel] if isinstance(sel, slice) else np.take(a, sel)
-
-
 def _pad_rows(a: np.ndarray, k: int) -> np.ndarray:
     if len(a) == k:
         return a
@@ -327,7 +315,7 @@ def _pad_rows(a: np.ndarray, k: int) -> np.ndarray:
 def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=None):
     """x = px + lx cos - ly sin ; y = py + lx sin + ly cos, into (k, m) arrays for the
     objects ``sel`` (a slice or an index array)."""
-    arm = _pick(armature, sel)
+    arm = pick(armature, sel)
     if arm[0] == arm.min() == arm.max():
         # One armature for the whole class (a bullet pool): broadcast, no gather.
         lx = shapes._lx[:k, arm[0], None]
@@ -335,17 +323,17 @@ def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=N
     else:
         lx = np.take(shapes._lx[:k], arm, axis=1)
         ly = np.take(shapes._ly[:k], arm, axis=1)
-    c, s = _pick(cos, sel), _pick(sin, sel)
+    c, s = pick(cos, sel), pick(sin, sel)
     if x is None:
         x = np.empty((k, len(arm)))
         y = np.empty((k, len(arm)))
     t = np.empty_like(x) if ws is None else ws.get("pose_t", x.shape)
     np.multiply(lx, c, out=x)
     x -= np.multiply(ly, s, out=t)
-    x += _pick(px, sel)
+    x += pick(px, sel)
     np.multiply(lx, s, out=y)
     y += np.multiply(ly, c, out=t)
-    y += _pick(py, sel)
+    y += pick(py, sel)
     return x, y
 
 
