@@ -85,7 +85,8 @@ class FrameResult:
     circles : Posed
         Bounding circles (``centre``, ``radius``) of every object; no vertices.
     boxes : (n, 4) float64
-        The boxes the broad phase used: the bounding circles' boxes.
+        The boxes the broad phase used: each armature's local box turned to its pose (the
+        bounding circle's box for swept objects).
     tier_pairs : dict
         Each tier's surviving pairs, when the pipeline keeps them.
     """
@@ -205,7 +206,7 @@ class Pipeline:
         # posed only when a tier needs them, only for the objects still in play.
         circles = pose(self.armatures, armature, positions, angles, self.rotation,
                        prev_positions, prev_angles, swept, vertices=False)
-        boxes = bounds.circle_boxes(circles)
+        boxes = self._broad_boxes(circles, armature, positions)
         pairs = self.broad_phase.find_pairs(boxes, layer, self.layers)
         candidates = pairs
         stats.append(TierStats(self.tiers[0], stats[0].pairs_out, len(pairs), (clock() - t0) * 1e3))
@@ -239,6 +240,18 @@ class Pipeline:
             if self.keep_tier_pairs:
                 tier_pairs[tier] = pairs
         return FrameResult(pairs, candidates, tuple(stats), posed, posed_index, circles, boxes, tier_pairs)
+
+    def _broad_boxes(self, circles: Posed, armature, positions) -> np.ndarray:
+        """Boxes for the broad phase without posing a vertex: each armature's local box
+        turned to its pose (tight for rectangles), or the circle's box for swept objects."""
+        arm = np.asarray(armature, dtype=np.int64).reshape(-1)
+        boxes = bounds.turned_boxes(np.take(self.armatures.local_box, arm, axis=0),
+                                    np.asarray(positions, dtype=np.float64).reshape(-1, 2), circles.cos, circles.sin)
+        if circles.swept.any():
+            sw = np.flatnonzero(circles.swept)
+            boxes = boxes.copy()
+            boxes[sw] = bounds.circle_boxes(circles)[sw]
+        return boxes
 
     def _pose_objects_in(self, pairs, n, armature, positions, angles, prev_positions, prev_angles, swept):
         """Pose the objects that appear in ``pairs``; return the Posed and an (n,) map from
