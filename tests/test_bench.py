@@ -12,7 +12,7 @@ def test_bench__quick_run_writes_every_method(tmp_path, capsys):
     assert [(s["enemies"], s["bullets"]) for s in doc["scales"]] == [(20, 200), (200, 10_000)]
     for scale in doc["scales"]:
         methods = scale["methods"]
-        default = methods["default (bins+circle+aabb+armature, lut)"]
+        default = methods["default (bins+aabb+armature, lut)"]
         assert default["false_positives"] == 0 and default["false_negatives"] == 0
         assert default["median_ms"] > 0
         # Every exact pipeline agrees with the exact answer; the bound-only ones never miss.
@@ -20,4 +20,4 @@ def test_bench__quick_run_writes_every_method(tmp_path, capsys):
             assert m["false_negatives"] == 0, name
             if "armature" in m["tiers"]:
                 assert m["false_positives"] == 0, name
-    assert "| default (bins+circle+aabb+armature, lut) |" in capsys.readouterr().out
+    assert "| default (bins+aabb+armature, lut) |" in capsys.readouterr().out

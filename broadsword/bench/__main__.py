@@ -21,21 +21,21 @@ import time
 
 import numpy as np
 
-from ..collision import Pipeline
+from ..collision import Pipeline, retain_heap
 from .scenes import ReferenceScene
 
 #: The product's default pipeline: the paper's bins, a cheap bound, the exact armature test.
-DEFAULT = ("bins", "circle", "aabb", "armature")
+DEFAULT = ("bins", "aabb", "armature")
 
 #: name -> (tiers, rotation). Approximate methods (no armature tier) accept their last tier's pairs.
 METHODS = {
-    "default (bins+circle+aabb+armature, lut)": (DEFAULT, "lut"),
+    "default (bins+aabb+armature, lut)": (DEFAULT, "lut"),
     "default, exact rotation": (DEFAULT, "exact"),
     "bins+circle+armature, lut": (("bins", "circle", "armature"), "lut"),
-    "bins+aabb+armature, lut": (("bins", "aabb", "armature"), "lut"),
-    "brute+circle+aabb+armature, lut": (("brute",) + DEFAULT[1:], "lut"),
-    "quadtree+circle+aabb+armature, lut": (("quadtree",) + DEFAULT[1:], "lut"),
-    "loose quadtree+circle+aabb+armature, lut": (("loose_quadtree",) + DEFAULT[1:], "lut"),
+    "bins+circle+aabb+armature, lut": (("bins", "circle", "aabb", "armature"), "lut"),
+    "brute+aabb+armature, lut": (("brute",) + DEFAULT[1:], "lut"),
+    "quadtree+aabb+armature, lut": (("quadtree",) + DEFAULT[1:], "lut"),
+    "loose quadtree+aabb+armature, lut": (("loose_quadtree",) + DEFAULT[1:], "lut"),
     "AABB only (bins+aabb)": (("bins", "aabb"), "lut"),
     "circle only (bins+circle)": (("bins", "circle"), "lut"),
 }
@@ -124,21 +124,25 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--frames", type=int, default=None, help="measured frames per scale (default 30; 5 with --quick)")
     ap.add_argument("--seed", type=int, default=2003)
     ap.add_argument("--json", metavar="FILE", help="write every figure as JSON")
+    ap.add_argument("--no-retain-heap", action="store_true",
+                    help="leave glibc's heap trimming on (the game turns it off; see docs/PERFORMANCE.md)")
     args = ap.parse_args(argv)
+    heap = "default allocator" if args.no_retain_heap else (
+        "heap retained" if retain_heap() else "default allocator (no glibc mallopt)")
     frames = args.frames or (5 if args.quick else 30)
     warmup = 2 if args.quick else 5
     if frames < 1:
         ap.error("--frames must be at least 1")
     scales = SCALES[:2] + [(200, 10_000)] if not args.quick else [(20, 200), (200, 10_000)]
     print(f"# broadsword.bench: {platform.processor() or platform.machine()}, python {platform.python_version()}, "
-          f"numpy {np.__version__}, seed {args.seed}", flush=True)
+          f"numpy {np.__version__}, seed {args.seed}, {heap}", flush=True)
     results = []
     for e, b in scales:
         results.append(run_scale(e, b, frames, warmup, args.seed, METHODS, _progress(f"{e} enemies, {b} bullets")))
     print(markdown(results))
     if args.json:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
-               "python": platform.python_version(), "numpy": np.__version__, "scales": results}
+               "python": platform.python_version(), "numpy": np.__version__, "allocator": heap, "scales": results}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")

@@ -18,6 +18,7 @@ from .broadphase import AUTO_BIN_FACTOR, BROAD_PHASES, BinGrid, BruteForce, Laye
 from .narrow import polygons_collide_padded
 from .pipeline import BOUND_TIERS, EXACT_TIERS, FrameResult, Pipeline, TierStats, collide_pairs
 from .posing import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
+from .workspace import Workspace, retain_heap
 from .predicates import orient, paper_segments_intersect, point_in_polygon, polygons_collide, segments_intersect
 
 __all__ = [
@@ -25,5 +26,5 @@ __all__ = [
     "FrameResult", "LayerTable", "LooseQuadTree", "Pipeline", "Posed", "QuadTree", "ROTATION_MODES",
     "TierStats", "auto_bin_size", "collide_pairs", "convex_hull", "lut_max_displacement", "orient",
     "paper_segments_intersect", "point_in_polygon", "polygons_collide", "polygons_collide_padded",
-    "pose", "rotation_table", "segments_intersect",
+    "pose", "retain_heap", "rotation_table", "segments_intersect", "Workspace",
 ]

@@ -17,7 +17,7 @@ from ._indexing import selector
 from .posing import Posed
 from .tolerance import BOUND_SLACK
 
-__all__ = ["aabbs", "circle_boxes", "turned_boxes", "boxes_overlap", "circles_overlap", "oriented_boxes", "oriented_boxes_overlap"]
+__all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriented_boxes", "oriented_boxes_overlap"]
 
 
 def aabbs(posed: Posed) -> np.ndarray:
@@ -37,34 +37,6 @@ def circle_boxes(posed: Posed) -> np.ndarray:
     """Axis-aligned boxes of the bounding circles, (n, 4) float64: needs no vertex, only centres."""
     c, r = posed.centre, posed.radius
     return np.column_stack([c[:, 0] - r, c[:, 1] - r, c[:, 0] + r, c[:, 1] + r])
-
-
-def turned_boxes(local_box: np.ndarray, positions: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> np.ndarray:
-    """Axis-aligned boxes of the objects' local boxes turned to their poses, (n, 4) float64.
-
-    ``local_box`` (n, 4) is each object's armature box in its own frame. The turned box
-    contains the posed polygon and needs no posed vertex: for a rectangle (a bullet) it is
-    the tight box, for a ship it is usually much tighter than the bounding circle's box.
-    Grown by the bound slack, so it contains the posed float vertices.
-    """
-    cx = 0.5 * (local_box[:, 0] + local_box[:, 2])
-    cy = 0.5 * (local_box[:, 1] + local_box[:, 3])
-    hw = 0.5 * (local_box[:, 2] - local_box[:, 0])
-    hh = 0.5 * (local_box[:, 3] - local_box[:, 1])
-    ac, as_ = np.abs(cos), np.abs(sin)
-    px = positions[:, 0] + (cx * cos - cy * sin)
-    py = positions[:, 1] + (cx * sin + cy * cos)
-    ex = ac * hw + as_ * hh
-    ey = as_ * hw + ac * hh
-    slack = BOUND_SLACK * (np.abs(px) + np.abs(py) + ex + ey + 1.0)
-    ex += slack
-    ey += slack
-    out = np.empty((4, len(px)))
-    np.subtract(px, ex, out=out[0])
-    np.subtract(py, ey, out=out[1])
-    np.add(px, ex, out=out[2])
-    np.add(py, ey, out=out[3])
-    return out.T
 
 
 def boxes_overlap(boxes: np.ndarray, pairs: np.ndarray) -> np.ndarray:

@@ -44,7 +44,7 @@ __all__ = ["Pipeline", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS"]
 
 BOUND_TIERS = ("aabb", "circle", "obb")
 EXACT_TIERS = ("armature",)
-#: Tiers that need posed polygons; the first of them poses the objects still in play.
+#: Tiers that need posed polygons; a scene naming none of them poses nothing.
 VERTEX_TIERS = ("aabb", "obb", "armature")
 
 
@@ -74,19 +74,14 @@ class FrameResult:
     candidates : (c, 2) int64
         The broad phase's pairs (for the debug overlay).
     stats : tuple of TierStats
-        ``layers``, the broad phase, then each named tier in order, with a ``pose`` row
-        just before the first tier that needs polygons (it counts the objects posed).
+        ``layers``, ``pose`` (when a tier needs polygons), then each named tier in order.
     posed : Posed or None
-        The posed polygons of the objects that reached a polygon tier (``aabb``, ``obb``,
-        ``armature``); ``None`` if the scene names none. Its arrays live in the
-        pipeline's workspace: valid until the next step.
-    posed_index : (n,) int64 or None
-        Column of each object in ``posed``, -1 for objects that were not posed.
-    circles : Posed
-        Bounding circles (``centre``, ``radius``) of every object; no vertices.
+        The posed polygons, when a tier needs them (``aabb``, ``obb``, ``armature``);
+        ``None`` for a scene that names none. Its arrays live in the pipeline's
+        workspace: valid until the next step.
     boxes : (n, 4) float64
-        The boxes the broad phase used: each armature's local box turned to its pose (the
-        bounding circle's box for swept objects).
+        The boxes the broad phase used: the posed polygons' boxes, or the bounding
+        circles' boxes in a scene without polygon tiers.
     tier_pairs : dict
         Each tier's surviving pairs, when the pipeline keeps them.
     """
@@ -95,8 +90,6 @@ class FrameResult:
     candidates: np.ndarray
     stats: tuple
     posed: Posed | None
-    posed_index: np.ndarray | None
-    circles: Posed
     boxes: np.ndarray
     tier_pairs: dict = field(default_factory=dict)
 
@@ -117,8 +110,8 @@ class Pipeline:
         Which layers test which. Defaults to :meth:`LayerTable.shmup`.
     tiers : sequence of str
         Tier names, cheapest first (see the module docstring). Default
-        ``("bins", "circle", "aabb", "armature")``, the product's default: circles need
-        no posing, so only the objects that survive them are posed.
+        ``("bins", "aabb", "armature")``, the product's default (the fastest mix measured
+        on the reference scene; docs/PERFORMANCE.md).
     rotation : {"lut", "exact"}
         How armatures are rotated (see :mod:`broadsword.collision.posing`).
     bin_size : float or None
@@ -134,7 +127,7 @@ class Pipeline:
         self,
         armatures: ArmatureSet | Sequence[Armature],
         layers: LayerTable | None = None,
-        tiers: Sequence[str] = ("bins", "circle", "aabb", "armature"),
+        tiers: Sequence[str] = ("bins", "aabb", "armature"),
         rotation: str = "lut",
         bin_size: float | None = None,
         field: Sequence[float] | None = None,
@@ -148,6 +141,7 @@ class Pipeline:
         self._check_tiers()
         broad = self.tiers[0]
         self.broad_phase = BinGrid(bin_size, field) if broad == "bins" else BROAD_PHASES[broad]()
+        self.needs_vertices = any(t in VERTEX_TIERS for t in self.tiers)
         self.workspace = Workspace()
 
     def _check_tiers(self) -> None:
@@ -202,76 +196,39 @@ class Pipeline:
         clock = time.perf_counter
 
         t0 = clock()
-        # Circles need no vertex: the broad phase works on circle boxes, and polygons are
-        # posed only when a tier needs them, only for the objects still in play.
-        circles = pose(self.armatures, armature, positions, angles, self.rotation,
-                       prev_positions, prev_angles, swept, vertices=False)
-        boxes = self._broad_boxes(circles, armature, positions)
+        posed = pose(self.armatures, armature, positions, angles, self.rotation, prev_positions, prev_angles,
+                     swept, vertices=self.needs_vertices, workspace=self.workspace)
+        if self.needs_vertices:
+            # Posing every object at once and boxing the polygons tightly beats posing only
+            # the survivors of cheap tiers: measured, the tighter boxes save the broad phase
+            # more than the skipped posing costs (docs/PERFORMANCE.md).
+            boxes = bounds.aabbs(posed)
+            stats.append(TierStats("pose", n, n, (clock() - t0) * 1e3))
+            t0 = clock()
+        else:
+            boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
         pairs = self.broad_phase.find_pairs(boxes, layer, self.layers)
         candidates = pairs
         stats.append(TierStats(self.tiers[0], stats[0].pairs_out, len(pairs), (clock() - t0) * 1e3))
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0]] = pairs
 
-        posed = posed_index = local = tight = obbs = None
         for tier in self.tiers[1:]:
-            if tier in VERTEX_TIERS and posed is None:
-                t0 = clock()
-                posed, posed_index = self._pose_objects_in(pairs, circles.n, armature, positions, angles,
-                                                           prev_positions, prev_angles, swept)
-                local = np.take(posed_index, pairs)
-                stats.append(TierStats("pose", n, posed.n, (clock() - t0) * 1e3))
             t0 = clock()
             n_in = len(pairs)
             if tier == "aabb":
-                tight = bounds.aabbs(posed)
-                keep = bounds.boxes_overlap(tight, local)
+                keep = bounds.boxes_overlap(boxes, pairs)
             elif tier == "circle":
-                keep = bounds.circles_overlap(circles, pairs)
+                keep = bounds.circles_overlap(posed, pairs)
             elif tier == "obb":
-                obbs = bounds.oriented_boxes(posed)
-                keep = bounds.oriented_boxes_overlap(obbs, local)
+                keep = bounds.oriented_boxes_overlap(bounds.oriented_boxes(posed), pairs)
             else:  # armature
-                keep = collide_pairs(posed, local, self.workspace)
+                keep = collide_pairs(posed, pairs, self.workspace)
             pairs = pairs[keep]
-            if local is not None:
-                local = local[keep]
             stats.append(TierStats(tier, n_in, len(pairs), (clock() - t0) * 1e3))
             if self.keep_tier_pairs:
                 tier_pairs[tier] = pairs
-        return FrameResult(pairs, candidates, tuple(stats), posed, posed_index, circles, boxes, tier_pairs)
-
-    def _broad_boxes(self, circles: Posed, armature, positions) -> np.ndarray:
-        """Boxes for the broad phase without posing a vertex: each armature's local box
-        turned to its pose (tight for rectangles), or the circle's box for swept objects."""
-        arm = np.asarray(armature, dtype=np.int64).reshape(-1)
-        boxes = bounds.turned_boxes(np.take(self.armatures.local_box, arm, axis=0),
-                                    np.asarray(positions, dtype=np.float64).reshape(-1, 2), circles.cos, circles.sin)
-        if circles.swept.any():
-            sw = np.flatnonzero(circles.swept)
-            boxes = boxes.copy()
-            boxes[sw] = bounds.circle_boxes(circles)[sw]
-        return boxes
-
-    def _pose_objects_in(self, pairs, n, armature, positions, angles, prev_positions, prev_angles, swept):
-        """Pose the objects that appear in ``pairs``; return the Posed and an (n,) map from
-        object index to its column in it (-1 for objects not posed)."""
-        mark = np.zeros(n, dtype=bool)
-        mark[pairs[:, 0]] = True
-        mark[pairs[:, 1]] = True
-        objs = np.flatnonzero(mark)
-
-        def pick(a, width=None):
-            if a is None:
-                return None
-            a = np.asarray(a)
-            return np.take(a.reshape(n, width) if width else a.reshape(n), objs, axis=0)
-
-        posed = pose(self.armatures, pick(armature), pick(positions, 2), pick(angles), self.rotation,
-                     pick(prev_positions, 2), pick(prev_angles), pick(swept), workspace=self.workspace)
-        index = np.full(n, -1, dtype=np.int64)
-        index[objs] = np.arange(len(objs))
-        return posed, index
+        return FrameResult(pairs, candidates, tuple(stats), posed if self.needs_vertices else None, boxes, tier_pairs)
 
 
 def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None) -> np.ndarray:

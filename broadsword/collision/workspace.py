@@ -1,17 +1,48 @@
-"""Reusable scratch arrays, so that a frame allocates (almost) nothing.
+"""Reusable scratch arrays, and the allocator setting a real-time loop wants.
 
-Why: on the machines we measure on, every fresh array larger than the C allocator's mmap
-threshold (128 KiB at start) that is alive beside another one is mapped anew and
-page-faulted in, which cost more than the arithmetic on it (about 130 us for 312 KiB,
-see docs/PERFORMANCE.md). A pipeline owns one :class:`Workspace`; its kernels ask it for
-named buffers and write into them with ``out=``.
+Why: on the machines we measure on, page faults dominate a frame unless memory is
+reused. Every fresh array larger than the C allocator's mmap threshold (128 KiB at
+start) that is alive beside another one is mapped anew and faulted in (about 130 us for
+312 KiB); and glibc returns the freed top of the heap to the system after every frame,
+so the next frame faults it back in (about 300 faults, 1.4 ms, per reference frame; see
+docs/PERFORMANCE.md). A pipeline owns one :class:`Workspace`, whose named buffers its
+kernels fill with ``out=``; an application calls :func:`retain_heap` once at start-up.
 """
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
+
 import numpy as np
 
-__all__ = ["Workspace"]
+__all__ = ["Workspace", "retain_heap"]
+
+# glibc mallopt parameters (malloc.h)
+_M_TRIM_THRESHOLD = -1
+_M_MMAP_THRESHOLD = -3
+
+
+def retain_heap(trim_threshold: int = 256 << 20, mmap_threshold: int = 32 << 20) -> bool:
+    """Ask glibc's malloc to keep freed memory for the next frame instead of returning it.
+
+    Process-wide, so it is the application's call, made once at start-up (the game and
+    the benchmark make it); importing the library never changes it. Frees of up to
+    ``trim_threshold`` bytes at the top of the heap are kept, and blocks below
+    ``mmap_threshold`` come from the heap rather than fresh mappings. Returns True when
+    applied, False where there is no glibc ``mallopt`` (macOS, Windows, musl), which is
+    harmless: those allocators make their own choices.
+    """
+    name = ctypes.util.find_library("c")
+    try:
+        libc = ctypes.CDLL(name) if name else None
+    except OSError:
+        libc = None
+    mallopt = getattr(libc, "mallopt", None)
+    if mallopt is None:
+        return False
+    mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
+    return bool(mallopt(_M_MMAP_THRESHOLD, mmap_threshold)) and bool(mallopt(_M_TRIM_THRESHOLD, trim_threshold))
 
 
 class Workspace:
