@@ -43,6 +43,28 @@ METHODS = {
 SCALES = [(20, 200), (100, 2000), (200, 10_000)]
 
 
+def host_canary() -> dict:
+    """A fixed numpy workload, timed, so runs on a shared machine can be compared.
+
+    ``stream_us``: one ``add`` of two 100,000-float arrays (memory bound); ``call_us``:
+    one ``add`` of 100 floats (interpreter and numpy call overhead, which dominates the
+    small scales). Medians of 200 repetitions.
+    """
+    a, b = np.random.default_rng(0).random((2, 100_000))
+    out = np.empty_like(a)
+    s, o = a[:100], out[:100]
+
+    def median_us(fn, reps=200):
+        t = []
+        for _ in range(reps):
+            t0 = time.perf_counter()
+            fn()
+            t.append(time.perf_counter() - t0)
+        return float(np.median(t) * 1e6)
+
+    return {"stream_us": median_us(lambda: np.add(a, b, out=out)), "call_us": median_us(lambda: np.add(s, s, out=o))}
+
+
 def _pairs(a: np.ndarray) -> set:
     return set(map(tuple, a.tolist()))
 
@@ -75,6 +97,16 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, m
                 fp[name] += len(got - want)
                 fn[name] += len(want - got)
         progress(f + 1, warmup + frames)
+    # The default pipeline alone, as the game runs it: interleaving eight methods evicts
+    # each one's buffers from the cache between its frames, which the product never does.
+    solo_pipe = Pipeline(scene.shapes, scene.table, tiers=DEFAULT, rotation="lut")
+    solo = []
+    for f in range(warmup + frames):
+        pos, ang = scene.advance()
+        t0 = time.perf_counter()
+        solo_pipe.step(scene.armature, scene.layer, pos, ang)
+        if f >= warmup:
+            solo.append((time.perf_counter() - t0) * 1e3)
     out = {}
     for name in methods:
         a = np.array(ms[name])
@@ -90,7 +122,9 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, m
             "false_positives": fp[name],
             "false_negatives": fn[name],
         }
-    return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits, "methods": out}
+    solo = np.array(solo)
+    return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits, "methods": out,
+            "default_alone": {"median_ms": float(np.median(solo)), "min_ms": float(solo.min()), "max_ms": float(solo.max())}}
 
 
 def _progress(label: str):
@@ -115,6 +149,10 @@ def markdown(results: list[dict]) -> str:
                 f"| {name} | {m['median_ms']:.2f} | {m['min_ms']:.2f} | {m['max_ms']:.2f} | "
                 f"{m['median_ms'] / base:.2f} | {m['false_positives']} | {m['false_negatives']} | {tier} |"
             )
+        alone = scale["default_alone"]
+        lines.append(f"| default, alone (as in the game: no other method between its frames) | "
+                     f"{alone['median_ms']:.2f} | {alone['min_ms']:.2f} | {alone['max_ms']:.2f} | "
+                     f"{alone['median_ms'] / base:.2f} | 0 | 0 | |")
     return "\n".join(lines)
 
 
@@ -134,15 +172,18 @@ def main(argv: list[str] | None = None) -> int:
     if frames < 1:
         ap.error("--frames must be at least 1")
     scales = SCALES[:2] + [(200, 10_000)] if not args.quick else [(20, 200), (200, 10_000)]
+    canary = host_canary()
     print(f"# broadsword.bench: {platform.processor() or platform.machine()}, python {platform.python_version()}, "
-          f"numpy {np.__version__}, seed {args.seed}, {heap}", flush=True)
+          f"numpy {np.__version__}, seed {args.seed}, {heap}; host canary: add(100k) {canary['stream_us']:.1f} us, "
+          f"add(100) {canary['call_us']:.2f} us", flush=True)
     results = []
     for e, b in scales:
         results.append(run_scale(e, b, frames, warmup, args.seed, METHODS, _progress(f"{e} enemies, {b} bullets")))
     print(markdown(results))
     if args.json:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
-               "python": platform.python_version(), "numpy": np.__version__, "allocator": heap, "scales": results}
+               "python": platform.python_version(), "numpy": np.__version__, "allocator": heap, "host_canary_before": canary, "host_canary_after": host_canary(),
+               "scales": results}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")
