@@ -367,6 +367,17 @@ class BinGrid(_BroadPhase):
             got = self._entries[layer] = (o, y * self.shape[0] + x, multi)
         return got
 
+    def occupancy(self) -> np.ndarray:
+        """(rows, cols) int64: how many objects registered in each bin in the last frame.
+
+        A by-product of the frame's query (its bin ranges), for the debug overlay.
+        """
+        cols, rows = self.shape
+        if not hasattr(self, "ranges"):
+            return np.zeros((rows, cols), dtype=np.int64)
+        _, x, y = _expand(*(np.take(r, np.concatenate(self.groups)) for r in self.ranges))
+        return np.bincount(y * cols + x, minlength=rows * cols).reshape(rows, cols)
+
     def cell_ranges(self, boxes: np.ndarray) -> tuple[np.ndarray, ...]:
         """Inclusive bin ranges ``(ix0, iy0, ix1, iy1)`` of each box, clamped to the grid."""
         inv = 1.0 / self.size
