@@ -1,0 +1,354 @@
+"""Sound effects synthesised in code (numpy), played through ``pygame.mixer``.
+
+There are no audio files: :func:`synth` builds every effect from sines, sweeps and seeded
+noise, and :class:`Audio` turns them into cached ``pygame.mixer.Sound`` objects.
+
+``synth(name, rate)`` is pure and deterministic. It returns mono ``int16`` samples of shape
+``(n,)`` with ``0 < n <= 1.2 * rate``, peak ``|x| <= 0.8 * 32767``, and raised-cosine fades at
+both ends, so the first and last samples are exactly 0 (no clicks).
+
+:class:`Audio` never raises because there is no audio device: if the mixer cannot be
+opened it is simply silent (``available`` is False). It keeps all of its state itself; the
+module holds only constants.
+"""
+
+from __future__ import annotations
+
+import time
+import zlib
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
+
+import numpy as np
+import pygame
+
+__all__ = ["Audio", "synth", "NAMES"]
+
+NAMES: tuple[str, ...] = (
+    "shot",
+    "hit",
+    "explosion",
+    "big_explosion",
+    "graze",
+    "player_hit",
+    "select",
+    "pause",
+)
+
+_FULL_SCALE = 32767.0
+_MIN_RATE = 8000
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def _times(seconds: float, rate: int) -> np.ndarray:
+    """Sample times ``k / rate`` for ``k = 0 .. round(seconds * rate) - 1`` (at least one)."""
+    n = max(1, int(round(seconds * rate)))
+    return np.arange(n, dtype=np.float64) / rate
+
+
+def _phase(freq: np.ndarray, rate: int) -> np.ndarray:
+    """Running phase (radians) of a tone whose instantaneous frequency is ``freq`` (Hz)."""
+    return 2.0 * np.pi * np.cumsum(freq) / rate
+
+
+def _cap(freq, rate: int):
+    """Keep frequencies safely below Nyquist so low sample rates do not alias badly."""
+    return np.minimum(freq, 0.42 * rate)
+
+
+def _noise(name: str, n: int) -> np.ndarray:
+    """Seeded white noise in [-1, 1): the same ``name`` always gives the same samples."""
+    rng = np.random.default_rng(zlib.crc32(name.encode("utf-8")))
+    return rng.uniform(-1.0, 1.0, n)
+
+
+def _filter(x: np.ndarray, rate: int, low: float | None = None, high: float | None = None,
+            order: int = 2) -> np.ndarray:
+    """Zero-phase Butterworth-shaped filter done in the frequency domain.
+
+    ``low`` is a high-pass corner and ``high`` a low-pass corner (Hz); either may be None.
+    The FFT makes this circular, which is harmless on stationary noise filtered before an
+    envelope is applied.
+    """
+    spectrum = np.fft.rfft(x)
+    f = np.fft.rfftfreq(x.size, 1.0 / rate)
+    gain = np.ones_like(f)
+    if high is not None:
+        gain /= np.sqrt(1.0 + (f / high) ** (2 * order))
+    if low is not None:
+        with np.errstate(divide="ignore"):
+            ratio = np.where(f > 0, low / np.maximum(f, 1e-12), np.inf)
+        gain /= np.sqrt(1.0 + ratio ** (2 * order))
+    return np.fft.irfft(spectrum * gain, n=x.size)
+
+
+def _fade(n: int, rate: int, seconds: float) -> np.ndarray:
+    """Raised-cosine ramp from exactly 0 up towards 1 over ``seconds`` (at most n samples)."""
+    m = min(n, max(2, int(round(seconds * rate))))
+    ramp = np.ones(n)
+    ramp[:m] = 0.5 - 0.5 * np.cos(np.pi * np.arange(m) / m)
+    return ramp
+
+
+def _finish(x: np.ndarray, rate: int, peak: float, attack: float, release: float) -> np.ndarray:
+    """Fade both ends to exactly zero, normalise to ``peak`` of full scale, quantise to int16."""
+    n = x.size
+    x = x * _fade(n, rate, attack) * _fade(n, rate, release)[::-1]
+    top = float(np.max(np.abs(x))) if n else 0.0
+    if top > 0.0:
+        x = x * (np.floor(peak * _FULL_SCALE) / top)  # floor: rounding can't overshoot
+    return np.round(x).astype(np.int16)
+
+
+# --------------------------------------------------------------------------- the sounds
+
+
+def _shot(rate: int) -> np.ndarray:
+    t = _times(0.070, rate)
+    freq = _cap(520.0 + 1700.0 * np.exp(-t / 0.018), rate)
+    ph = _phase(freq, rate)
+    tone = np.tanh(2.5 * np.sin(ph)) + 0.25 * np.sin(2.0 * ph)
+    return _finish(tone * np.exp(-t / 0.030), rate, 0.35, attack=0.002, release=0.010)
+
+
+def _hit(rate: int) -> np.ndarray:
+    t = _times(0.045, rate)
+    partials = ((1870.0, 1.0, 0.012), (2983.0, 0.7, 0.009), (4411.0, 0.45, 0.007),
+                (6229.0, 0.3, 0.005))
+    x = np.zeros_like(t)
+    for f, a, tau in partials:
+        x += a * np.sin(2.0 * np.pi * float(_cap(f, rate)) * t) * np.exp(-t / tau)
+    click = _filter(_noise("hit", t.size), rate, low=min(3000.0, 0.3 * rate))
+    x += 0.6 * click / max(1e-12, float(np.max(np.abs(click)))) * np.exp(-t / 0.002)
+    return _finish(x, rate, 0.40, attack=0.001, release=0.008)
+
+
+def _boom(name: str, rate: int, seconds: float, bright_hz: float, dark_hz: float,
+          bright_tau: float, dark_tau: float,
+          thump: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """Noise that darkens as it decays, over a sine 'thump' sweeping down in pitch."""
+    t = _times(seconds, rate)
+    noise = _noise(name, t.size)
+    bright = _filter(noise, rate, high=min(bright_hz, 0.4 * rate))
+    dark = _filter(noise, rate, high=dark_hz, order=3)
+    bright /= max(1e-12, float(np.max(np.abs(bright))))
+    dark /= max(1e-12, float(np.max(np.abs(dark))))
+    f_end, f_span, f_tau, amp_tau = thump
+    body = np.sin(_phase(f_end + f_span * np.exp(-t / f_tau), rate)) * np.exp(-t / amp_tau)
+    x = 0.8 * bright * np.exp(-t / bright_tau) + dark * np.exp(-t / dark_tau) + 0.9 * body
+    return x, t
+
+
+def _explosion(rate: int) -> np.ndarray:
+    x, _ = _boom("explosion", rate, 0.50, 2600.0, 380.0, 0.05, 0.16,
+                 (45.0, 80.0, 0.05, 0.12))
+    return _finish(np.tanh(1.6 * x), rate, 0.70, attack=0.003, release=0.080)
+
+
+def _big_explosion(rate: int) -> np.ndarray:
+    x, t = _boom("big_explosion", rate, 1.10, 1600.0, 190.0, 0.09, 0.40,
+                 (30.0, 60.0, 0.08, 0.30))
+    # a second, later crackle so it reads as a bigger, collapsing blast
+    late = _filter(_noise("big_explosion/late", t.size), rate, high=900.0)
+    late /= max(1e-12, float(np.max(np.abs(late))))
+    onset = np.clip((t - 0.14) / 0.03, 0.0, 1.0)
+    x = x + 0.6 * late * onset * np.exp(-np.maximum(t - 0.14, 0.0) / 0.22)
+    return _finish(np.tanh(1.4 * x), rate, 0.80, attack=0.004, release=0.200)
+
+
+def _graze(rate: int) -> np.ndarray:
+    t = _times(0.060, rate)
+    x = np.zeros_like(t)
+    for f, a in ((5200.0, 1.0), (6930.0, 0.6), (8310.0, 0.4)):
+        wobble = 1.0 + 0.004 * np.sin(2.0 * np.pi * 90.0 * t)
+        x += a * np.sin(_phase(_cap(f * wobble, rate), rate))
+    window = np.sin(np.pi * np.arange(t.size) / max(1, t.size - 1)) ** 2
+    return _finish(x * window, rate, 0.18, attack=0.004, release=0.004)
+
+
+def _player_hit(rate: int) -> np.ndarray:
+    t = _times(0.45, rate)
+    freq = 95.0 + 700.0 * np.exp(-t * 4.0)
+    saw = 2.0 * np.mod(np.cumsum(freq) / rate, 1.0) - 1.0
+    square = np.sign(np.sin(_phase(freq * 1.013, rate)))
+    grit = _filter(_noise("player_hit", t.size), rate, high=min(4000.0, 0.4 * rate))
+    grit /= max(1e-12, float(np.max(np.abs(grit))))
+    x = saw + 0.6 * square + 0.35 * grit
+    x *= 1.0 - 0.35 * (0.5 + 0.5 * np.sin(2.0 * np.pi * 28.0 * t))  # rough tremolo
+    x = _filter(np.tanh(2.0 * x), rate, high=min(6000.0, 0.4 * rate))
+    return _finish(x * np.exp(-t / 0.22), rate, 0.60, attack=0.003, release=0.060)
+
+
+def _select(rate: int) -> np.ndarray:
+    t = _times(0.26, rate)
+    x = np.zeros_like(t)
+    for f, start, tau in ((1318.5, 0.0, 0.06), (1760.0, 0.075, 0.09)):
+        local = np.maximum(t - start, 0.0)
+        on = t >= start
+        note = sum(a * np.sin(2.0 * np.pi * float(_cap(k * f, rate)) * local)
+                   for k, a in ((1, 1.0), (2, 0.25), (3, 0.08)))
+        attack = 0.5 - 0.5 * np.cos(np.pi * np.clip(local / 0.003, 0.0, 1.0))
+        x += np.where(on, note * attack * np.exp(-local / tau), 0.0)
+    return _finish(x, rate, 0.35, attack=0.002, release=0.030)
+
+
+def _pause(rate: int) -> np.ndarray:
+    t = _times(0.14, rate)
+    ph = _phase(300.0 - 80.0 * t / t[-1] if t.size > 1 else np.full(1, 300.0), rate)
+    x = np.sin(ph) + 0.15 * np.sin(2.0 * ph)
+    return _finish(x * np.exp(-t / 0.05), rate, 0.30, attack=0.008, release=0.030)
+
+
+_BUILDERS: Mapping[str, Callable[[int], np.ndarray]] = MappingProxyType({
+    "shot": _shot,
+    "hit": _hit,
+    "explosion": _explosion,
+    "big_explosion": _big_explosion,
+    "graze": _graze,
+    "player_hit": _player_hit,
+    "select": _select,
+    "pause": _pause,
+})
+
+
+def synth(name: str, rate: int = 44100) -> np.ndarray:
+    """Mono int16 samples, shape ``(n,)``, for the effect ``name`` at ``rate`` Hz.
+
+    Deterministic (noise is seeded from the name), ``1 <= n <= 1.2 * rate``, peak at most
+    0.8 of full scale (26213), first and last samples exactly 0. ValueError for an unknown
+    name or a rate below 8000 Hz.
+    """
+    try:
+        build = _BUILDERS[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown sound {name!r}; expected one of {', '.join(NAMES)}") from None
+    if isinstance(rate, bool) or not isinstance(rate, (int, np.integer)) or rate < _MIN_RATE:
+        raise ValueError(f"rate must be an integer >= {_MIN_RATE} Hz, got {rate!r}")
+    return build(int(rate))
+
+
+# --------------------------------------------------------------------------- playback
+
+
+def _to_mixer_format(mono: np.ndarray, size: int, channels: int) -> np.ndarray:
+    """int16 mono -> a C-contiguous array in the mixer's sample format and channel count.
+
+    ``size`` is pygame's signed bit size: -16 int16, 16 uint16, -8 int8, 8 uint8, -32
+    float32 (pygame's 32-bit mixer format is floating point). Shape is ``(n,)`` for one
+    channel, otherwise ``(n, channels)`` with the mono signal copied to every channel.
+    """
+    x = mono.astype(np.float64) / 32768.0
+    if size == -16:
+        out = mono
+    elif size == 16:
+        out = np.round(x * 32768.0 + 32768.0).clip(0, 65535).astype(np.uint16)
+    elif size == -8:
+        out = np.round(x * 128.0).clip(-128, 127).astype(np.int8)
+    elif size == 8:
+        out = np.round(x * 128.0 + 128.0).clip(0, 255).astype(np.uint8)
+    elif abs(size) == 32:
+        out = x.astype(np.float32)
+    else:
+        raise ValueError(f"unsupported mixer sample size {size}")
+    if channels > 1:
+        out = np.repeat(out[:, None], channels, axis=1)
+    return np.ascontiguousarray(out)
+
+
+class Audio:
+    """Sound effects made in code. Never raises for a missing audio device: it goes silent.
+
+    ``available`` -- a mixer device (even SDL's dummy driver) could be opened and every
+    sound built. ``muted`` starts False. ``play(name)`` is a no-op when muted or unavailable,
+    raises ValueError for a name not in ``NAMES`` (always, so typos surface even when
+    silent), and plays each sound at most once per ``MIN_INTERVAL[name]`` seconds of the
+    ``clock`` (``time.monotonic`` by default) so a 60 Hz fire rate does not stack into noise.
+    """
+
+    NAMES = NAMES
+    #: Minimum seconds between two starts of the same sound; requests inside it are dropped.
+    MIN_INTERVAL: Mapping[str, float] = MappingProxyType({
+        "shot": 0.060,
+        "hit": 0.030,
+        "explosion": 0.050,
+        "big_explosion": 0.150,
+        "graze": 0.050,
+        "player_hit": 0.150,
+        "select": 0.040,
+        "pause": 0.100,
+    })
+
+    def __init__(self, enabled: bool = True, *, clock: Callable[[], float] = time.monotonic):
+        self.available: bool = False
+        self.muted: bool = False
+        self._clock = clock
+        self._spec: tuple[int, int, int] | None = None  # mixer (frequency, size, channels)
+        self._sounds: dict[str, pygame.mixer.Sound] = {}
+        self._last: dict[str, float] = {}
+        if not enabled:
+            return
+        try:
+            mixer = pygame.mixer
+            spec = mixer.get_init()
+            if spec is None:
+                mixer.init(frequency=44100, size=-16, channels=2, buffer=512)
+                spec = mixer.get_init()
+                if spec is not None and mixer.get_num_channels() < 16:
+                    mixer.set_num_channels(16)
+        except (pygame.error, NotImplementedError, ImportError):
+            return  # no device, or no SDL_mixer in this pygame build
+        if spec is not None:
+            self.available = self._build(spec)
+
+    def _build(self, spec: tuple[int, int, int]) -> bool:
+        """(Re)make every Sound for mixer ``spec``; False (and no Sounds) if that fails."""
+        try:
+            frequency, size, channels = spec
+            sounds = {}
+            for name in NAMES:
+                samples = _to_mixer_format(synth(name, max(_MIN_RATE, int(frequency))), size,
+                                           channels)
+                sounds[name] = pygame.sndarray.make_sound(samples)
+        except (pygame.error, NotImplementedError, ImportError, ValueError):
+            # e.g. a mixer sample format we cannot feed
+            self._sounds, self._spec = {}, None
+            return False
+        self._sounds, self._spec = sounds, tuple(spec)
+        return True
+
+    def toggle_mute(self) -> bool:
+        """Flip ``muted`` and return the new value; muting also stops our sounds now playing."""
+        self.muted = not self.muted
+        if self.muted:
+            for sound in self._sounds.values():
+                try:
+                    sound.stop()
+                except pygame.error:
+                    pass
+        return self.muted
+
+    def play(self, name: str) -> None:
+        """Start sound ``name`` unless muted, unavailable or rate-limited (see class doc)."""
+        if name not in NAMES:
+            raise ValueError(f"unknown sound {name!r}; expected one of {', '.join(NAMES)}")
+        if self.muted or not self.available:
+            return
+        now = self._clock()
+        last = self._last.get(name)
+        if last is not None and now - last < self.MIN_INTERVAL[name]:
+            return
+        try:
+            spec = pygame.mixer.get_init()
+            # Never call Sound.play() with the mixer shut: pygame-ce 2.5.8 segfaults there
+            # rather than raising. If someone re-opened it in another format, rebuild.
+            if spec is None:
+                return
+            if tuple(spec) != self._spec and not self._build(spec):
+                self.available = False
+                return
+            self._last[name] = now
+            self._sounds[name].play()
+        except (pygame.error, NotImplementedError):
+            pass  # the device went away under us: stay silent
