@@ -132,6 +132,9 @@ def run_headless(level_arg: str, frames: int, seed: int, use_autopilot: bool, re
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    from .collision import retain_heap
+
+    retain_heap()  # the application's call: keep the heap between frames (docs/PERFORMANCE.md)
     try:
         if args.list_levels:
             for name in list_levels():

@@ -162,6 +162,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--frames", type=int, default=None, help="measured frames per scale (default 30; 5 with --quick)")
     ap.add_argument("--seed", type=int, default=2003)
     ap.add_argument("--json", metavar="FILE", help="write every figure as JSON")
+    ap.add_argument("--no-game", action="store_true", help="skip the whole-frame game scenario (needs pygame)")
     ap.add_argument("--no-retain-heap", action="store_true",
                     help="leave glibc's heap trimming on (the game turns it off; see docs/PERFORMANCE.md)")
     args = ap.parse_args(argv)
@@ -180,10 +181,22 @@ def main(argv: list[str] | None = None) -> int:
     for e, b in scales:
         results.append(run_scale(e, b, frames, warmup, args.seed, METHODS, _progress(f"{e} enemies, {b} bullets")))
     print(markdown(results))
+    game = None
+    if not args.no_game:
+        from .game_frame import run_game_frames
+
+        print("  game frame: bullet-hell level at its peak ...", file=sys.stderr, flush=True)
+        game = run_game_frames(warmup=120 if args.quick else 660, frames=10 if args.quick else 60, seed=args.seed)
+        print(f"\n### Whole game frame: {game['level']} with the autopilot, {game['bullets_median']} bullets on screen "
+              f"({game['frames']} frames after {game['warmup']})\n")
+        print("| frame median ms | frame max ms | collision median ms | render median ms |")
+        print("|---:|---:|---:|---:|")
+        print(f"| {game['frame_median_ms']:.2f} | {game['frame_max_ms']:.2f} | {game['collision_median_ms']:.2f} | "
+              f"{game['render_median_ms']:.2f} |")
     if args.json:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
                "python": platform.python_version(), "numpy": np.__version__, "allocator": heap, "host_canary_before": canary, "host_canary_after": host_canary(),
-               "scales": results}
+               "scales": results, "game_frame": game}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")

@@ -1,0 +1,1 @@
+"""broadsword.game: everything pygame -- window, loop, scenes, input, rendering, audio, overlay."""

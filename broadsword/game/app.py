@@ -1,0 +1,396 @@
+"""The game application: window, scenes, input, the fixed-step loop.
+
+Loop (Game Programming Patterns, "Game Loop"): real time accumulates; the world steps in
+fixed 1/60 s increments while enough has accumulated, at most ``MAX_CATCH_UP`` steps a
+frame (a slow machine slows the game down instead of spiralling); then one render,
+interpolated by the leftover fraction. :meth:`App.frame` takes the elapsed time as an
+argument, so tests drive the real loop frame by frame with injected events.
+"""
+
+from __future__ import annotations
+
+import datetime
+from dataclasses import dataclass
+
+import pygame
+
+from ..data import list_levels, load_level, resolve_level
+from ..sim import DT, FIELD, Input, World, autopilot
+from .audio import Audio
+from .overlay import Overlay
+from .render import Renderer
+from .scores import Entry, HighScores
+from .sprites import SpriteBank
+
+MAX_CATCH_UP = 5
+DEFAULT_SCALE = 1.25
+SLOW_MOTION = 0.25
+TITLE = "Broadsword"
+
+CONTROLS = [
+    ("Arrows / WASD", "move"),
+    ("Z / Space", "fire"),
+    ("Shift", "precise mode: slow, shows your hit shape"),
+    ("Esc / P", "pause"),
+    ("M", "mute"),
+    ("F1", "collision overlay"),
+    ("F2", "step one frame (paused)"),
+    ("F3", "slow motion"),
+    ("F4", "rotation: lut / exact"),
+    ("Gamepad", "stick / d-pad, A fire, B slow, Start pause"),
+]
+
+MOVE_KEYS = {
+    pygame.K_LEFT: (-1, 0), pygame.K_a: (-1, 0), pygame.K_RIGHT: (1, 0), pygame.K_d: (1, 0),
+    pygame.K_UP: (0, -1), pygame.K_w: (0, -1), pygame.K_DOWN: (0, 1), pygame.K_s: (0, 1),
+}
+FIRE_KEYS = {pygame.K_z, pygame.K_SPACE}
+SLOW_KEYS = {pygame.K_LSHIFT, pygame.K_RSHIFT}
+
+
+@dataclass
+class Run:
+    """A play-through: the level being played, and what carries to the next one."""
+
+    level_index: int
+    score: int = 0
+    lives: int | None = None
+
+
+class App:
+    """Broadsword. ``App().run()`` plays until the window closes.
+
+    Parameters
+    ----------
+    start_level : str, optional
+        A shipped level's name or a level file to start from (default: the first).
+    seed : int
+    demo : bool
+        Let the autopilot play (the title's attract mode, and ``broadsword --autopilot``).
+    audio : bool
+    scores : HighScores, optional
+        Where high scores live (default: the user's data directory).
+    """
+
+    def __init__(self, start_level: str | None = None, seed: int = 0, demo: bool = False,
+                 audio: bool = True, scores: HighScores | None = None, scale: float = DEFAULT_SCALE):
+        pygame.init()
+        pygame.display.set_caption(TITLE)
+        self.window = pygame.display.set_mode((int(FIELD[0] * scale), int(FIELD[1] * scale)), pygame.RESIZABLE)
+        self.screen = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
+        self.bank = SpriteBank()
+        self.bank.convert()
+        self.renderer = Renderer(self.bank, seed)
+        self.overlay = Overlay()
+        self.audio = Audio(enabled=audio)
+        self.scores = (scores or HighScores()).load()
+        self.levels = list_levels()
+        self.custom_level = None
+        if start_level is not None and start_level not in self.levels:
+            self.custom_level = str(resolve_level(start_level))
+        self.start_index = self.levels.index(start_level) if start_level in self.levels else 0
+        self.seed, self.demo = seed, demo
+        self.scene = "title"
+        self.world: World | None = None
+        self.run_state: Run | None = None
+        self.keys: set[int] = set()
+        self.pad = None
+        self._init_pad()
+        self.accumulator = 0.0
+        self.slow_motion = False
+        self.step_once = False
+        self.fps = 60.0
+        self.running = True
+        self.name = ""
+        self.message = self.scores.warning  # a set-aside scores file is reported on the title
+        self.font = pygame.font.Font(None, 24)
+        self.big = pygame.font.Font(None, 72)
+        self.recorded: list[int] = []
+
+    # ------------------------------------------------------------------ the loop
+    def run(self) -> None:
+        clock = pygame.time.Clock()
+        while self.running:
+            dt = clock.tick(120) / 1000.0
+            self.fps = clock.get_fps() or self.fps
+            self.frame(dt)
+        pygame.quit()
+
+    def frame(self, dt: float) -> int:
+        """Handle events, step the world by the elapsed ``dt`` seconds, render. Returns steps taken."""
+        for event in pygame.event.get():
+            self.handle(event)
+        steps = 0
+        if self.scene == "play" and self.world is not None:
+            self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0)
+            while self.accumulator >= DT and steps < MAX_CATCH_UP:
+                self._step()
+                steps += 1
+                self.accumulator -= DT
+                if self.scene != "play":
+                    break
+            if steps == MAX_CATCH_UP:
+                self.accumulator = min(self.accumulator, DT)  # drop the backlog: slow down, don't spiral
+        elif self.scene == "paused" and self.step_once:
+            self.step_once = False
+            self._step(paused=True)
+            steps = 1
+        self.render()
+        return steps
+
+    def _step(self, paused: bool = False) -> None:
+        world = self.world
+        inp = autopilot(world) if self.demo else self.current_input()
+        self.recorded.append(inp.to_byte())
+        ev = world.step(inp)
+        self.renderer.on_events(ev)
+        if ev.shots:
+            self.audio.play("shot")
+        if ev.grazes:
+            self.audio.play("graze")
+        if ev.damaged:
+            self.audio.play("hit")
+        if ev.kills:
+            self.audio.play("big_explosion" if ev.boss_killed else "explosion")
+        if ev.player_hit:
+            self.audio.play("player_hit")
+        if ev.game_over:
+            self._end_run()
+        elif ev.level_complete and not paused:
+            self.scene = "complete"
+
+    # ------------------------------------------------------------------ input
+    def _init_pad(self) -> None:
+        try:
+            pygame.joystick.init()
+            if pygame.joystick.get_count():
+                self.pad = pygame.joystick.Joystick(0)
+        except pygame.error:
+            self.pad = None
+
+    def current_input(self) -> Input:
+        dx = sum(MOVE_KEYS[k][0] for k in self.keys if k in MOVE_KEYS)
+        dy = sum(MOVE_KEYS[k][1] for k in self.keys if k in MOVE_KEYS)
+        fire = bool(self.keys & FIRE_KEYS)
+        slow = bool(self.keys & SLOW_KEYS)
+        if self.pad is not None:
+            try:
+                ax, ay = self.pad.get_axis(0), self.pad.get_axis(1)
+                hx, hy = self.pad.get_hat(0) if self.pad.get_numhats() else (0, 0)
+                dx += (ax > 0.35) - (ax < -0.35) + hx
+                dy += (ay > 0.35) - (ay < -0.35) - hy
+                fire |= bool(self.pad.get_button(0))
+                slow |= self.pad.get_numbuttons() > 1 and bool(self.pad.get_button(1))
+            except pygame.error:
+                self.pad = None
+        clamp = lambda v: max(-1, min(1, v))  # noqa: E731
+        return Input(clamp(dx), clamp(dy), fire, slow)
+
+    def handle(self, event: pygame.event.Event) -> None:
+        if event.type == pygame.QUIT:
+            self.running = False
+        elif event.type == pygame.KEYDOWN:
+            self.keys.add(event.key)
+            self._key(event)
+        elif event.type == pygame.KEYUP:
+            self.keys.discard(event.key)
+        elif event.type == pygame.JOYBUTTONDOWN and event.button == 7:  # Start
+            self._toggle_pause()
+        elif event.type == pygame.JOYDEVICEADDED:
+            self._init_pad()
+        elif event.type == pygame.WINDOWFOCUSLOST and self.scene == "play":
+            self._toggle_pause()
+
+    def _key(self, event) -> None:
+        k = event.key
+        if k == pygame.K_m:
+            self.audio.toggle_mute()
+            return
+        if self.scene == "name":
+            self._name_key(event)
+            return
+        if k == pygame.K_F1:
+            self.overlay.visible = not self.overlay.visible
+        elif k == pygame.K_F3:
+            self.slow_motion = not self.slow_motion
+        elif k == pygame.K_F4 and self.world is not None:
+            p = self.world.pipeline
+            p.rotation = "exact" if p.rotation == "lut" else "lut"
+        if self.scene == "title":
+            if k in (pygame.K_RETURN, pygame.K_z, pygame.K_SPACE):
+                self.audio.play("select")
+                self.start_run()
+            elif k in (pygame.K_LEFT, pygame.K_RIGHT) and self.custom_level is None:
+                self.start_index = (self.start_index + (1 if k == pygame.K_RIGHT else -1)) % len(self.levels)
+            elif k == pygame.K_h:
+                self.scene = "scores"
+            elif k == pygame.K_ESCAPE:
+                self.running = False
+        elif self.scene == "play":
+            if k in (pygame.K_ESCAPE, pygame.K_p):
+                self._toggle_pause()
+        elif self.scene == "paused":
+            if k in (pygame.K_ESCAPE, pygame.K_p):
+                self._toggle_pause()
+            elif k == pygame.K_F2:
+                self.step_once = True
+            elif k == pygame.K_q:
+                self.scene = "title"
+        elif self.scene == "complete":
+            if k in (pygame.K_RETURN, pygame.K_z, pygame.K_SPACE):
+                self.next_level()
+        elif self.scene in ("gameover", "scores", "victory"):
+            if k in (pygame.K_RETURN, pygame.K_z, pygame.K_SPACE, pygame.K_ESCAPE):
+                self.scene = "title"
+
+    def _toggle_pause(self) -> None:
+        if self.scene == "play":
+            self.scene = "paused"
+            self.audio.play("pause")
+        elif self.scene == "paused":
+            self.scene = "play"
+            self.accumulator = 0.0
+
+    def _name_key(self, event) -> None:
+        if event.key == pygame.K_RETURN:
+            self._save_score(self.name.strip() or "PILOT")
+        elif event.key == pygame.K_BACKSPACE:
+            self.name = self.name[:-1]
+        elif event.unicode and event.unicode.isprintable() and len(self.name) < 12:
+            self.name += event.unicode.upper()
+
+    # ------------------------------------------------------------------ runs and levels
+    def start_run(self, index: int | None = None) -> None:
+        self.run_state = Run(self.start_index if index is None else index)
+        self._load_level()
+
+    def _load_level(self) -> None:
+        run = self.run_state
+        path = self.custom_level or resolve_level(self.levels[run.level_index])
+        world = World(load_level(path), self.bank.armatures, seed=self.seed + run.level_index)
+        world.score = run.score
+        if run.lives is not None:
+            world.lives = run.lives
+        self.world = world
+        self.accumulator = 0.0
+        self.scene = "play"
+
+    def next_level(self) -> None:
+        run, w = self.run_state, self.world
+        run.score, run.lives = w.score, w.lives
+        if self.custom_level is None and run.level_index + 1 < len(self.levels):
+            run.level_index += 1
+            self._load_level()
+        else:
+            self._end_run(victory=True)
+
+    def _end_run(self, victory: bool = False) -> None:
+        score = self.world.score if self.world else 0
+        self.final = (score, victory)
+        if self.scores.qualifies(score) and score > 0:
+            self.name = ""
+            self.scene = "name"
+        else:
+            self.scene = "victory" if victory else "gameover"
+
+    def _save_score(self, name: str) -> None:
+        level = self.world.level.name if self.world else ""
+        self.scores.add(Entry(name, self.final[0], level, datetime.date.today().isoformat()))
+        try:
+            self.scores.save()
+        except OSError as exc:
+            self.message = f"could not save high scores: {exc}"
+        self.scene = "scores"
+
+    # ------------------------------------------------------------------ drawing
+    def render(self) -> None:
+        s = self.screen
+        if self.world is not None and self.scene in ("play", "paused", "complete", "gameover", "name", "victory"):
+            alpha = self.accumulator / DT if self.scene == "play" else 1.0
+            slow = (bool(self.keys & SLOW_KEYS) or self.current_input().slow) and not self.demo
+            self.renderer.draw(s, self.world, min(alpha, 1.0), show_armature=slow)
+            if self.overlay.visible:
+                self.overlay.draw(s, self.world, self.fps, paused=self.scene == "paused")
+        else:
+            self.renderer.tick += 1
+            self.renderer._background(s, self.renderer.tick)
+        getattr(self, f"_draw_{self.scene}", lambda: None)()
+        self._present()
+
+    def _present(self) -> None:
+        """Scale the playfield into the window, keeping its aspect (black bars, never stretched)."""
+        win = pygame.display.get_surface()
+        ww, wh = win.get_size()
+        k = min(ww / FIELD[0], wh / FIELD[1])
+        size = (max(1, int(FIELD[0] * k)), max(1, int(FIELD[1] * k)))
+        win.fill((0, 0, 0))
+        win.blit(pygame.transform.scale(self.screen, size), ((ww - size[0]) // 2, (wh - size[1]) // 2))
+        pygame.display.flip()
+
+    def _text(self, text, y, font=None, colour=(230, 236, 255), x=None):
+        img = (font or self.font).render(text, True, colour)
+        rect = img.get_rect(center=(FIELD[0] / 2 if x is None else x, y))
+        self.screen.blit(img, rect)
+
+    def _veil(self, a=150):
+        v = pygame.Surface(self.screen.get_size(), pygame.SRCALPHA)
+        v.fill((0, 0, 0, a))
+        self.screen.blit(v, (0, 0))
+
+    def _draw_title(self) -> None:
+        self._text("BROADSWORD", 120, self.big, (255, 220, 140))
+        self._text("polygon-armature shoot-'em-up", 162, colour=(160, 180, 220))
+        ship = pygame.transform.scale_by(self.bank.images["player"], 2)
+        self.screen.blit(ship, ship.get_rect(center=(FIELD[0] / 2, 222)))
+        start = self.custom_level or self.levels[self.start_index]
+        self._text(f"Start: {start}" + ("" if self.custom_level else "   (Left/Right to choose)"), 282, colour=(255, 240, 200))
+        self._text("Enter or Z to play   H high scores   Esc quit", 306, colour=(200, 210, 240))
+        for i, (key, what) in enumerate(CONTROLS):
+            y = 350 + 20 * i
+            k = self.font.render(key, True, (255, 220, 140))
+            self.screen.blit(k, k.get_rect(midright=(150, y)))
+            d = self.font.render(what, True, (200, 210, 240))
+            self.screen.blit(d, d.get_rect(midleft=(166, y)))
+        if self.scores.entries:
+            best = self.scores.entries[0]
+            self._text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
+        if self.message:
+            self._text(self.message[:70], 610, colour=(255, 140, 120))
+
+    def _draw_paused(self) -> None:
+        self._veil(110)
+        self._text("PAUSED", 280, self.big)
+        self._text("Esc / P resume   F2 step a frame   Q quit to title", 330)
+
+    def _draw_complete(self) -> None:
+        self._veil()
+        self._text("LEVEL COMPLETE", 260, self.big, (150, 255, 200))
+        self._text(f"Score {self.world.score:,}   Grazes {self.world.grazes}", 315)
+        self._text("Enter to continue", 350)
+
+    def _draw_gameover(self) -> None:
+        self._veil()
+        self._text("GAME OVER", 270, self.big, (255, 110, 110))
+        self._text(f"Score {self.final[0]:,}", 320)
+        self._text("Enter for the title", 350)
+
+    def _draw_victory(self) -> None:
+        self._veil()
+        self._text("BROADSWORD FALLS", 270, self.big, (255, 220, 140))
+        self._text(f"Final score {self.final[0]:,}", 320)
+
+    def _draw_name(self) -> None:
+        self._veil()
+        self._text("NEW HIGH SCORE", 240, self.big, (255, 220, 140))
+        self._text(f"{self.final[0]:,}", 290)
+        self._text(f"Name: {self.name}_", 330, colour=(255, 240, 200))
+        self._text("type, then Enter", 360)
+
+    def _draw_scores(self) -> None:
+        self._veil()
+        self._text("HIGH SCORES", 110, self.big, (255, 220, 140))
+        for i, e in enumerate(self.scores.entries):
+            self._text(f"{i + 1:>2}. {e.name:<12} {e.score:>10,}  {e.level}", 170 + 28 * i)
+        if not self.scores.entries:
+            self._text("none yet", 200)
+        self._text("Enter for the title", 500)

@@ -1,0 +1,176 @@
+"""Drawing the world: starfield, ships, bullets, effects and the HUD.
+
+Positions are interpolated between the last two simulation steps by ``alpha`` (Game
+Programming Patterns, "Game Loop"), so motion is smooth at any display rate. Effects
+(explosions, sparks, flashes) are presentation only: they are driven by the step's
+events and never feed back into the simulation.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pygame
+
+from ..sim.world import FIELD, World
+from .sprites import SpriteBank
+
+ROUND_BULLETS = ("pellet", "orb")  # rotation-invariant sprites: never rotated
+LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
+    "player": (80, 255, 255),
+    "graze": (110, 160, 255),
+    "enemy_ship": (255, 150, 60),
+    "enemy_bullet": (255, 80, 220),
+    "player_bullet": (120, 255, 120),
+}
+
+
+@dataclass
+class Effect:
+    x: float
+    y: float
+    born: int  # render frame
+    kind: str  # "explosion", "big", "spark", "flash"
+    size: float = 1.0
+
+
+class Renderer:
+    """Draws a :class:`World` onto the logical playfield surface (FIELD-sized)."""
+
+    def __init__(self, bank: SpriteBank, seed: int = 0):
+        self.bank = bank
+        rng = np.random.default_rng(seed)
+        w, h = FIELD
+        # Three parallax layers of stars: (x, y, speed, brightness).
+        self.stars = [(rng.uniform(0, w, n), rng.uniform(0, h, n), v, b)
+                      for n, v, b in ((90, 12.0, 90), (50, 28.0, 150), (24, 60.0, 230))]
+        self.effects: list[Effect] = []
+        self.tick = 0
+        self.font = pygame.font.Font(None, 22)
+        self.big = pygame.font.Font(None, 44)
+        self.flash = 0  # frames of white flash left (player hit)
+        self.strip = self._explosion_frames()
+
+    def _explosion_frames(self) -> list[pygame.Surface]:
+        strip = self.bank.images.get("explosion")
+        if strip is None:
+            return []
+        size = strip.get_height()
+        return [strip.subsurface((i * size, 0, size, size)) for i in range(strip.get_width() // size)]
+
+    # ------------------------------------------------------------- events -> effects
+    def on_events(self, ev) -> None:
+        for x, y, kind in ev.kills:
+            big = kind in ("boss", "gunship", "player")
+            self.effects.append(Effect(x, y, self.tick, "big" if big else "explosion", 2.0 if kind == "boss" else 1.0))
+        for x, y in ev.damaged:
+            self.effects.append(Effect(x, y, self.tick, "spark"))
+        if ev.player_hit:
+            self.flash = 6
+
+    # ------------------------------------------------------------- drawing
+    def draw(self, surf: pygame.Surface, world: World, alpha: float, show_armature: bool = False) -> None:
+        self.tick += 1
+        self._background(surf, world.frame + alpha)
+        self._enemies(surf, world, alpha)
+        self._bullets(surf, world.player_bullets, world, alpha)
+        self._player(surf, world, alpha, show_armature)
+        self._bullets(surf, world.enemy_bullets, world, alpha)
+        self._effects(surf)
+        self._hud(surf, world)
+        if self.flash:
+            veil = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
+            veil.fill((255, 255, 255, 28 * self.flash))
+            surf.blit(veil, (0, 0))
+            self.flash -= 1
+
+    def _background(self, surf, t: float) -> None:
+        surf.fill((6, 7, 16))
+        h = FIELD[1]
+        for xs, ys, speed, b in self.stars:
+            y = (ys + speed * t / 60.0) % h
+            colour = (b, b, min(255, b + 25))
+            for x, yy in zip(xs.tolist(), y.tolist()):
+                surf.fill(colour, (x, yy, 1 if b < 200 else 2, 1 if b < 200 else 2))
+
+    def _lerp(self, pos, prev, alpha):
+        return prev + (pos - prev) * alpha
+
+    def _enemies(self, surf, world: World, alpha: float) -> None:
+        e = world.enemies
+        if not e.n:
+            return
+        pos = self._lerp(e.pos, e.prev, alpha)
+        for (x, y), a, arm in zip(pos.tolist(), e.angle.tolist(), e.arm.tolist()):
+            img = self.bank.rotated(world.names[arm], a)
+            surf.blit(img, img.get_rect(center=(x, y)))
+
+    def _bullets(self, surf, pool, world: World, alpha: float) -> None:
+        if not pool.n:
+            return
+        pos = self._lerp(pool.pos, pool.prev, alpha)
+        names = world.names
+        blits = []
+        for (x, y), a, arm in zip(pos.tolist(), pool.angle.tolist(), pool.arm.tolist()):
+            name = names[arm]
+            img = self.bank.images[name] if name in ROUND_BULLETS else self.bank.rotated(name, a)
+            w, h = img.get_size()
+            blits.append((img, (x - w * 0.5, y - h * 0.5)))
+        surf.fblits(blits)  # one call for the whole crowd
+
+    def _player(self, surf, world: World, alpha: float, show_armature: bool) -> None:
+        if not world.player_alive:
+            return
+        x, y = self._lerp(world.player, world.player_prev, alpha).tolist()
+        blink = world.invulnerable > 0 and (self.tick // 4) % 2 == 0
+        img = self.bank.images["player"]
+        if not blink:
+            surf.blit(img, img.get_rect(center=(x, y)))
+        if show_armature:  # the precise mode shows the real hit shape
+            pts = [(x + vx, y + vy) for vx, vy in self.bank.armatures["player"].armature.vertices.tolist()]
+            pygame.draw.polygon(surf, (255, 255, 255), pts)
+            pygame.draw.polygon(surf, (255, 60, 90), pts, 1)
+
+    def _effects(self, surf) -> None:
+        keep = []
+        for fx in self.effects:
+            age = self.tick - fx.born
+            if fx.kind in ("explosion", "big") and self.strip:
+                frame = age // (3 if fx.kind == "big" else 2)
+                if frame < len(self.strip):
+                    img = self.strip[frame]
+                    scale = fx.size * (1.6 if fx.kind == "big" else 1.0)
+                    if scale != 1.0:
+                        img = pygame.transform.scale_by(img, scale)
+                    surf.blit(img, img.get_rect(center=(fx.x, fx.y)), special_flags=pygame.BLEND_RGBA_ADD)
+                    keep.append(fx)
+            elif fx.kind == "spark" and age < 8:
+                img = self.bank.images.get("spark")
+                if img is not None:
+                    for k in range(4):
+                        ang = k * math.pi / 2 + fx.born
+                        r = 2 + age * 2.5
+                        surf.blit(img, img.get_rect(center=(fx.x + r * math.cos(ang), fx.y + r * math.sin(ang))),
+                                  special_flags=pygame.BLEND_RGBA_ADD)
+                keep.append(fx)
+        self.effects = keep
+
+    def _hud(self, surf, world: World) -> None:
+        text = self.font.render(f"SCORE {world.score:>9,}", True, (235, 240, 255))
+        surf.blit(text, (10, 8))
+        graze = self.font.render(f"GRAZE {world.grazes}", True, (150, 180, 255))
+        surf.blit(graze, (10, 28))
+        icon = pygame.transform.scale_by(self.bank.images["player"], 0.5)
+        for i in range(max(world.lives - (1 if world.player_alive else 0), 0)):
+            surf.blit(icon, (FIELD[0] - 22 - i * (icon.get_width() + 4), 8))
+        if world.boss_state == "fighting" and world.level.boss:
+            frac = max(world.boss_hp, 0) / world.level.boss.hp
+            pygame.draw.rect(surf, (60, 20, 30), (90, FIELD[1] - 14, FIELD[0] - 180, 6))
+            pygame.draw.rect(surf, (255, 70, 90), (90, FIELD[1] - 14, (FIELD[0] - 180) * frac, 6))
+        if world.time < 3.0:  # the level's title fades in and out
+            fade = min(1.0, world.time, 3.0 - world.time)
+            title = self.big.render(world.level.title, True, (255, 230, 170))
+            title.set_alpha(int(255 * max(fade, 0.0)))
+            surf.blit(title, title.get_rect(center=(FIELD[0] / 2, FIELD[1] * 0.38)))
