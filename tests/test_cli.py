@@ -1,0 +1,90 @@
+"""The command line contract (DESIGN.md): headless runs, determinism, record and replay, errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from broadsword.cli import main
+from broadsword.data import list_levels
+
+
+def run(args, capsys):
+    code = main(args)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def summary(out: str) -> dict:
+    return json.loads(out.strip().splitlines()[-1])
+
+
+@pytest.mark.parametrize("level", list_levels())
+def test_headless__every_level_runs_600_frames_with_the_autopilot(level, capsys):
+    code, out, _ = run(["--headless", "--level", level, "--frames", "600", "--seed", "3", "--autopilot"], capsys)
+    s = summary(out)
+    assert code == 0
+    assert {"frames", "seed", "level", "score", "lives", "hits", "tiers", "state_hash"} <= set(s)
+    assert s["level"] == level and s["seed"] == 3
+    assert s["frames"] == 600 or s["complete"] or s["game_over"]
+    assert s["tiers"]["armature"]["pairs_in"] >= s["tiers"]["armature"]["pairs_out"]
+    assert s["score"] > 0  # the autopilot shoots things
+
+
+def test_headless__same_arguments_same_hash(capsys):
+    args = ["--headless", "--level", "2-gauntlet", "--frames", "300", "--seed", "9", "--autopilot"]
+    a = summary(run(args, capsys)[1])
+    b = summary(run(args, capsys)[1])
+    c = summary(run(args[:-2] + ["10", "--autopilot"], capsys)[1])
+    assert a["state_hash"] == b["state_hash"] != c["state_hash"]
+
+
+def test_headless__same_hash_in_a_fresh_process(capsys):
+    args = ["--headless", "--level", "1-picket", "--frames", "200", "--seed", "2", "--autopilot"]
+    here = summary(run(args, capsys)[1])["state_hash"]
+    out = subprocess.run([sys.executable, "-m", "broadsword", *args], capture_output=True, text=True, check=True)
+    assert summary(out.stdout)["state_hash"] == here
+
+
+def test_record_and_replay__same_hash(tmp_path, capsys):
+    rec = tmp_path / "run.json"
+    args = ["--headless", "--level", "3-broadsword", "--frames", "400", "--seed", "4", "--autopilot", "--record", str(rec)]
+    recorded = summary(run(args, capsys)[1])
+    doc = json.loads(rec.read_text())
+    assert doc["frames"] == recorded["frames"] and doc["state_hash"] == recorded["state_hash"]
+    replayed = summary(run(["--headless", "--replay", str(rec)], capsys)[1])
+    assert replayed["state_hash"] == recorded["state_hash"] and replayed["replay_matches"] is True
+    assert list(tmp_path.iterdir()) == [rec]  # written atomically: no temp files left
+
+
+def test_list_levels(capsys):
+    code, out, _ = run(["--list-levels"], capsys)
+    assert code == 0 and out.split() == list_levels()
+
+
+def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[scene]\ntiers = ["bins", "sphere"]\n')
+    code, out, err = run(["--headless", "--level", str(bad), "--frames", "5"], capsys)
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and str(bad) in err and "scene.tiers" in err and "sphere" in err
+
+
+@pytest.mark.parametrize(
+    "text, field",
+    [("not json", "bad JSON"), ('{"version": 9}', "version"), ('{"version": 1, "level": "1-picket", "seed": 0, "inputs": "zz"}', "inputs"),
+     ('{"version": 1, "level": "1-picket", "seed": 0, "inputs": "ff"}', "inputs")],
+)
+def test_broken_recording__exit_2(tmp_path, capsys, text, field):
+    bad = tmp_path / "rec.json"
+    bad.write_text(text)
+    code, _, err = run(["--headless", "--replay", str(bad)], capsys)
+    assert code == 2 and str(bad) in err and field in err and len(err.strip().splitlines()) == 1
+
+
+def test_unknown_level__exit_2(capsys):
+    code, _, err = run(["--headless", "--level", "no-such-level"], capsys)
+    assert code == 2 and "no-such-level" in err and "1-picket" in err
