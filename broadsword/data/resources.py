@@ -8,28 +8,23 @@ editable install or a plain checkout has no such packages, so the folders beside
 
 from __future__ import annotations
 
-from importlib import resources
 from pathlib import Path
 
 from .errors import DataError
 
-_ROOT = Path(__file__).resolve().parents[2]  # the repository, in a source checkout
+_PACKAGE = Path(__file__).resolve().parents[1]  # .../broadsword
+_ROOT = _PACKAGE.parent  # the repository, in a source checkout
 
 
 def data_dir(kind: str) -> Path:
-    """The folder of shipped ``"levels"`` or ``"assets"``."""
+    """The folder of shipped ``"levels"`` or ``"assets"``: inside the installed package,
+    else beside it in a source checkout (an editable install)."""
     if kind not in ("levels", "assets"):
         raise ValueError(f"kind must be 'levels' or 'assets', got {kind!r}")
-    try:
-        path = Path(str(resources.files(f"broadsword.{kind}")))
+    for path in (_PACKAGE / kind, _ROOT / kind):
         if path.is_dir():
             return path
-    except ModuleNotFoundError:
-        pass
-    path = _ROOT / kind
-    if not path.is_dir():
-        raise FileNotFoundError(f"shipped {kind} not found (looked in the package and in {path})")
-    return path
+    raise FileNotFoundError(f"shipped {kind} not found in {_PACKAGE / kind} or {_ROOT / kind}")
 
 
 def list_levels() -> list[str]:
