@@ -29,7 +29,7 @@ def run_game_frames(level: str = "3-broadsword", warmup: int = 660, frames: int 
     app.start_run()
     for _ in range(warmup):
         app.frame(DT)
-    total, step, collide, render = [], [], [], []
+    total, collide, render = [], [], []
     bullets = []
     world = app.world
     for _ in range(frames):

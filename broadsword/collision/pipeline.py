@@ -242,12 +242,12 @@ def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None =
         return out
     i, j = pairs[:, 0], pairs[:, 1]
     ki, kj = posed.klass[i], posed.klass[j]
-    group = ki * 4096 + kj
+    group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
     ws = workspace or Workspace()
-    for g in np.flatnonzero(np.bincount(group)).tolist():
+    for g in np.unique(group).tolist():  # a handful of groups
         sel = np.flatnonzero(group == g)
         a, b = np.take(i, sel), np.take(j, sel)
-        k1, k2 = g // 4096, g % 4096
+        k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
         out[sel] = polygons_collide_padded(
             np.take(posed.xs[k1], sa, axis=1), np.take(posed.ys[k1], sa, axis=1),

@@ -12,7 +12,6 @@ The reference here is a plain double loop over objects.
 from __future__ import annotations
 
 import itertools
-import re
 
 import numpy as np
 import pytest

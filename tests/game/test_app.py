@@ -170,3 +170,30 @@ def test_app__catch_up_is_capped(app):
     w = quiet(app)
     steps = app.frame(1.0)  # a one-second hitch
     assert steps == 5 and w.frame == 5
+
+
+class StubPad:
+    """A gamepad as pygame's joystick API presents it: stick pushed left, A (fire) held."""
+
+    def get_axis(self, i):
+        return -0.9 if i == 0 else 0.0
+
+    def get_numhats(self):
+        return 1
+
+    def get_hat(self, i):
+        return (0, 1)  # d-pad up
+
+    def get_numbuttons(self):
+        return 2
+
+    def get_button(self, i):
+        return i == 0
+
+
+def test_app__gamepad_moves_and_fires(app):
+    w = quiet(app)
+    app.pad = StubPad()
+    x0, y0 = w.player
+    frames(app, 20)
+    assert w.player[0] < x0 and w.player[1] < y0 and w.player_bullets.n > 0

@@ -13,7 +13,7 @@ from broadsword.collision import polygons_collide, pose
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, IDLE, Input, Pool, World, autopilot
-from broadsword.sim.world import ENEMY_BULLET, GRAZE_SCORE, INVULNERABLE_S, PLAYER, PLAYER_BULLET, SPAWN
+from broadsword.sim.world import ENEMY_BULLET, GRAZE_SCORE, INVULNERABLE_S, PLAYER_BULLET, SPAWN
 
 
 @pytest.fixture(scope="module")
