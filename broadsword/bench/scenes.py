@@ -27,8 +27,10 @@ def random_armature(rng: np.random.Generator, vertices: int, size: float, name: 
 
     Vertices at sorted random angles around the origin with radii in ``[0.45, 1] * size/2``;
     one vertex is pulled in to ``0.3 * size/2`` so the polygon is concave. Star-shaped about
-    the origin, hence simple.
+    the origin, hence simple. Needs at least 4 vertices (a triangle is never concave).
     """
+    if vertices < 4:
+        raise ValueError(f"a concave armature needs at least 4 vertices, got {vertices}")
     while True:
         gaps = rng.uniform(0.5, 1.5, vertices)
         ang = np.cumsum(gaps) / gaps.sum() * 2 * np.pi + rng.uniform(0, 2 * np.pi)

@@ -213,3 +213,30 @@ def polygons_collide_padded(px, py, qx, qy, workspace: Workspace | None = None) 
         sl = slice(s, s + BLOCK)
         out[sl] = _block(pxe[:, sl], pye[:, sl], qxe[:, sl], qye[:, sl], err[sl], ws)
     return out
+
+
+def paper_collide_padded(px, py, qx, qy) -> np.ndarray:
+    """The paper's narrow phase for many pairs: any edge pair passing Figure 8's test.
+
+    Same layout as :func:`polygons_collide_padded`. Faithful to the paper (section 2.3):
+    plain float64 arithmetic, ``f == 0`` (parallel or collinear) never collides, and no
+    containment test ("the authors have managed to avoid this scenario"), so a polygon
+    wholly inside another is a miss. Padding edges have ``f == 0`` and so never count.
+    Kept to measure what the shortcut costs, not for gameplay.
+
+    Returns
+    -------
+    (P,) bool
+    """
+    px, py, qx, qy = (np.asarray(a, dtype=np.float64) for a in (px, py, qx, qy))
+    ax, ay = px[:, None], py[:, None]  # A = P_i: (K1, 1, P)
+    bx, by = np.roll(px, -1, 0)[:, None], np.roll(py, -1, 0)[:, None]  # B = P_i+1
+    cx, cy = qx[None], qy[None]  # C = Q_j: (1, K2, P)
+    dx, dy = np.roll(qx, -1, 0)[None], np.roll(qy, -1, 0)[None]  # D = Q_j+1
+    with np.errstate(invalid="ignore", over="ignore"):
+        f = (bx - ax) * (dy - cy) - (by - ay) * (dx - cx)
+        alpha = (ay - cy) * (dx - cx) - (ax - cx) * (dy - cy)
+        beta = (ay - cy) * (bx - ax) - (ax - cx) * (by - ay)
+        pos = (f > 0) & (alpha >= 0) & (alpha <= f) & (beta >= 0) & (beta <= f)
+        neg = (f < 0) & (alpha <= 0) & (alpha >= f) & (beta <= 0) & (beta >= f)
+    return (pos | neg).any(axis=(0, 1))

@@ -13,9 +13,12 @@ tier                      keeps a pair when                                     
 ``circle``                the bounding circles overlap                           bound
 ``obb``                   the object-aligned boxes overlap (separating axes)     bound
 ``armature``              the posed polygons share a point (exact)               exact
+``paper``                 an edge pair passes the paper's Figure 8 test          last, bench
+``pixel``                 masks per integer degree share a pixel (section 1.6)   last, bench
 ========================  =====================================================  ===========
 
-Exactly one broad phase comes first; ``armature``, if named, comes last. Every tier is
+Exactly one broad phase comes first; ``armature``, ``paper`` or ``pixel``, if named, comes
+last: ``paper`` and ``pixel`` replace the exact test to measure what they cost and miss. Every tier is
 conservative, so the hits of a scene that ends with ``armature`` are exactly the pairs of
 the layer table whose posed polygons share a point, whatever tiers come before. A scene
 without ``armature`` accepts its last tier's pairs as hits (cheaper, approximate).
@@ -36,16 +39,19 @@ import numpy as np
 from . import bounds
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, LayerTable
-from .narrow import polygons_collide_padded
+from .narrow import paper_collide_padded, polygons_collide_padded
+from .pixels import MaskCache
 from .posing import ROTATION_MODES, ArmatureSet, Posed, pose
 from .workspace import Workspace
 
-__all__ = ["Pipeline", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS"]
+__all__ = ["Pipeline", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS", "LAST_TIERS", "VERTEX_TIERS"]
 
 BOUND_TIERS = ("aabb", "circle", "obb")
 EXACT_TIERS = ("armature",)
+#: Last tiers: the exact test, or a reference method in its place.
+LAST_TIERS = ("armature", "paper", "pixel")
 #: Tiers that need posed polygons; a scene naming none of them poses nothing.
-VERTEX_TIERS = ("aabb", "obb", "armature")
+VERTEX_TIERS = ("aabb", "obb", "armature", "paper")
 
 
 @dataclass(frozen=True)
@@ -143,11 +149,12 @@ class Pipeline:
         self.broad_phase = BinGrid(bin_size, field) if broad == "bins" else BROAD_PHASES[broad]()
         self.needs_vertices = any(t in VERTEX_TIERS for t in self.tiers)
         self.workspace = Workspace()
+        self.masks = MaskCache(self.armatures) if "pixel" in self.tiers else None
 
     def _check_tiers(self) -> None:
         if self.rotation not in ROTATION_MODES:
             raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {self.rotation!r}")
-        known = tuple(BROAD_PHASES) + BOUND_TIERS + EXACT_TIERS
+        known = tuple(BROAD_PHASES) + BOUND_TIERS + LAST_TIERS
         for t in self.tiers:
             if t not in known:
                 raise ValueError(f"unknown tier {t!r}; tiers are {known}")
@@ -158,9 +165,9 @@ class Pipeline:
             raise ValueError(f"only one broad phase per scene; got {self.tiers}")
         if len(set(self.tiers)) != len(self.tiers):
             raise ValueError(f"a tier is named twice: {self.tiers}")
-        for t in EXACT_TIERS:
-            if t in rest and rest[-1] != t:
-                raise ValueError(f"{t!r} must be the last tier; got {self.tiers}")
+        last = [t for t in rest if t in LAST_TIERS]
+        if len(last) > 1 or (last and rest[-1] != last[0]):
+            raise ValueError(f"{last[0]!r} must be the last tier, and only one of {LAST_TIERS}; got {self.tiers}")
 
     def step(
         self,
@@ -222,6 +229,11 @@ class Pipeline:
                 keep = bounds.circles_overlap(posed, pairs)
             elif tier == "obb":
                 keep = bounds.oriented_boxes_overlap(bounds.oriented_boxes(posed), pairs)
+            elif tier == "paper":
+                keep = collide_pairs(posed, pairs, narrow=paper_collide_padded)
+            elif tier == "pixel":
+                keep = self.masks.collide(np.asarray(armature), np.asarray(positions, dtype=np.float64).reshape(-1, 2),
+                                          np.asarray(angles, dtype=np.float64).reshape(-1), pairs)
             else:  # armature
                 keep = collide_pairs(posed, pairs, self.workspace)
             pairs = pairs[keep]
@@ -231,11 +243,13 @@ class Pipeline:
         return FrameResult(pairs, candidates, tuple(stats), posed if self.needs_vertices else None, boxes, tier_pairs)
 
 
-def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None) -> np.ndarray:
-    """(m,) bool: exact collision of the posed polygons of each pair in ``pairs`` (m, 2).
+def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None,
+                  narrow=polygons_collide_padded) -> np.ndarray:
+    """(m,) bool: collision of the posed polygons of each pair in ``pairs`` (m, 2).
 
     Pairs are grouped by the two objects' size classes so each group is one padded batch
-    (:func:`broadsword.collision.narrow.polygons_collide_padded`).
+    for ``narrow`` (by default the exact
+    :func:`~broadsword.collision.narrow.polygons_collide_padded`).
     """
     out = np.zeros(len(pairs), dtype=bool)
     if not len(pairs):
@@ -249,8 +263,7 @@ def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None =
         a, b = np.take(i, sel), np.take(j, sel)
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
-        out[sel] = polygons_collide_padded(
-            np.take(posed.xs[k1], sa, axis=1), np.take(posed.ys[k1], sa, axis=1),
-            np.take(posed.xs[k2], sb, axis=1), np.take(posed.ys[k2], sb, axis=1), ws,
-        )
+        batch = (np.take(posed.xs[k1], sa, axis=1), np.take(posed.ys[k1], sa, axis=1),
+                 np.take(posed.xs[k2], sb, axis=1), np.take(posed.ys[k2], sb, axis=1))
+        out[sel] = narrow(*batch, ws) if narrow is polygons_collide_padded else narrow(*batch)
     return out

@@ -13,7 +13,7 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..collision import BOUND_TIERS, BROAD_PHASES, EXACT_TIERS, ROTATION_MODES
+from ..collision import BOUND_TIERS, BROAD_PHASES, LAST_TIERS, ROTATION_MODES
 from .errors import DataError
 
 PATHS = ("straight", "sine", "arc", "dive", "hold")
@@ -204,7 +204,7 @@ def _scene(doc, path) -> SceneSpec:
     t = _Table(doc, path, "scene")
     d = SceneSpec()
     tiers = t._get("tiers", list(d.tiers))
-    known = tuple(BROAD_PHASES) + BOUND_TIERS + EXACT_TIERS
+    known = tuple(BROAD_PHASES) + BOUND_TIERS + LAST_TIERS
     if not (isinstance(tiers, list) and tiers and all(isinstance(x, str) for x in tiers)):
         raise DataError(path, "scene.tiers", "must be a list of tier names")
     for x in tiers:
