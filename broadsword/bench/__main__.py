@@ -1,14 +1,21 @@
-"""``python -m broadsword.bench``: measure the speed/accuracy trade of the collision pipeline.
+"""``python -m broadsword.bench``: measure the speed/accuracy trade, side by side, in one run.
 
-Every method runs on the same seeded frames of the reference scene (see
-:mod:`broadsword.bench.scenes`), interleaved frame by frame so that a noisy neighbour on a
-shared machine slows all methods alike; the table reports medians, minima and maxima of
-milliseconds per frame and each method's ratio to the product's default pipeline, plus its
-false positives and false negatives against the exact polygon answer.
+Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
 
-    python -m broadsword.bench               # all scales, 30 measured frames each
-    python -m broadsword.bench --quick       # a short run of every scenario (CI)
-    python -m broadsword.bench --json out.json
+1. the reference scene at three scales: every method -- the product's default and its
+   variants, the paper's Figure 8 and pixel masks in place of the exact test, bounds
+   alone, each broad phase, and the peers when installed (``pip install ".[bench]"``) --
+   on the same seeded frames, interleaved frame by frame so a noisy neighbour slows all
+   alike: median, min and max ms per frame, ratio to the default, false positives and
+   negatives against the exact polygon answer and against pixel truth;
+2. a whole game frame at the bullet-hell level's peak, and the game's levels against
+   their sprites' own masks (how often an armature hit disagrees with what is seen);
+3. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
+   table's error, the paper test's numerical failures by family, hitbox fidelity.
+
+    python -m broadsword.bench                   # everything
+    python -m broadsword.bench --quick           # every section, briefly (CI runs this)
+    python -m broadsword.bench --json out.json --plots plots/
 """
 
 from __future__ import annotations
@@ -22,7 +29,10 @@ import time
 import numpy as np
 
 from ..collision import Pipeline, retain_heap
+from . import analysis
+from .peers import PEERS
 from .scenes import ReferenceScene
+from .truth import level_visual_truth, pixel_truth
 
 #: The product's default pipeline: the paper's bins, a cheap bound, the exact armature test.
 DEFAULT = ("bins", "aabb", "armature")
@@ -33,6 +43,8 @@ METHODS = {
     "default, exact rotation": (DEFAULT, "exact"),
     "bins+circle+armature, lut": (("bins", "circle", "armature"), "lut"),
     "bins+circle+aabb+armature, lut": (("bins", "circle", "aabb", "armature"), "lut"),
+    "paper's Figure 8 in place of exact (bins+aabb+paper)": (("bins", "aabb", "paper"), "lut"),
+    "pixel masks as the last tier (bins+aabb+pixel)": (("bins", "aabb", "pixel"), "lut"),
     "brute+aabb+armature, lut": (("brute",) + DEFAULT[1:], "lut"),
     "quadtree+aabb+armature, lut": (("quadtree",) + DEFAULT[1:], "lut"),
     "loose quadtree+aabb+armature, lut": (("loose_quadtree",) + DEFAULT[1:], "lut"),
@@ -69,36 +81,63 @@ def _pairs(a: np.ndarray) -> set:
     return set(map(tuple, a.tolist()))
 
 
-def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, methods: dict, progress) -> dict:
-    """Time every method on the same frames; return per-method timings and accuracy."""
+def _methods(scene) -> dict:
+    """name -> (step (pos, ang) -> (hit pairs, {tier: ms}), rotation of its exact answer, tiers)."""
+    out = {}
+    for name, (tiers, rotation) in METHODS.items():
+        pipe = Pipeline(scene.shapes, scene.table, tiers=tiers, rotation=rotation)
+
+        def step(pos, ang, p=pipe):
+            r = p.step(scene.armature, scene.layer, pos, ang)
+            return _pairs(r.hits), {s.name: s.ms for s in r.stats if s.name != "layers"}
+
+        out[name] = (step, rotation, tiers)
+    for cls in PEERS:
+        peer = cls()
+        if peer.available:
+            peer.setup(scene)
+            out[f"peer: {peer.name}"] = (lambda pos, ang, p=peer: (p.step(pos, ang, scene.layer), {}), "exact", ("peer",))
+    return out
+
+
+def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, progress, pixel_frames: int) -> dict:
+    """Every method on the same frames; timings, and accuracy against exact and pixel truth."""
     scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=seed)
-    pipes = {name: Pipeline(scene.shapes, scene.table, tiers=t, rotation=r) for name, (t, r) in methods.items()}
-    # The exact answer per rotation mode, to count false positives and negatives.
+    methods = _methods(scene)
     truth = {r: Pipeline(scene.shapes, scene.table, tiers=("bins", "armature"), rotation=r) for r in ("lut", "exact")}
     ms = {name: [] for name in methods}
-    tiers = {name: [] for name in methods}
     fp = {name: 0 for name in methods}
     fn = {name: 0 for name in methods}
-    exact_hits = 0
+    pfp = {name: 0 for name in methods}
+    pfn = {name: 0 for name in methods}
+    exact_hits = pixel_hits = 0
+    tier_ms = {name: [] for name in methods}
     for f in range(warmup + frames):
         pos, ang = scene.advance()
-        answers = {r: _pairs(p.step(scene.armature, scene.layer, pos, ang).hits) for r, p in truth.items()}
         measured = f >= warmup
+        answers = {r: _pairs(p.step(scene.armature, scene.layer, pos, ang).hits) for r, p in truth.items()}
+        pixels = None
+        if measured and f - warmup < pixel_frames:  # pixel truth is slow: a subset of the frames
+            pixels = pixel_truth(scene.shapes, scene.armature, pos, ang, scene.layer, scene.table)
+            pixel_hits += len(pixels)
         exact_hits += len(answers["lut"]) if measured else 0
-        for name, pipe in pipes.items():
+        for name, (step, rotation, _tiers) in methods.items():
             t0 = time.perf_counter()
-            result = pipe.step(scene.armature, scene.layer, pos, ang)
+            got, tiers_ms = step(pos, ang)
             dt = (time.perf_counter() - t0) * 1e3
-            if measured:
-                ms[name].append(dt)
-                tiers[name].append({s.name: (s.pairs_in, s.pairs_out, s.ms) for s in result.stats})
-                got = _pairs(result.hits)
-                want = answers[methods[name][1]]
-                fp[name] += len(got - want)
-                fn[name] += len(want - got)
+            if not measured:
+                continue
+            ms[name].append(dt)
+            tier_ms[name].append(tiers_ms)
+            want = answers[rotation]
+            fp[name] += len(got - want)
+            fn[name] += len(want - got)
+            if pixels is not None:
+                pfp[name] += len(got - pixels)
+                pfn[name] += len(pixels - got)
         progress(f + 1, warmup + frames)
-    # The default pipeline alone, as the game runs it: interleaving eight methods evicts
-    # each one's buffers from the cache between its frames, which the product never does.
+    # The default pipeline alone, as the game runs it: interleaving evicts each method's
+    # buffers from the cache between its frames, which the product never does.
     solo_pipe = Pipeline(scene.shapes, scene.table, tiers=DEFAULT, rotation="lut")
     solo = []
     for f in range(warmup + frames):
@@ -108,22 +147,16 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, m
         if f >= warmup:
             solo.append((time.perf_counter() - t0) * 1e3)
     out = {}
-    for name in methods:
+    for name, (_, rotation, tiers) in methods.items():
         a = np.array(ms[name])
-        per_tier = {k: float(np.median([t[k][2] for t in tiers[name]])) for k in tiers[name][0]}
-        out[name] = {
-            "tiers": list(methods[name][0]),
-            "rotation": methods[name][1],
-            "median_ms": float(np.median(a)),
-            "min_ms": float(a.min()),
-            "max_ms": float(a.max()),
-            "tier_median_ms": per_tier,
-            "pairs_last_frame": {k: v[:2] for k, v in tiers[name][-1].items()},
-            "false_positives": fp[name],
-            "false_negatives": fn[name],
-        }
+        per_tier = {k: float(np.median([t[k] for t in tier_ms[name]])) for k in (tier_ms[name][0] if tier_ms[name] else {})}
+        out[name] = {"tiers": list(tiers), "rotation": rotation, "median_ms": float(np.median(a)), "tier_median_ms": per_tier,
+                     "min_ms": float(a.min()), "max_ms": float(a.max()),
+                     "false_positives": fp[name], "false_negatives": fn[name],
+                     "pixel_false_positives": pfp[name], "pixel_false_negatives": pfn[name]}
     solo = np.array(solo)
-    return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits, "methods": out,
+    return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits,
+            "pixel_frames": min(pixel_frames, frames), "pixel_hits": pixel_hits, "methods": out,
             "default_alone": {"median_ms": float(np.median(solo)), "min_ms": float(solo.min()), "max_ms": float(solo.max())}}
 
 
@@ -139,67 +172,167 @@ def markdown(results: list[dict]) -> str:
     lines = []
     for scale in results:
         base = scale["methods"][next(iter(scale["methods"]))]["median_ms"]
-        lines.append(f"\n### {scale['enemies']} enemies, {scale['bullets']} bullets "
-                     f"({scale['frames']} frames, {scale['exact_hits']} exact hits in all)\n")
-        lines.append("| method | median ms | min | max | x default | false pos | false neg | median ms per tier |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|---|")
+        lines.append(f"\n### Reference scene: {scale['enemies']} enemies, {scale['bullets']} bullets\n\n"
+                     f"{scale['frames']} frames, {scale['exact_hits']} exact hits in all; pixel truth over the first "
+                     f"{scale['pixel_frames']} frames ({scale['pixel_hits']} pixel hits). False positives and negatives are "
+                     "counted against the exact answer (at the method's rotation mode) and against pixel truth.\n")
+        lines.append("| method | median ms | min | max | x default | false pos | false neg | pixel false pos | pixel false neg "
+                     "| median ms per tier |")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
         for name, m in scale["methods"].items():
-            tier = ", ".join(f"{k} {v:.2f}" for k, v in m["tier_median_ms"].items() if k != "layers")
+            tier = ", ".join(f"{k} {v:.2f}" for k, v in m["tier_median_ms"].items())
             lines.append(
-                f"| {name} | {m['median_ms']:.2f} | {m['min_ms']:.2f} | {m['max_ms']:.2f} | "
-                f"{m['median_ms'] / base:.2f} | {m['false_positives']} | {m['false_negatives']} | {tier} |"
-            )
+                f"| {name} | {m['median_ms']:.2f} | {m['min_ms']:.2f} | {m['max_ms']:.2f} | {m['median_ms'] / base:.2f} | "
+                f"{m['false_positives']} | {m['false_negatives']} | {m['pixel_false_positives']} | "
+                f"{m['pixel_false_negatives']} | {tier} |")
         alone = scale["default_alone"]
         lines.append(f"| default, alone (as in the game: no other method between its frames) | "
                      f"{alone['median_ms']:.2f} | {alone['min_ms']:.2f} | {alone['max_ms']:.2f} | "
-                     f"{alone['median_ms'] / base:.2f} | 0 | 0 | |")
+                     f"{alone['median_ms'] / base:.2f} | | | | | |")
+        missing = [cls().why for cls in PEERS if not cls().available]
+        if missing:
+            lines.append(f"\nPeers not run: {'; '.join(missing)}.")
     return "\n".join(lines)
+
+
+def game_markdown(game: dict, visual: list[dict]) -> str:
+    lines = [f"\n### Whole game frame: {game['level']} with the autopilot, {game['bullets_median']} bullets on screen "
+             f"({game['frames']} frames after {game['warmup']})\n",
+             "| frame median ms | frame max ms | collision median ms | render median ms |", "|---:|---:|---:|---:|",
+             f"| {game['frame_median_ms']:.2f} | {game['frame_max_ms']:.2f} | {game['collision_median_ms']:.2f} | "
+             f"{game['render_median_ms']:.2f} |",
+             "\n### The levels against their sprites' own masks (what the player sees)\n",
+             "Per level and layer pair, over the frames played by the autopilot: hits both agree on, armature hits the "
+             "sprites do not show, and sprite overlaps the armatures do not count (by design for the player's small "
+             "hit shape).\n", "| level | frames | pair | both | armature only | sprite only |", "|---|---:|---|---:|---:|---:|"]
+    for v in visual:
+        for pair, c in v["pairs"].items():
+            lines.append(f"| {v['level']} | {v['frames']} | {pair} | {c['both']} | {c['armature_only']} | {c['sprite_only']} |")
+    return "\n".join(lines)
+
+
+def plots(directory: str, results: list[dict], sections: dict) -> list[str]:
+    """PNG plots (needs matplotlib, in the bench extra): time vs accuracy, scaling, bin size."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("  plots skipped: pip install matplotlib (or the bench extra)", file=sys.stderr)
+        return []
+    from pathlib import Path
+
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    scale = results[-1]
+    fig, ax = plt.subplots(figsize=(11, 5))
+    markers = "osD^v<>phX*P"
+    for k, (name, m) in enumerate(scale["methods"].items()):
+        errors = m["false_positives"] + m["false_negatives"]
+        ax.scatter(m["median_ms"], errors + 1, s=45, marker=markers[k % len(markers)], label=name)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    ax.set_xscale("log"), ax.set_yscale("log")
+    ax.set_xlabel("median ms per frame"), ax.set_ylabel("false positives + negatives + 1 (vs exact)")
+    ax.set_title(f"Time vs accuracy: {scale['enemies']} ships, {scale['bullets']} bullets")
+    written.append(_save(fig, out / "time_vs_accuracy.png"))
+    if "scaling" in sections:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        sc = sections["scaling"]
+        for method in ("bins", "quadtree", "loose_quadtree", "brute", "pipeline"):
+            pts = [(r["n"], r[f"{method}_ms"]) for r in sc["table"] if r.get(f"{method}_ms") is not None]
+            fit = (sc["fit"].get(method) or {}).get("n_ge_1000")
+            label = f"{method} (k = {fit['k']:.2f} for n >= 1000)" if fit else method
+            if pts:
+                ax.plot(*zip(*pts), marker="o", label=label)
+        ax.set_xscale("log"), ax.set_yscale("log")
+        ax.set_xlabel("objects"), ax.set_ylabel("median ms per frame"), ax.legend(fontsize=8)
+        ax.set_title("How cost grows (t = c n^k)")
+        written.append(_save(fig, out / "scaling.png"))
+    if "bin_size" in sections:
+        fig, ax = plt.subplots(figsize=(7, 4))
+        bs = sections["bin_size"]
+        rows = [r for r in bs["table"] if r["setting"] == "fixed"]
+        ax.plot([r["factor"] for r in rows], [r["median_ms"] for r in rows], marker="o", label="fixed bin size")
+        ax.axvline(bs["auto_factor"], linestyle="--", color="grey", label=f"automatic ({bs['auto_factor']:.2f}x)")
+        ax.legend()
+        ax.set_xlabel("bin side / median object extent"), ax.set_ylabel("median ms per frame")
+        ax.set_title("Bin size: larger, but not much larger, than the objects")
+        written.append(_save(fig, out / "bin_size.png"))
+    return written
+
+
+def _save(fig, path) -> str:
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    return str(path)
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m broadsword.bench", description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="a short run of every scenario (under a minute)")
+    ap.add_argument("--quick", action="store_true", help="every section, briefly (under a minute)")
     ap.add_argument("--frames", type=int, default=None, help="measured frames per scale (default 30; 5 with --quick)")
     ap.add_argument("--seed", type=int, default=2003)
     ap.add_argument("--json", metavar="FILE", help="write every figure as JSON")
-    ap.add_argument("--no-game", action="store_true", help="skip the whole-frame game scenario (needs pygame)")
+    ap.add_argument("--plots", metavar="DIR", help="write PNG plots (needs matplotlib)")
+    ap.add_argument("--no-game", action="store_true", help="skip the game sections (they need pygame)")
     ap.add_argument("--no-retain-heap", action="store_true",
                     help="leave glibc's heap trimming on (the game turns it off; see docs/PERFORMANCE.md)")
     args = ap.parse_args(argv)
     heap = "default allocator" if args.no_retain_heap else (
         "heap retained" if retain_heap() else "default allocator (no glibc mallopt)")
     frames = args.frames or (5 if args.quick else 30)
-    warmup = 2 if args.quick else 5
     if frames < 1:
         ap.error("--frames must be at least 1")
-    scales = SCALES[:2] + [(200, 10_000)] if not args.quick else [(20, 200), (200, 10_000)]
+    warmup = 2 if args.quick else 5
+    scales = [(20, 200), (200, 10_000)] if args.quick else SCALES
     canary = host_canary()
     print(f"# broadsword.bench: {platform.processor() or platform.machine()}, python {platform.python_version()}, "
           f"numpy {np.__version__}, seed {args.seed}, {heap}; host canary: add(100k) {canary['stream_us']:.1f} us, "
           f"add(100) {canary['call_us']:.2f} us", flush=True)
-    results = []
-    for e, b in scales:
-        results.append(run_scale(e, b, frames, warmup, args.seed, METHODS, _progress(f"{e} enemies, {b} bullets")))
-    print(markdown(results))
+    started = time.perf_counter()
+    results = [run_scale(e, b, frames, warmup, args.seed, _progress(f"reference scene {e} + {b}"),
+                         pixel_frames=min(frames, 3 if args.quick else 10)) for e, b in scales]
+    print(markdown(results), flush=True)
+
     game = None
+    visual = []
     if not args.no_game:
+        from ..data import list_levels
         from .game_frame import run_game_frames
 
-        print("  game frame: bullet-hell level at its peak ...", file=sys.stderr, flush=True)
+        print("  whole game frame at the bullet-hell peak ...", file=sys.stderr, flush=True)
         game = run_game_frames(warmup=120 if args.quick else 660, frames=10 if args.quick else 60, seed=args.seed)
-        print(f"\n### Whole game frame: {game['level']} with the autopilot, {game['bullets_median']} bullets on screen "
-              f"({game['frames']} frames after {game['warmup']})\n")
-        print("| frame median ms | frame max ms | collision median ms | render median ms |")
-        print("|---:|---:|---:|---:|")
-        print(f"| {game['frame_median_ms']:.2f} | {game['frame_max_ms']:.2f} | {game['collision_median_ms']:.2f} | "
-              f"{game['render_median_ms']:.2f} |")
+        for level in list_levels():
+            print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
+            visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
+        print(game_markdown(game, visual), flush=True)
+
+    sections = {}
+    for key, fn in (("scaling", analysis.scaling), ("bin_size", analysis.bin_size_curve),
+                    ("rotation_table", analysis.rotation_table), ("stability", analysis.stability),
+                    ("fidelity", analysis.fidelity)):
+        if key == "fidelity" and args.no_game:
+            continue  # reads the sprites with pygame
+        print(f"  {key.replace('_', ' ')} ...", file=sys.stderr, flush=True)
+        sections[key] = fn(quick=args.quick)
+        print(analysis.markdown(key, sections[key]), flush=True)
+    written = plots(args.plots, results, sections) if args.plots else []
+    for path in written:
+        print(f"wrote {path}")
     if args.json:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
-               "python": platform.python_version(), "numpy": np.__version__, "allocator": heap, "host_canary_before": canary, "host_canary_after": host_canary(),
-               "scales": results, "game_frame": game}
+               "python": platform.python_version(), "numpy": np.__version__, "allocator": heap,
+               "host_canary_before": canary, "host_canary_after": host_canary(), "scales": results,
+               "game_frame": game, "levels_vs_sprites": visual, **sections}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")
+    print(f"\n(bench took {time.perf_counter() - started:.0f} s)", file=sys.stderr)
     return 0
 
 

@@ -26,6 +26,7 @@ from functools import partial
 import numpy as np
 
 from ..collision import (
+    rasterise,
     Armature,
     ArmatureSet,
     BinGrid,
@@ -441,20 +442,6 @@ def stability(quick: bool = False, seed: int = SEED) -> dict:
 
 # -- 5. fidelity of the shipped armatures -----------------------------------------------------
 
-def _rasterise(vertices: np.ndarray, width: int, height: int) -> np.ndarray:
-    """(height, width) bool: pixel centres inside the polygon (even-odd rule), coordinates
-    around the sprite centre (+y down). Every edge against every pixel at once."""
-    px = (np.arange(width) + 0.5 - width / 2)[None, None, :]
-    py = (np.arange(height) + 0.5 - height / 2)[None, :, None]
-    v = np.asarray(vertices, dtype=np.float64)
-    w = np.roll(v, -1, axis=0)
-    x1, y1, x2, y2 = (col[:, None, None] for col in (v[:, 0], v[:, 1], w[:, 0], w[:, 1]))
-    straddle = (y1 > py) != (y2 > py)
-    with np.errstate(divide="ignore", invalid="ignore"):  # horizontal edges never straddle
-        cross = x1 + (py - y1) * (x2 - x1) / (y2 - y1)
-    return np.logical_xor.reduce(straddle & (px < cross), axis=0)
-
-
 def fidelity(quick: bool = False) -> dict:
     """How well each shipped armature matches its sprite's opaque pixels.
 
@@ -480,7 +467,7 @@ def fidelity(quick: bool = False) -> dict:
         height, width = opaque.shape
         polys = [(name, entry.armature)] + ([(f"{name}.graze", entry.graze)] if entry.graze is not None else [])
         for label, arm in polys:
-            inside = _rasterise(arm.vertices, width, height)
+            inside = rasterise(arm.vertices, -width / 2, -height / 2, width, height)  # around the centre
             both, either = int((inside & opaque).sum()), int((inside | opaque).sum())
             a, o = int(inside.sum()), int(opaque.sum())
             rows.append({"armature": label, "sprite": entry.sprite, "size_px": f"{width}x{height}",
