@@ -38,6 +38,8 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--replay", metavar="FILE", help="play recorded inputs instead of the keyboard or autopilot")
     ap.add_argument("--list-levels", action="store_true", help="print the shipped levels and exit")
     ap.add_argument("--mute", action="store_true", help="start with sound off")
+    ap.add_argument("--lab", nargs="?", const="100,2000", metavar="E,B",
+                    help="show the benchmark's reference scene (E ships, B bullets) live with the overlay")
     return ap
 
 
@@ -166,10 +168,19 @@ def main(argv: list[str] | None = None) -> int:
 def _play(level, seed, args, replay) -> int:
     from .game.app import App
 
-    app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True)
+    lab = None
+    if args.lab:
+        try:
+            e, b = (int(v) for v in args.lab.split(","))
+            if e < 1 or b < 0:
+                raise ValueError
+        except ValueError:
+            raise SystemExit(f"broadsword: --lab wants E,B (ships, bullets), e.g. 200,10000; got {args.lab!r}") from None
+        lab = (e, b)
+    app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab)
     if args.mute:
         app.audio.toggle_mute()
-    if level is not None:
+    if level is not None and lab is None:
         app.start_run()
     app.run()
     if args.record and app.world is not None:

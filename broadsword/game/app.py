@@ -73,7 +73,8 @@ class App:
     """
 
     def __init__(self, start_level: str | None = None, seed: int = 0, demo: bool = False,
-                 audio: bool = True, scores: HighScores | None = None, scale: float = DEFAULT_SCALE):
+                 audio: bool = True, scores: HighScores | None = None, scale: float = DEFAULT_SCALE,
+                 lab: tuple[int, int] | None = None):
         pygame.init()
         pygame.display.set_caption(TITLE)
         self.window = pygame.display.set_mode((int(FIELD[0] * scale), int(FIELD[1] * scale)), pygame.RESIZABLE)
@@ -106,6 +107,15 @@ class App:
         self.font = pygame.font.Font(None, 24)
         self.big = pygame.font.Font(None, 72)
         self.recorded: list[int] = []
+        self.lab = None
+        if lab is not None:  # the benchmark's scene, live (broadsword --lab)
+            from .lab import Lab
+
+            self.lab = Lab(*lab, seed=seed)
+            self.screen = pygame.Surface(Lab.size)
+            self.overlay.visible = True
+            self.scene = "lab"
+            self.lab_paused = False
 
     # ------------------------------------------------------------------ the loop
     def run(self) -> None:
@@ -121,7 +131,11 @@ class App:
         for event in pygame.event.get():
             self.handle(event)
         steps = 0
-        if self.scene == "play" and self.world is not None:
+        if self.scene == "lab":
+            if not self.lab_paused:
+                self.lab.step()
+                steps = 1
+        elif self.scene == "play" and self.world is not None:
             self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0)
             while self.accumulator >= DT and steps < MAX_CATCH_UP:
                 self._step()
@@ -209,6 +223,9 @@ class App:
         if self.scene == "name":
             self._name_key(event)
             return
+        if self.scene == "lab":
+            self._lab_key(k)
+            return
         if k == pygame.K_F1:
             self.overlay.visible = not self.overlay.visible
         elif k == pygame.K_F3:
@@ -242,6 +259,25 @@ class App:
         elif self.scene in ("gameover", "scores", "victory"):
             if k in (pygame.K_RETURN, pygame.K_z, pygame.K_SPACE, pygame.K_ESCAPE):
                 self.scene = "title"
+
+    def _lab_key(self, k) -> None:
+        from .lab import SCALES
+
+        lab = self.lab
+        if k == pygame.K_F1:
+            self.overlay.visible = not self.overlay.visible
+        elif k == pygame.K_F4:
+            lab.toggle_rotation()
+        elif k == pygame.K_t:
+            lab.next_mix()
+        elif k in (pygame.K_LEFT, pygame.K_RIGHT):
+            now = (lab.scene.enemies, lab.scene.bullets)
+            i = SCALES.index(now) if now in SCALES else 0
+            lab.reset(*SCALES[(i + (1 if k == pygame.K_RIGHT else -1)) % len(SCALES)])
+        elif k == pygame.K_SPACE:
+            self.lab_paused = not self.lab_paused
+        elif k == pygame.K_ESCAPE:
+            self.running = False
 
     def _toggle_pause(self) -> None:
         if self.scene == "play":
@@ -305,6 +341,17 @@ class App:
     # ------------------------------------------------------------------ drawing
     def render(self) -> None:
         s = self.screen
+        if self.scene == "lab":
+            self.lab.draw(s)
+            if self.overlay.visible and self.lab.last is not None:
+                self.overlay.draw(s, self.lab, self.fps, paused=self.lab_paused)
+            sc = self.lab.scene
+            self._text(f"LAB: {sc.enemies} ships, {sc.bullets} bullets, {'+'.join(self.lab.pipeline.tiers)}",
+                       s.get_height() - 34, x=s.get_width() / 2, colour=(255, 230, 170))
+            self._text("T tiers   Left/Right scale   F1 overlay   F4 rotation   Space pause   Esc quit",
+                       s.get_height() - 14, x=s.get_width() / 2, colour=(200, 210, 240))
+            self._present()
+            return
         if self.world is not None and self.scene in ("play", "paused", "complete", "gameover", "name", "victory"):
             alpha = self.accumulator / DT if self.scene == "play" else 1.0
             slow = (bool(self.keys & SLOW_KEYS) or self.current_input().slow) and not self.demo
@@ -321,8 +368,9 @@ class App:
         """Scale the playfield into the window, keeping its aspect (black bars, never stretched)."""
         win = pygame.display.get_surface()
         ww, wh = win.get_size()
-        k = min(ww / FIELD[0], wh / FIELD[1])
-        size = (max(1, int(FIELD[0] * k)), max(1, int(FIELD[1] * k)))
+        fw, fh = self.screen.get_size()
+        k = min(ww / fw, wh / fh)
+        size = (max(1, int(fw * k)), max(1, int(fh * k)))
         win.fill((0, 0, 0))
         win.blit(pygame.transform.scale(self.screen, size), ((ww - size[0]) // 2, (wh - size[1]) // 2))
         pygame.display.flip()

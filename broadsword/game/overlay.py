@@ -11,7 +11,7 @@ import numpy as np
 import pygame
 
 from ..collision import BinGrid
-from ..sim.world import FIELD, LAYERS, World
+from ..sim.world import World
 from .render import LAYER_COLOURS
 
 
@@ -21,11 +21,13 @@ class Overlay:
         self.visible = False
 
     def draw(self, surf: pygame.Surface, world: World, fps: float, paused: bool = False) -> None:
+        """Draw over ``surf``. ``world`` is anything with the game world's collision record:
+        ``pipeline``, ``last`` (a FrameResult) and ``last_objects`` (the arrays it was given)."""
         result, objs = world.last, world.last_objects
         if result is None:
             return
         self._grid(surf, world)
-        colour = [LAYER_COLOURS[name] for name in LAYERS]
+        colour = [LAYER_COLOURS.get(name, (220, 220, 220)) for name in world.pipeline.layers.names]
         layer = objs["layer"]
         posed = result.posed
         tiers = world.pipeline.tiers
@@ -84,10 +86,11 @@ class Overlay:
         h = 16 * len(lines) + 8
         box = pygame.Surface((w, h), pygame.SRCALPHA)
         box.fill((0, 0, 0, 170))
-        surf.blit(box, (FIELD[0] - w - 6, 40))
+        right = surf.get_width()
+        surf.blit(box, (right - w - 6, 40))
         for k, text in enumerate(lines):
             img = self.font.render(text, True, (210, 230, 255))
-            surf.blit(img, (FIELD[0] - w, 44 + 16 * k))
+            surf.blit(img, (right - w, 44 + 16 * k))
 
 
 def _dim(c):

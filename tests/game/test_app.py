@@ -197,3 +197,19 @@ def test_app__gamepad_moves_and_fires(app):
     x0, y0 = w.player
     frames(app, 20)
     assert w.player[0] < x0 and w.player[1] < y0 and w.player_bullets.n > 0
+
+
+def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
+    app = App(audio=False, scores=HighScores(tmp_path / "s.json"), lab=(20, 200))
+    frames(app, 3)
+    assert app.scene == "lab" and app.lab.frame == 3 and app.overlay.visible
+    assert [s.name for s in app.lab.last.stats][:3] == ["layers", "pose", "bins"]
+    key(app, pygame.K_t)  # next tier mix
+    key(app, pygame.K_F4)  # rotation
+    frames(app, 1)
+    assert app.lab.pipeline.tiers == ("bins", "circle", "armature") and app.lab.pipeline.rotation == "exact"
+    grid = app.lab.pipeline.broad_phase
+    img = pygame.surfarray.array3d(app.screen)
+    gx = int(round(grid.origin[0] + grid.size))
+    assert (img[gx, 300:700] == (50, 80, 130)).all(axis=1).any()  # grid lines drawn
+    pygame.quit()
