@@ -35,6 +35,7 @@ from broadsword.collision import (
     pose,
     rotation_table,
 )
+from star_polygons import star
 
 # --------------------------------------------------------------------------- helpers
 
@@ -53,23 +54,6 @@ def cyclic_equal(a, b) -> bool:
     if len(a) != len(b):
         return False
     return any(a[k:] + a[:k] == b for k in range(len(a)))
-
-
-def star(rng: random.Random, k: int, rmin=0.3, rmax=1.0):
-    """Star-shaped polygon around the origin, CCW, angular gaps < pi (so it is simple)."""
-    while True:
-        gaps = [rng.uniform(0.3, 1.0) for _ in range(k)]
-        s = sum(gaps)
-        gaps = [g / s * 2 * math.pi for g in gaps]
-        if max(gaps) < 0.9 * math.pi:
-            break
-    t = rng.uniform(0, 2 * math.pi)
-    out = []
-    for g in gaps:
-        r = rng.uniform(rmin, rmax)
-        out.append((r * math.cos(t), r * math.sin(t)))
-        t += g
-    return out
 
 
 def regular(k: int, r: float, phase: float = 0.0):
