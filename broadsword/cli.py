@@ -177,7 +177,13 @@ def _play(level, seed, args, replay) -> int:
         except ValueError:
             raise SystemExit(f"broadsword: --lab wants E,B (ships, bullets), e.g. 200,10000; got {args.lab!r}") from None
         lab = (e, b)
-    app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab)
+    import pygame
+
+    try:
+        app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab)
+    except pygame.error as exc:  # no display: say so in one line, not a traceback
+        print(f"broadsword: cannot open a window ({exc}); --headless runs without one", file=sys.stderr)
+        return 1
     if args.mute:
         app.audio.toggle_mute()
     if level is not None and lab is None:

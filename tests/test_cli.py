@@ -88,3 +88,10 @@ def test_broken_recording__exit_2(tmp_path, capsys, text, field):
 def test_unknown_level__exit_2(capsys):
     code, _, err = run(["--headless", "--level", "no-such-level"], capsys)
     assert code == 2 and "no-such-level" in err and "1-picket" in err
+
+
+def test_no_display__one_line_not_a_traceback(tmp_path):
+    env = {**__import__("os").environ, "SDL_VIDEODRIVER": "no-such-driver", "BROADSWORD_DATA_DIR": str(tmp_path)}
+    out = subprocess.run([sys.executable, "-m", "broadsword"], capture_output=True, text=True, env=env, timeout=60)
+    assert out.returncode == 1
+    assert "cannot open a window" in out.stderr and "Traceback" not in out.stderr
