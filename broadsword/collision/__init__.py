@@ -12,6 +12,7 @@ the game. Modules, one idea each:
 * ``narrow``      the exact narrow phase over many pairs at once
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
 * ``pipeline``    the tiered pipeline a scene configures
+* ``workspace``   reused scratch buffers, and retain_heap() for applications
 """
 
 from .armature import Armature, convex_hull, lut_max_displacement
