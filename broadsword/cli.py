@@ -17,11 +17,11 @@ import argparse
 import json
 import os
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .fileio import write_atomic
 from .data import DataError, data_dir, list_levels, load_armatures, load_level, resolve_level
 
 RECORDING_VERSION = 1
@@ -43,25 +43,10 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
-def _write_atomic(path: str | Path, text: str) -> None:
-    """Write ``text`` to ``path`` atomically: a temp file beside it, fsync, rename."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent or ".")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def save_recording(path, level: str, seed: int, inputs: list[int], state_hash: str) -> None:
     doc = {"version": RECORDING_VERSION, "level": level, "seed": seed, "frames": len(inputs),
            "inputs": bytes(inputs).hex(), "state_hash": state_hash}
-    _write_atomic(path, json.dumps(doc, indent=1) + "\n")
+    write_atomic(path, (json.dumps(doc, indent=1) + "\n").encode())
 
 
 def load_recording(path) -> dict:

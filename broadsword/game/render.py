@@ -52,6 +52,8 @@ class Renderer:
         self.big = pygame.font.Font(None, 44)
         self.flash = 0  # frames of white flash left (player hit)
         self.strip = self._explosion_frames()
+        self.life_icon = pygame.transform.scale_by(bank.images["player"], 0.5)
+        self._scaled: dict[tuple[int, float], pygame.Surface] = {}  # explosion frames, grown
 
     def _explosion_frames(self) -> list[pygame.Surface]:
         strip = self.bank.images.get("explosion")
@@ -143,7 +145,10 @@ class Renderer:
                     img = self.strip[frame]
                     scale = fx.size * (1.6 if fx.kind == "big" else 1.0)
                     if scale != 1.0:
-                        img = pygame.transform.scale_by(img, scale)
+                        key = (frame, scale)
+                        if key not in self._scaled:
+                            self._scaled[key] = pygame.transform.scale_by(img, scale)
+                        img = self._scaled[key]
                     surf.blit(img, img.get_rect(center=(fx.x, fx.y)), special_flags=pygame.BLEND_RGBA_ADD)
                     keep.append(fx)
             elif fx.kind == "spark" and age < 8:
@@ -162,7 +167,7 @@ class Renderer:
         surf.blit(text, (10, 8))
         graze = self.font.render(f"GRAZE {world.grazes}", True, (150, 180, 255))
         surf.blit(graze, (10, 28))
-        icon = pygame.transform.scale_by(self.bank.images["player"], 0.5)
+        icon = self.life_icon
         for i in range(max(world.lives - (1 if world.player_alive else 0), 0)):
             surf.blit(icon, (FIELD[0] - 22 - i * (icon.get_width() + 4), 8))
         if world.boss_state == "fighting" and world.level.boss:
