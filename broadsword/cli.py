@@ -6,6 +6,9 @@
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
     broadsword --list-levels
+    broadsword edit PATH                         the armature editor (broadsword.game.editor)
+    broadsword armature generate|check ...       make and check armatures (broadsword.game.authoring)
+    broadsword soak [--frames N]                 long headless play, memory report (broadsword.soak)
 
 A level or asset file that fails to load ends the run with exit status 2 and one line
 naming the file and the field.
@@ -28,7 +31,10 @@ RECORDING_VERSION = 1
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="broadsword", description="Broadsword: a polygon-armature shoot-'em-up.")
+    ap = argparse.ArgumentParser(
+        prog="broadsword", description="Broadsword: a polygon-armature shoot-'em-up.",
+        epilog="subcommands: broadsword edit PATH (armature editor); broadsword armature generate|check; "
+               "broadsword soak (long headless run). Each takes --help.")
     ap.add_argument("--level", help="a shipped level's name (see --list-levels) or a path to a level file")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--autopilot", action="store_true", help="let the deterministic autopilot play")
@@ -117,7 +123,20 @@ def run_headless(level_arg: str, frames: int, seed: int, use_autopilot: bool, re
     return summary
 
 
+#: ``broadsword NAME ...``: each subcommand is a module with ``main(argv) -> int``, imported on use.
+SUBCOMMANDS = {
+    "edit": "broadsword.game.editor",
+    "armature": "broadsword.game.authoring",
+    "soak": "broadsword.soak",
+}
+
+
 def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in SUBCOMMANDS:
+        import importlib
+
+        return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:])
     args = _parser().parse_args(argv)
     from .collision import retain_heap
 
