@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
-import pytest
+import tomllib
 
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from broadsword.collision import Armature
 from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
+from broadsword.data.armatures import save_armature_file
 
 
 def test_shipped__levels_load_and_name_known_sprites():
@@ -55,14 +61,31 @@ def test_level__errors_name_the_field(tmp_path, text, field):
     assert "\n" not in str(info.value)
 
 
+TRI = "[[0, 0], [4, 0], [0, 4]]"
+
+
 @pytest.mark.parametrize(
     "text, field",
     [
-        ("vertices = [[0, 0], [1, 1]]\n", "vertices"),
-        ("vertices = [[0, 0], [4, 4], [4, 0], [0, 4]]\n", "vertices"),  # a bow tie
-        ('vertices = [[0, 0], [1, 0], "x"]\n', "vertices[2]"),
-        ("vertices = [[0, 0], [4, 0], [0, 4]]\ngraze = [[0, 0]]\n", "graze"),
-        ("vertices = [[0, 0], [4, 0], [0, 4]]\nweight = 3\n", "weight"),
+        ("[shapes]\nhit = [[0, 0], [1, 1]]\n", "shapes.hit"),
+        ("[shapes]\nhit = [[0, 0], [4, 4], [4, 0], [0, 4]]\n", "shapes.hit"),  # a bow tie
+        ('[shapes]\nhit = [[0, 0], [1, 0], "x"]\n', "shapes.hit[2]"),
+        (f"[shapes]\nhit = {TRI}\ngraze = [[0, 0]]\n", "shapes.graze"),
+        (f"weight = 3\n[shapes]\nhit = {TRI}\n", "weight"),
+        (f"[shapes]\ngraze = {TRI}\n", "shapes.hit"),
+        (f"[shapes]\nhit = {TRI}\nBad-Name = {TRI}\n", "shapes.Bad-Name"),
+        (f"[shapes]\nhit = [[0, 0], [4, 0], [0, inf]]\n", "shapes.hit[2]"),
+        (f"[shapes]\nhit = [[0, 0], [4, 0], [0, 1e9]]\n", "shapes.hit[2]"),
+        (f"vertices = {TRI}\n", "vertices"),  # the old format is named, with the fix
+        (f'sprite = "../x.png"\n[shapes]\nhit = {TRI}\n', "sprite"),
+        (f'sprite = "/etc/x.png"\n[shapes]\nhit = {TRI}\n', "sprite"),
+        (f'sprite = "x.gif"\n[shapes]\nhit = {TRI}\n', "sprite"),
+        ("", "shapes"),
+        (f"frames = 2\n[shapes]\nhit = {TRI}\n", "shapes"),
+        (f"frames = 2\n[[frame]]\nhit = {TRI}\n", "frame"),
+        (f"frames = 2\n[[frame]]\nhit = {TRI}\n[[frame]]\nhit = {TRI}\ngraze = {TRI}\n", "frame[1]"),
+        (f"frames = 0\n[shapes]\nhit = {TRI}\n", "frames"),
+        (f"frames = 2\nframe_time = 0\n[[frame]]\nhit = {TRI}\n[[frame]]\nhit = {TRI}\n", "frame_time"),
     ],
 )
 def test_armature_file__errors_name_the_field(tmp_path, text, field):
@@ -70,7 +93,53 @@ def test_armature_file__errors_name_the_field(tmp_path, text, field):
     path.write_text(text)
     with pytest.raises(DataError) as info:
         load_armature_file(path)
-    assert str(path) in str(info.value) and field in str(info.value)
+    assert str(info.value).startswith(f"{path}: {field}: ")
+
+
+def test_armature_file__frames_and_named_shapes(tmp_path):
+    path = tmp_path / "flap.armature.toml"
+    path.write_text(
+        'name = "flap"\nsprite = "flap.png"\nframes = 2\nframe_time = 0.25\n'
+        f"[[frame]]\nhit = {TRI}\nshield = [[-5, -5], [5, -5], [5, 5], [-5, 5]]\n"
+        f"[[frame]]\nhit = [[0, 0], [0, 4], [4, 0]]\nshield = [[-6, -6], [6, -6], [6, 6], [-6, 6]]\n"
+    )
+    f = load_armature_file(path)
+    assert len(f.frames) == 2 and f.frame_time == 0.25 and f.shape_names == ("hit", "shield")
+    assert f.frames[1]["shield"].area == 144.0 and f.graze is None
+    assert f.drawn[1]["hit"] == ((0.0, 0.0), (0.0, 4.0), (4.0, 0.0))  # as drawn (clockwise on screen)
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in (data_dir("assets") / "sprites").glob("*.armature.toml")))
+def test_armature_file__save_of_a_loaded_file_is_byte_identical(tmp_path, name):
+    src = data_dir("assets") / "sprites" / name
+    f = load_armature_file(src)
+    out = save_armature_file(tmp_path / name, f.name, f.sprite, f.drawn, f.frame_time, f.header)
+    assert (tmp_path / name).read_bytes() == src.read_bytes()
+    assert out.drawn == f.drawn
+
+
+def test_armature_file__save_refuses_an_invalid_shape_and_writes_nothing(tmp_path):
+    path = tmp_path / "x.armature.toml"
+    path.write_text(f'name = "x"\n[shapes]\nhit = {TRI}\n')
+    before = path.read_bytes()
+    bow_tie = [(0, 0), (4, 4), (4, 0), (0, 4)]
+    with pytest.raises(DataError, match="shapes.hit"):
+        save_armature_file(path, "x", "x.png", [{"hit": bow_tie}])
+    assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["x.armature.toml"]
+
+
+@given(st.lists(st.tuples(st.floats(-300, 300, allow_nan=False), st.floats(-300, 300, allow_nan=False)),
+                min_size=3, max_size=12))
+@settings(max_examples=150, deadline=None)
+def test_armature_file__floats_round_trip_exactly(points):
+    from broadsword.data.armatures import format_armature_file
+
+    try:
+        Armature(points)
+    except ValueError:
+        return  # only valid polygons are saved
+    text = format_armature_file("p", "p.png", [{"hit": points}])
+    assert [tuple(v) for v in tomllib.loads(text)["shapes"]["hit"]] == [(float(x), float(y)) for x, y in points]
 
 
 def test_resolve_level__path_or_name(tmp_path):
