@@ -26,7 +26,6 @@ from functools import partial
 import numpy as np
 
 from ..collision import (
-    rasterise,
     Armature,
     ArmatureSet,
     BinGrid,
@@ -445,38 +444,34 @@ def stability(quick: bool = False, seed: int = SEED) -> dict:
 def fidelity(quick: bool = False) -> dict:
     """How well each shipped armature matches its sprite's opaque pixels.
 
-    For every ``*.armature.toml`` of the shipped sprites (and the player's graze polygon as
-    its own row), the sprite PNG is read with pygame; a pixel is opaque when its alpha is at
-    least 128. The armature polygon is rasterised on the same pixel grid (pixel centres,
-    around the sprite centre at (width/2, height/2), +y down, even-odd rule). Per row:
+    For every shape of every shipped ``*.armature.toml`` (frame 0; the player's graze shape
+    is its own row), the sprite PNG is read with pygame; a pixel is opaque when its alpha is
+    at least 128. The shape is rasterised on the same pixel grid
+    (:func:`broadsword.collision.outline.shape_fit`: pixel centres, around the sprite centre
+    at (width/2, height/2), +y down, even-odd rule; overhang counts as shape). Per row:
     ``area_ratio`` = armature pixels / opaque pixels, ``iou`` = intersection over union,
     ``on_opaque`` = the fraction of armature pixels that are opaque, and ``coverage`` = the
     fraction of opaque pixels inside the armature. ``quick`` changes nothing (it is cheap).
     """
-    import pygame
-
+    from ..collision.outline import ALPHA_THRESHOLD, opaque_mask, shape_fit
     from ..data import data_dir, load_armatures
+    from ..game.authoring import sprite_alpha
 
     folder = data_dir("assets") / "sprites"
     rows = []
     for name, entry in load_armatures(folder).items():
-        surf = pygame.image.load(str(folder / entry.sprite))
-        view = pygame.surfarray.pixels_alpha(surf)  # (width, height), locks the surface
-        opaque = np.array(view).T >= 128
-        del view
+        opaque = opaque_mask(sprite_alpha(folder / entry.sprite, len(entry.frames))[0])
         height, width = opaque.shape
-        polys = [(name, entry.armature)] + ([(f"{name}.graze", entry.graze)] if entry.graze is not None else [])
-        for label, arm in polys:
-            inside = rasterise(arm.vertices, -width / 2, -height / 2, width, height)  # around the centre
-            both, either = int((inside & opaque).sum()), int((inside | opaque).sum())
-            a, o = int(inside.sum()), int(opaque.sum())
-            rows.append({"armature": label, "sprite": entry.sprite, "size_px": f"{width}x{height}",
-                         "opaque_px": o, "armature_px": a, "area_ratio": a / o if o else None,
-                         "iou": both / either if either else None, "on_opaque": both / a if a else None,
-                         "coverage": both / o if o else None})
+        for key, arm in entry.frames[0].items():
+            fit = shape_fit(arm.vertices, opaque)
+            a, o = fit.shape_px, fit.opaque_px
+            rows.append({"armature": name if key == "hit" else f"{name}.{key}", "sprite": entry.sprite,
+                         "size_px": f"{width}x{height}", "opaque_px": o, "armature_px": a,
+                         "area_ratio": a / o if o else None, "iou": fit.iou if fit.union_px else None,
+                         "on_opaque": fit.on_opaque if a else None, "coverage": fit.coverage if o else None})
     by_name = {r["armature"]: r for r in rows}
     return {
-        "alpha_threshold": 128,
+        "alpha_threshold": ALPHA_THRESHOLD,
         "player_area_ratio": by_name["player"]["area_ratio"] if "player" in by_name else None,
         "player_graze_area_ratio": by_name["player.graze"]["area_ratio"] if "player.graze" in by_name else None,
         "table": rows,

@@ -41,7 +41,7 @@ def sprite_alpha(path: str | Path, frames: int = 1) -> list[np.ndarray]:
         view = pygame.surfarray.pixels_alpha(surf.convert_alpha() if pygame.display.get_surface() else surf)
         alpha = np.array(view).T.copy()  # (H, W)
         del view
-    h, w = alpha.shape
+    w = alpha.shape[1]
     if frames < 1 or w % frames:
         raise DataError(path, "frames", f"a {w} px wide strip does not split into {frames} equal frames")
     fw = w // frames
@@ -99,9 +99,11 @@ def _armature_files(paths: list[str]) -> list[Path]:
     return files
 
 
-def check(paths: list[str], out=sys.stdout) -> int:
-    """Print a report line per shape and frame of every armature file under ``paths``;
-    return the number of invalid files (each also gets one ``error:`` line)."""
+def check(paths: list[str], out=None) -> int:
+    """Print (to ``out``, default stdout) a report line per shape and frame of every
+    armature file under ``paths``; return the number of invalid files (each also gets one
+    ``error:`` line)."""
+    out = out or sys.stdout
     files = _armature_files(paths)
     bad = 0
     print(f"{'file':34s} {'shape':14s} {'verts':>5s} {'valid':>5s} {'area':>8s} {'on_opaque':>9s} "

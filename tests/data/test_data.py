@@ -9,7 +9,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from broadsword.collision import Armature
-from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
+from broadsword.data import (
+    DataError,
+    data_dir,
+    list_levels,
+    load_armature_file,
+    load_armatures,
+    load_level,
+    resolve_level,
+)
 from broadsword.data.armatures import save_armature_file
 
 
@@ -74,8 +82,8 @@ TRI = "[[0, 0], [4, 0], [0, 4]]"
         (f"weight = 3\n[shapes]\nhit = {TRI}\n", "weight"),
         (f"[shapes]\ngraze = {TRI}\n", "shapes.hit"),
         (f"[shapes]\nhit = {TRI}\nBad-Name = {TRI}\n", "shapes.Bad-Name"),
-        (f"[shapes]\nhit = [[0, 0], [4, 0], [0, inf]]\n", "shapes.hit[2]"),
-        (f"[shapes]\nhit = [[0, 0], [4, 0], [0, 1e9]]\n", "shapes.hit[2]"),
+        ("[shapes]\nhit = [[0, 0], [4, 0], [0, inf]]\n", "shapes.hit[2]"),
+        ("[shapes]\nhit = [[0, 0], [4, 0], [0, 1e9]]\n", "shapes.hit[2]"),
         (f"vertices = {TRI}\n", "vertices"),  # the old format is named, with the fix
         (f'sprite = "../x.png"\n[shapes]\nhit = {TRI}\n', "sprite"),
         (f'sprite = "/etc/x.png"\n[shapes]\nhit = {TRI}\n', "sprite"),
