@@ -21,8 +21,17 @@ from .armature import Armature, convex_hull
 from .pixels import rasterise
 from .predicates import _segments_intersect, orient
 
-__all__ = ["ShapeFit", "shape_fit", "opaque_mask", "largest_region", "erode", "dilate", "trace_outline",
-           "simplify_polygon", "generate_armature"]
+__all__ = [
+    "ShapeFit",
+    "dilate",
+    "erode",
+    "generate_armature",
+    "largest_region",
+    "opaque_mask",
+    "shape_fit",
+    "simplify_polygon",
+    "trace_outline",
+]
 
 #: Alpha at or above this counts as opaque (the same threshold as the pixel-truth tier).
 ALPHA_THRESHOLD = 128
