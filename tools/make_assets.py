@@ -343,15 +343,30 @@ def make_scout() -> pygame.Surface:
 
 
 def make_wasp() -> pygame.Surface:
-    """Wasp, 28x28: a magenta insect-ship, two pairs of purple wings swept back (deep
-    notches between them), an orange-banded abdomen and an engine glow at the sting."""
+    """Wasp, two 28x28 frames side by side (56x28): a magenta insect-ship whose two pairs of
+    purple wings beat, swept back and spread in frame 0 (deep notches between them), drawn
+    in and raised in frame 1; an orange-banded abdomen and an engine glow at the sting.
+    Each frame has its own hit shape in wasp.armature.toml."""
+    strip = pygame.Surface((56, 28), pygame.SRCALPHA)
+    strip.blit(_wasp_frame(spread=True), (0, 0))
+    strip.blit(_wasp_frame(spread=False), (28, 0))
+    return strip
+
+
+def _wasp_frame(spread: bool) -> pygame.Surface:
     sp = Sprite(28, 28)
     s = sp.s
-    hind = s.poly([(-2, 1), (-9, 6), (-11, 10), (-9, 11), (-5, 8), (-2, 6)])
+    if spread:
+        hind = s.poly([(-2, 1), (-9, 6), (-11, 10), (-9, 11), (-5, 8), (-2, 6)])
+        fore = s.poly([(-2, -7), (-8, -5), (-13, 0), (-13, 4), (-10, 3), (-6, 0), (-2, 0)])
+        vein = ((-4, -4), (-11, 1))
+    else:
+        hind = s.poly([(-2, 1), (-6, 4), (-8, 8), (-7, 9), (-4, 7), (-2, 6)])
+        fore = s.poly([(-2, -7), (-7, -8), (-10, -5), (-10, -2), (-8, -2), (-5, -1), (-2, 0)])
+        vein = ((-4, -5), (-9, -4))
     sp.panel(hind, PURPLE, base=3, bevel=1, vgrad=1.0)
-    fore = s.poly([(-2, -7), (-8, -5), (-13, 0), (-13, 4), (-10, 3), (-6, 0), (-2, 0)])
     sp.panel(fore, PURPLE, base=3, bevel=2, vgrad=1.0)
-    sp.seam(s.line((-4, -4), (-11, 1), mirror=True), MAGENTA, 2)
+    sp.seam(s.line(*vein, mirror=True), MAGENTA, 2)
     abdomen = s.poly([(0, -1), (-3, 1), (-4, 6), (-2, 11), (0, 13)])
     sp.panel(abdomen, ORANGE, base=3, bevel=1)
     for y in (3, 7):

@@ -27,7 +27,6 @@ import argparse
 import math
 import os
 import sys
-import tomllib
 from pathlib import Path
 
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
@@ -40,6 +39,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from broadsword.collision import Armature  # noqa: E402
+from broadsword.data import load_armature_file  # noqa: E402
 
 SPRITE_DIR = ROOT / "assets" / "sprites"
 OUT = ROOT / "docs" / "img" / "sprites.png"
@@ -62,16 +62,23 @@ PAD = 14
 
 
 def load(name: str):
-    """The sprite surface and its armature table (``None`` for effects without one)."""
+    """``[(label, surface, table), ...]``: one per animation frame of the sprite, with its
+    shapes as ``{"vertices": hit, "graze": ...}`` (``table`` is ``None`` for effects)."""
     surf = pygame.image.load(str(SPRITE_DIR / f"{name}.png"))
     path = SPRITE_DIR / f"{name}.armature.toml"
-    table = None
-    if path.exists():
-        with open(path, "rb") as fh:
-            table = tomllib.load(fh)
-        if table.get("name") != name or table.get("sprite") != f"{name}.png":
-            raise SystemExit(f"{path.name}: name/sprite fields do not match {name!r}")
-    return surf, table
+    if not path.exists():
+        return [(name, surf, None)]
+    f = load_armature_file(path)
+    if f.name != name or f.sprite != f"{name}.png":
+        raise SystemExit(f"{path.name}: name/sprite fields do not match {name!r}")
+    n = len(f.drawn)
+    w = surf.get_width() // n
+    out = []
+    for i, shapes in enumerate(f.drawn):
+        table = {"vertices": shapes["hit"]} | ({"graze": shapes["graze"]} if "graze" in shapes else {})
+        frame = surf.subsurface((i * w, 0, w, surf.get_height())).copy()
+        out.append((name if n == 1 else f"{name} frame {i}", frame, table))
+    return out
 
 
 def opaque_pixels(surf: pygame.Surface) -> int:
@@ -198,8 +205,7 @@ def main() -> int:
     print(f"{'sprite':12s} {'size':>7s} {'opaque':>6s} {'verts':>5s} {'area':>7s} {'area/opaque':>11s}")
     for names in ROWS:
         cells = []
-        for name in names:
-            surf, table = load(name)
+        for name, surf, table in (entry for sprite in names for entry in load(sprite)):
             loaded.append((name, surf))
             cells.append(cell(name, surf, table, font, args.scale))
             size = f"{surf.get_width()}x{surf.get_height()}"

@@ -57,13 +57,13 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
     pygame.init()
     bank = SpriteBank()
     world = World(load_level(resolve_level(level_name)), bank.armatures, seed)
-    masks: dict[tuple[str, int], tuple[pygame.mask.Mask, int, int]] = {}
+    masks: dict[tuple[str, int, int], tuple[pygame.mask.Mask, int, int]] = {}
 
-    def mask(name, angle):
-        key = (name, int(round(angle)) % 360)
+    def mask(kind, angle):
+        key = (world.names[kind], int(world.kind_frame[kind]), int(round(angle)) % 360)
         got = masks.get(key)
         if got is None:
-            img = bank.rotated(*key)
+            img = bank.rotated(key[0], key[2], key[1])
             got = masks[key] = (pygame.mask.from_surface(img, 127), img.get_width(), img.get_height())
         return got
 
@@ -90,8 +90,8 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
             for i, j in pairs.tolist():
                 if world.names[arm[i]] == "graze":
                     continue
-                mi, wi, hi = mask(world.names[arm[i]], angle[i])
-                mj, wj, hj = mask(world.names[arm[j]], angle[j])
+                mi, wi, hi = mask(arm[i], angle[i])
+                mj, wj, hj = mask(arm[j], angle[j])
                 # Top-left corners where the renderer puts the images, rounded to pixels.
                 xi, yi = round(p[i, 0] - wi / 2), round(p[i, 1] - hi / 2)
                 xj, yj = round(p[j, 0] - wj / 2), round(p[j, 1] - hj / 2)

@@ -105,19 +105,20 @@ class Renderer:
         if not e.n:
             return
         pos = self._lerp(e.pos, e.prev, alpha)
-        for (x, y), a, arm in zip(pos.tolist(), e.angle.tolist(), e.arm.tolist()):
-            img = self.bank.rotated(world.names[arm], a)
+        kinds = world.current_kind(e.arm, e.age)  # the animation frame each ship shows
+        for (x, y), a, k in zip(pos.tolist(), e.angle.tolist(), kinds.tolist()):
+            img = self.bank.rotated(world.names[k], a, int(world.kind_frame[k]))
             surf.blit(img, img.get_rect(center=(x, y)))
 
     def _bullets(self, surf, pool, world: World, alpha: float) -> None:
         if not pool.n:
             return
         pos = self._lerp(pool.pos, pool.prev, alpha)
-        names = world.names
+        names, frame_of = world.names, world.kind_frame
         blits = []
-        for (x, y), a, arm in zip(pos.tolist(), pool.angle.tolist(), pool.arm.tolist()):
-            name = names[arm]
-            img = self.bank.images[name] if name in ROUND_BULLETS else self.bank.rotated(name, a)
+        for (x, y), a, k in zip(pos.tolist(), pool.angle.tolist(), world.current_kind(pool.arm, world.time).tolist()):
+            name, f = names[k], int(frame_of[k])
+            img = self.bank.frame(name, f) if name in ROUND_BULLETS else self.bank.rotated(name, a, f)
             w, h = img.get_size()
             blits.append((img, (x - w * 0.5, y - h * 0.5)))
         surf.fblits(blits)  # one call for the whole crowd
@@ -127,11 +128,12 @@ class Renderer:
             return
         x, y = self._lerp(world.player, world.player_prev, alpha).tolist()
         blink = world.invulnerable > 0 and (self.tick // 4) % 2 == 0
-        img = self.bank.images["player"]
+        kind = int(world.current_kind(world.arm_id["player"], world.time))
+        img = self.bank.frame("player", int(world.kind_frame[kind]))
         if not blink:
             surf.blit(img, img.get_rect(center=(x, y)))
         if show_armature:  # the precise mode shows the real hit shape
-            pts = [(x + vx, y + vy) for vx, vy in self.bank.armatures["player"].armature.vertices.tolist()]
+            pts = [(x + vx, y + vy) for vx, vy in world.shapes.armatures[kind].vertices.tolist()]
             pygame.draw.polygon(surf, (255, 255, 255), pts)
             pygame.draw.polygon(surf, (255, 60, 90), pts, 1)
 

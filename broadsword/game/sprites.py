@@ -25,28 +25,46 @@ class SpriteBank:
                 self.images[png.stem] = pygame.image.load(str(png))
             except (pygame.error, OSError) as exc:
                 raise DataError(png, "", f"cannot load image: {exc}") from None
+        # Animated sprites are horizontal strips: ``frames[name][i]`` is frame i, and
+        # ``images[name]`` frame 0, so still and animated sprites are used alike.
+        self.frames: dict[str, list[pygame.Surface]] = {}
         for name, f in self.armatures.items():
-            if f.sprite.removesuffix(".png") not in self.images:
+            stem = f.sprite.removesuffix(".png")
+            if stem not in self.images:
                 raise DataError(f.path, "sprite", f"no image {f.sprite} beside it")
-        self._rot: dict[tuple[str, int], pygame.Surface] = {}
+            n = len(f.frames)
+            strip = self.images[stem]
+            if strip.get_width() % n:
+                raise DataError(f.path, "frames", f"{f.sprite} is {strip.get_width()} px wide: not {n} equal frames")
+            w = strip.get_width() // n
+            self.frames[stem] = [strip.subsurface((i * w, 0, w, strip.get_height())).copy() for i in range(n)]
+            self.images[stem] = self.frames[stem][0]
+        self._rot: dict[tuple[str, int, int], pygame.Surface] = {}
         self._converted = False
 
     def convert(self) -> None:
         """Convert images to the display's format once a display exists (faster blits)."""
         if self._converted or pygame.display.get_surface() is None:
             return
-        self.images = {k: v.convert_alpha() for k, v in self.images.items()}
+        self.frames = {k: [f.convert_alpha() for f in v] for k, v in self.frames.items()}
+        self.images = {k: self.frames[k][0] if k in self.frames else v.convert_alpha() for k, v in self.images.items()}
         self._rot.clear()
         self._converted = True
 
     def image(self, name: str) -> pygame.Surface:
         return self.images[name]
 
-    def rotated(self, name: str, angle: float) -> pygame.Surface:
-        """The sprite turned by ``angle`` degrees (armature convention), from the cache."""
+    def frame(self, name: str, frame: int = 0) -> pygame.Surface:
+        """Animation frame ``frame`` of the sprite (frame 0 of a still sprite is the image)."""
+        return self.frames[name][frame] if name in self.frames else self.images[name]
+
+    def rotated(self, name: str, angle: float, frame: int = 0) -> pygame.Surface:
+        """Frame ``frame`` of the sprite turned by ``angle`` degrees (armature convention),
+        from the cache."""
         deg = int(round(angle)) % 360
-        key = (name, deg)
+        key = (name, frame, deg)
         img = self._rot.get(key)
         if img is None:
-            img = self._rot[key] = pygame.transform.rotate(self.images[name], -deg) if deg else self.images[name]
+            base = self.frame(name, frame)
+            img = self._rot[key] = pygame.transform.rotate(base, -deg) if deg else base
         return img

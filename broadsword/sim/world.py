@@ -61,14 +61,24 @@ def _heading(vx: np.ndarray, vy: np.ndarray) -> np.ndarray:
     return np.degrees(np.arctan2(vx, -vy))
 
 
+def _frame_sets(f) -> list[dict[str, Armature]]:
+    """The shape sets of an ArmatureFile (one per animation frame), or of any object with
+    ``.armature`` and ``.graze`` (one frame)."""
+    frames = getattr(f, "frames", None)
+    if frames:
+        return list(frames)
+    return [{"hit": f.armature} | ({"graze": f.graze} if f.graze is not None else {})]
+
+
 class World:
     """One level in play.
 
     Parameters
     ----------
     level : Level
-    armatures : mapping name -> ArmatureFile-like (``.armature``, ``.graze``)
-        Every sprite the level names, plus ``player`` (with a graze shape) and ``shot``.
+    armatures : mapping name -> ArmatureFile (or any object with ``.armature``, ``.graze``)
+        Every sprite the level names, plus ``player`` (with a graze shape) and ``shot``. A
+        sprite with several animation frames gets one armature kind per frame.
     seed : int
     """
 
@@ -78,13 +88,31 @@ class World:
         missing = ({"player", "shot"} | level.sprites) - set(armatures)
         if missing:
             raise ValueError(f"level {level.name!r} needs armatures {sorted(missing)} that are not loaded")
-        names = sorted({"player", "shot"} | level.sprites)
-        shapes: list[Armature] = [armatures[n].armature for n in names]
-        self.arm_id = {n: i for i, n in enumerate(names)}
-        graze = armatures["player"].graze or Armature.box(40, 40, name="graze")
-        self.arm_id["graze"] = len(shapes)
-        shapes.append(graze)
-        self.names = names + ["graze"]
+        # One armature kind per sprite and animation frame; a pool's ``arm`` holds the
+        # sprite's first kind and :meth:`current_kind` adds the frame shown at its age.
+        shapes: list[Armature] = []
+        kind_name, kind_frame, kind_frames, kind_time = [], [], [], []
+        self.arm_id: dict[str, int] = {}
+
+        def add(name: str, frames: list[Armature], frame_time: float) -> None:
+            self.arm_id[name] = len(shapes)
+            for i, shape in enumerate(frames):
+                shapes.append(shape)
+                kind_name.append(name)
+                kind_frame.append(i)
+                kind_frames.append(len(frames))
+                kind_time.append(frame_time)
+
+        for n in sorted({"player", "shot"} | level.sprites):
+            add(n, [fs["hit"] for fs in _frame_sets(armatures[n])], getattr(armatures[n], "frame_time", 0.1))
+        player = _frame_sets(armatures["player"])
+        add("graze", [fs.get("graze") or Armature.box(40, 40, name="graze") for fs in player],
+            getattr(armatures["player"], "frame_time", 0.1))
+        self.names = kind_name  # kind -> sprite name ("graze" for the player's graze shape)
+        self.kind_frame = np.array(kind_frame, dtype=np.int64)  # kind -> animation frame
+        self._kind_frames = np.array(kind_frames, dtype=np.int64)
+        self._kind_time = np.array(kind_time, dtype=np.float64)
+        self._animated = bool((self._kind_frames > 1).any())
         self.shapes = ArmatureSet(shapes)
         tests = [("player", "enemy_ship"), ("player", "enemy_bullet"), ("enemy_ship", "player_bullet")]
         if level.scene.graze:
@@ -132,6 +160,16 @@ class World:
     @property
     def time(self) -> float:
         return self.frame * DT
+
+    def current_kind(self, base: np.ndarray, age) -> np.ndarray:
+        """The armature kinds shown now: (n,) int64 for objects of first kind ``base`` (n,)
+        aged ``age`` seconds (scalar or (n,)): frame ``floor(age / frame_time) mod frames`` of
+        their sprite. Still sprites (one frame) keep ``base``."""
+        base = np.asarray(base, dtype=np.int64)
+        if not self._animated:
+            return base
+        tick = np.floor(np.asarray(age, dtype=np.float64) / self._kind_time[base]).astype(np.int64)
+        return base + tick % self._kind_frames[base]
 
     # ------------------------------------------------------------------ the step
     def step(self, inp: Input) -> Events:
@@ -270,6 +308,9 @@ class World:
         prev = np.concatenate([np.repeat(self.player_prev[None], nh, 0), e.prev, eb.prev, pb.prev])
         angle = np.concatenate([np.zeros(nh), e.angle, eb.angle, pb.angle])
         arm = np.concatenate([np.array(head_arm)[heads], e.arm, eb.arm, pb.arm]).astype(np.int64)
+        if self._animated:  # ships animate by their age, the player and bullets by the clock
+            age = np.concatenate([np.full(nh, self.time), e.age, np.full(eb.n + pb.n, self.time)])
+            arm = self.current_kind(arm, age)
         layer = np.concatenate([np.array(head_layer)[heads], np.full(e.n, ENEMY), np.full(eb.n, ENEMY_BULLET),
                                 np.full(pb.n, PLAYER_BULLET)]).astype(np.int64)
         step = np.hypot(*(pos - prev).T) if len(pos) else np.zeros(0)
