@@ -5,16 +5,23 @@ fixed 1/60 s increments while enough has accumulated, at most ``MAX_CATCH_UP`` s
 frame (a slow machine slows the game down instead of spiralling); then one render,
 interpolated by the leftover fraction. :meth:`App.frame` takes the elapsed time as an
 argument, so tests drive the real loop frame by frame with injected events.
+
+Robustness: a level that fails to load (a broken file, a missing file, a ship with no
+armature) never ends the game: its one-line error is shown on the title, where another
+level can be picked. Minimising, hiding or leaving the window pauses play; the stall when
+it comes back costs at most ``MAX_CATCH_UP`` steps; a tiny or missing window is not an error.
 """
 
 from __future__ import annotations
 
 import datetime
+import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 import pygame
 
-from ..data import list_levels, load_level, resolve_level
+from ..data import DataError, list_levels, load_level, resolve_level
 from ..sim import DT, FIELD, Input, World, autopilot
 from .audio import Audio
 from .overlay import Overlay
@@ -26,6 +33,16 @@ MAX_CATCH_UP = 5
 DEFAULT_SCALE = 1.25
 SLOW_MOTION = 0.25
 TITLE = "Broadsword"
+HIDDEN_FPS = 20  # frame rate while the window is minimised or hidden (nothing to see, save the CPU)
+ERROR_LINES = 7  # at most this many wrapped lines of a load error on the title (the rest: "...")
+ERROR_TEXT = (255, 214, 200)
+ERROR_WRAP = int(FIELD[0]) - 64  # px: the width of a load error's lines in its panel
+
+#: Window events that pause play (as focus loss does) and that mean the window is out of sight.
+PAUSE_EVENTS = {pygame.WINDOWFOCUSLOST, pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN}
+HIDE_EVENTS = {pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN}
+SHOW_EVENTS = {pygame.WINDOWRESTORED, pygame.WINDOWSHOWN, pygame.WINDOWEXPOSED, pygame.WINDOWMAXIMIZED,
+               pygame.WINDOWFOCUSGAINED}
 
 CONTROLS = [
     ("Arrows / WASD", "move"),
@@ -48,6 +65,33 @@ FIRE_KEYS = {pygame.K_z, pygame.K_SPACE}
 SLOW_KEYS = {pygame.K_LSHIFT, pygame.K_RSHIFT}
 
 
+def wrap_text(text: str, font: pygame.font.Font, width: int) -> list[str]:
+    """``text`` broken into lines no wider than ``width`` pixels in ``font``.
+
+    Greedy: words (split on whitespace) fill each line in order; a word wider than a whole
+    line (a long path) is broken between characters. Every character of every word appears
+    once, in order. Always at least one line (``[""]`` for empty text); a single character
+    wider than ``width`` gets a line of its own rather than being dropped.
+    """
+    lines: list[str] = []
+    line = ""
+    for word in text.split():
+        candidate = f"{line} {word}" if line else word
+        if font.size(candidate)[0] <= width:
+            line = candidate
+            continue
+        if line:
+            lines.append(line)
+        line = ""
+        for ch in word:  # the word starts a new line; break it if it is too long for one
+            if line and font.size(line + ch)[0] > width:
+                lines.append(line)
+                line = ""
+            line += ch
+    lines.append(line)
+    return lines
+
+
 @dataclass
 class Run:
     """A play-through: the level being played, and what carries to the next one."""
@@ -63,7 +107,8 @@ class App:
     Parameters
     ----------
     start_level : str, optional
-        A shipped level's name or a level file to start from (default: the first).
+        A shipped level's name or a level file to start from (default: the first). A file
+        that is missing or broken is reported on the title (``error``), not raised.
     seed : int
     demo : bool
         Let the autopilot play (the title's attract mode, and ``broadsword --autopilot``).
@@ -86,9 +131,14 @@ class App:
         self.audio = Audio(enabled=audio)
         self.scores = (scores or HighScores()).load()
         self.levels = list_levels()
+        self.error: str | None = None  # the last level load failure, one line, shown on the title
         self.custom_level = None
         if start_level is not None and start_level not in self.levels:
-            self.custom_level = str(resolve_level(start_level))
+            self.custom_level = start_level  # resolved again at each start, so a fixed file just works
+            try:
+                self.custom_level = str(resolve_level(start_level))
+            except DataError as exc:
+                self._report(exc)
         self.start_index = self.levels.index(start_level) if start_level in self.levels else 0
         self.seed, self.demo = seed, demo
         self.scene = "title"
@@ -102,6 +152,7 @@ class App:
         self.step_once = False
         self.fps = 60.0
         self.running = True
+        self.hidden = False  # minimised or hidden: nothing to see
         self.name = ""
         self.message = self.scores.warning  # a set-aside scores file is reported on the title
         self.font = pygame.font.Font(None, 24)
@@ -121,13 +172,20 @@ class App:
     def run(self) -> None:
         clock = pygame.time.Clock()
         while self.running:
-            dt = clock.tick(120) / 1000.0
+            dt = clock.tick(HIDDEN_FPS if self.hidden else 120) / 1000.0
             self.fps = clock.get_fps() or self.fps
             self.frame(dt)
         pygame.quit()
 
     def frame(self, dt: float) -> int:
-        """Handle events, step the world by the elapsed ``dt`` seconds, render. Returns steps taken."""
+        """Handle events, step the world by the elapsed ``dt`` seconds, render. Returns steps taken.
+
+        At most ``MAX_CATCH_UP`` steps whatever ``dt`` is (a 30 s stall after the window
+        comes back costs five steps, and the backlog beyond one step is dropped); a
+        negative or nan ``dt`` counts as 0. Always renders once.
+        """
+        if not dt >= 0.0:
+            dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
         steps = 0
@@ -212,8 +270,13 @@ class App:
             self._toggle_pause()
         elif event.type == pygame.JOYDEVICEADDED:
             self._init_pad()
-        elif event.type == pygame.WINDOWFOCUSLOST and self.scene == "play":
-            self._toggle_pause()
+        elif event.type in PAUSE_EVENTS:
+            self.keys.clear()  # keys released while away never send their KEYUP to us
+            self.hidden |= event.type in HIDE_EVENTS
+            if self.scene == "play":
+                self._toggle_pause()
+        elif event.type in SHOW_EVENTS:
+            self.hidden = False
 
     def _key(self, event) -> None:
         k = event.key
@@ -237,8 +300,11 @@ class App:
             if k in (pygame.K_RETURN, pygame.K_z, pygame.K_SPACE):
                 self.audio.play("select")
                 self.start_run()
-            elif k in (pygame.K_LEFT, pygame.K_RIGHT) and self.custom_level is None:
-                self.start_index = (self.start_index + (1 if k == pygame.K_RIGHT else -1)) % len(self.levels)
+            elif k in (pygame.K_LEFT, pygame.K_RIGHT):
+                if self.custom_level is not None:
+                    self.custom_level = None  # back to the shipped levels
+                else:
+                    self.start_index = (self.start_index + (1 if k == pygame.K_RIGHT else -1)) % len(self.levels)
             elif k == pygame.K_h:
                 self.scene = "scores"
             elif k == pygame.K_ESCAPE:
@@ -296,20 +362,45 @@ class App:
             self.name += event.unicode.upper()
 
     # ------------------------------------------------------------------ runs and levels
-    def start_run(self, index: int | None = None) -> None:
-        self.run_state = Run(self.start_index if index is None else index)
-        self._load_level()
+    def start_run(self, index: int | None = None) -> bool:
+        """Start playing (the custom level, else shipped level ``index``, default the chosen one).
 
-    def _load_level(self) -> None:
+        Returns False, and stays on the title showing the error, if the level fails to load.
+        """
+        self.run_state = Run(self.start_index if index is None else index)
+        return self._load_level()
+
+    def _load_level(self) -> bool:
+        """Load the run's level into a new world and play it; on failure, back to the title."""
         run = self.run_state
-        path = self.custom_level or resolve_level(self.levels[run.level_index])
-        world = World(load_level(path), self.bank.armatures, seed=self.seed + run.level_index)
+        try:
+            path = resolve_level(self.custom_level or self.levels[run.level_index])
+            level = load_level(path)
+            try:
+                world = World(level, self.bank.armatures, seed=self.seed + run.level_index)
+            except DataError:
+                raise
+            except ValueError as exc:  # the level names a ship or bullet that has no armature
+                raise DataError(path, "", str(exc)) from None
+        except DataError as exc:
+            self._report(exc)
+            self.world, self.run_state = None, None
+            self.accumulator = 0.0
+            self.scene = "title"
+            return False
         world.score = run.score
         if run.lives is not None:
             world.lives = run.lives
         self.world = world
+        self.error = None
         self.accumulator = 0.0
         self.scene = "play"
+        return True
+
+    def _report(self, exc: DataError) -> None:
+        """A level failed to load: keep its one-line error for the title, and say it on stderr."""
+        self.error = str(exc)
+        print(f"broadsword: {exc}", file=sys.stderr)
 
     def next_level(self) -> None:
         run, w = self.run_state, self.world
@@ -365,9 +456,17 @@ class App:
         self._present()
 
     def _present(self) -> None:
-        """Scale the playfield into the window, keeping its aspect (black bars, never stretched)."""
+        """Scale the playfield into the window, keeping its aspect (black bars, never stretched).
+
+        A window of any size down to 1 x 1 gets the field scaled to at least 1 x 1 pixel; no
+        window at all (or a zero-sized one) skips presenting, the frame is still drawn.
+        """
         win = pygame.display.get_surface()
+        if win is None:
+            return
         ww, wh = win.get_size()
+        if ww <= 0 or wh <= 0:
+            return
         fw, fh = self.screen.get_size()
         k = min(ww / fw, wh / fh)
         size = (max(1, int(fw * k)), max(1, int(fh * k)))
@@ -380,6 +479,16 @@ class App:
         rect = img.get_rect(center=(FIELD[0] / 2 if x is None else x, y))
         self.screen.blit(img, rect)
 
+    def _lines(self, text: str, width: int, limit: int) -> list[str]:
+        """``text`` wrapped to ``width`` px in the small font, at most ``limit`` lines; cut text ends in "..."."""
+        lines = wrap_text(text, self.font, width)
+        if len(lines) > limit:
+            lines = lines[:limit]
+            while lines[-1] and self.font.size(lines[-1] + "...")[0] > width:
+                lines[-1] = lines[-1][:-1]
+            lines[-1] += "..."
+        return lines
+
     def _veil(self, a=150):
         v = pygame.Surface(self.screen.get_size(), pygame.SRCALPHA)
         v.fill((0, 0, 0, a))
@@ -390,20 +499,47 @@ class App:
         self._text("polygon-armature shoot-'em-up", 162, colour=(160, 180, 220))
         ship = pygame.transform.scale_by(self.bank.images["player"], 2)
         self.screen.blit(ship, ship.get_rect(center=(FIELD[0] / 2, 222)))
-        start = self.custom_level or self.levels[self.start_index]
-        self._text(f"Start: {start}" + ("" if self.custom_level else "   (Left/Right to choose)"), 282, colour=(255, 240, 200))
+        if self.custom_level:
+            name, hint = Path(self.custom_level).name, "   (Left/Right: shipped levels)"
+        else:
+            name, hint = self.levels[self.start_index], "   (Left/Right to choose)"
+        while len(name) > 8 and self.font.size(f"Start: {name}{hint}")[0] > FIELD[0] - 20:
+            name = "..." + name[4:]  # a long file name loses its start, keeps its end
+        self._text(f"Start: {name}{hint}", 282, colour=(255, 240, 200))
         self._text("Enter or Z to play   H high scores   Esc quit", 306, colour=(200, 210, 240))
+        if self.error:
+            self._draw_error()
+        else:
+            self._draw_controls()
+        if self.scores.entries:
+            best = self.scores.entries[0]
+            self._text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
+        if self.message:
+            for i, line in enumerate(self._lines(self.message, int(FIELD[0]) - 20, 2)):
+                self._text(line, 600 + 20 * i, colour=(255, 140, 120))
+
+    def _draw_controls(self) -> None:
         for i, (key, what) in enumerate(CONTROLS):
             y = 350 + 20 * i
             k = self.font.render(key, True, (255, 220, 140))
             self.screen.blit(k, k.get_rect(midright=(150, y)))
             d = self.font.render(what, True, (200, 210, 240))
             self.screen.blit(d, d.get_rect(midleft=(166, y)))
-        if self.scores.entries:
-            best = self.scores.entries[0]
-            self._text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
-        if self.message:
-            self._text(self.message[:70], 610, colour=(255, 140, 120))
+
+    def _draw_error(self) -> None:
+        """The level load error, wrapped, in a panel where the controls list goes (y 334 to at most 546).
+
+        At most ``ERROR_LINES`` lines of ``ERROR_WRAP`` px; a longer error ends in "...".
+        """
+        lines = self._lines(self.error, ERROR_WRAP, ERROR_LINES)
+        panel = pygame.Rect(20, 334, ERROR_WRAP + 24, 72 + 20 * len(lines))
+        pygame.draw.rect(self.screen, (44, 12, 18), panel)
+        pygame.draw.rect(self.screen, (255, 110, 110), panel, 1)
+        self._text("The level could not be loaded", panel.y + 18, colour=(255, 140, 120))
+        for i, line in enumerate(lines):
+            img = self.font.render(line, True, ERROR_TEXT)
+            self.screen.blit(img, img.get_rect(midleft=(panel.x + 12, panel.y + 42 + 20 * i)))
+        self._text("Enter: try again   Left/Right: another level", panel.bottom - 16, colour=(200, 210, 240))
 
     def _draw_paused(self) -> None:
         self._veil(110)
