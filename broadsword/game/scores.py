@@ -12,11 +12,25 @@ Rules an entry must meet, both on load and after :meth:`HighScores.add`:
 * ``level``: a printable ``str`` of at most ``LEVEL_MAX`` (64) characters;
 * ``date``: a real calendar date written exactly ``YYYY-MM-DD``.
 
-Loading never raises for bad *content*: a file that breaks any rule is renamed to
-``<name>.corrupt-<UTC timestamp>`` beside it (content preserved) and the table starts
-empty, with a one-line ``warning``. A file that cannot be *read* (permissions, a directory
-in the way...) is left where it is, with a warning, and :meth:`HighScores.save` then refuses
-to overwrite it. Saving is atomic (temp file in the same directory, fsync, ``os.replace``).
+What survives what:
+
+* **Bad content.** Loading never raises for it: a file that breaks any rule is renamed to
+  ``<name>.corrupt-<UTC timestamp>`` beside it (content preserved) and the table starts
+  empty, with a one-line ``warning``.
+* **Unreadable file** (permissions, a directory in the way...): left where it is, with a
+  warning; :meth:`HighScores.save` re-reads it and raises OSError rather than replace a file
+  whose scores it could not see.
+* **A kill at any point of a save.** Saving is atomic (temp file in the same directory,
+  fsync, ``os.replace``), so the file is always some complete save; a temporary a killed
+  save left behind (``.<name>.<random>.tmp``) is never read, and the next successful save
+  removes it.
+* **A read-only data directory.** Loading works; :meth:`HighScores.save` raises OSError
+  naming the file and touches nothing, and the table in memory keeps the new scores (a
+  later save that succeeds writes them).
+* **Two instances saving at once.** :meth:`HighScores.save` holds an exclusive lock on the
+  sidecar ``<name>.lock`` (``fcntl.flock``; no lock where there is no ``fcntl``), re-reads
+  the file under it and writes the best ``MAX`` of the file's entries plus the entries this
+  instance added since its last load or save, so neither instance's scores are lost.
 """
 
 from __future__ import annotations
@@ -31,7 +45,7 @@ from datetime import date as _date
 from datetime import datetime, timezone
 from pathlib import Path
 
-from ..fileio import write_atomic
+from ..fileio import locked, remove_stale_temps, write_atomic
 
 __all__ = ["Entry", "HighScores", "data_home", "sanitise_name", "FORMAT_VERSION", "NAME_MAX"]
 
@@ -159,7 +173,8 @@ class HighScores:
     """The best ``MAX`` scores, best first; ties keep the earlier entry ahead.
 
     ``entries``: sorted by score descending, at most ``MAX``. ``warning``: one line set by
-    :meth:`load` when the file was corrupt (and set aside) or unreadable, else None.
+    :meth:`load` when the file was corrupt (and set aside) or unreadable, else None (and
+    by :meth:`save` when it had to set aside a file that turned corrupt since).
     """
 
     MAX = 10
@@ -168,63 +183,88 @@ class HighScores:
         self.path: Path = Path(path) if path is not None else data_home() / "highscores.json"
         self.entries: list[Entry] = []
         self.warning: str | None = None
-        # set when load() could neither read nor set aside the existing file: save() must
-        # not replace a file whose scores we never saw
-        self._blocked: str | None = None
+        # the table as last read from or written to the file (used if the file turns
+        # corrupt before the next save), and the entries added since, best first (<= MAX):
+        # save() writes the best MAX of (file's entries now + _added)
+        self._base: list[Entry] = []
+        self._added: list[Entry] = []
+
+    @property
+    def lock_path(self) -> Path:
+        """The sidecar lock file, ``<name>.lock`` beside :attr:`path`."""
+        return self.path.with_name(self.path.name + ".lock")
 
     # ------------------------------------------------------------------ loading
 
-    def load(self) -> "HighScores":
-        """Replace ``entries`` with the file's. Never raises for bad content (see module doc).
-
-        Missing file: empty table, no warning. Corrupt: renamed to
-        ``<name>.corrupt-<YYYYmmddTHHMMSSZ>`` (``-2``, ``-3``... appended if taken), warning,
-        empty. Unreadable (PermissionError or other OSError): warning, empty, not renamed.
-        A file with more than ``MAX`` valid entries is kept and trimmed to the best ``MAX``.
-        """
-        self.entries = []
-        self.warning = None
-        self._blocked = None
+    def _read(self) -> tuple[list[Entry] | None, str]:
+        """The file's best ``MAX`` entries, ranked, and ``""``; ``([], "")`` if there is no
+        file; ``(None, one-line reason)`` if its content is corrupt. OSError if unreadable."""
         try:
             with open(self.path, "rb") as fh:
                 blob = fh.read(FILE_MAX_BYTES + 1)
         except FileNotFoundError:
-            return self
+            return [], ""
+        entries, reason = _parse(blob)
+        if entries is None:
+            return None, _one_line(reason)
+        return self._ranked(entries), ""
+
+    def load(self) -> "HighScores":
+        """Replace ``entries`` with the file's (forgetting unsaved adds). Never raises for
+        bad content (see module doc).
+
+        Missing file: empty table, no warning. Corrupt: renamed (under the lock, after
+        reading it again in case another instance just replaced it) to
+        ``<name>.corrupt-<YYYYmmddTHHMMSSZ>`` (``-2``, ``-3``... appended if taken),
+        warning, empty. Unreadable (PermissionError or other OSError): warning, empty, not
+        renamed. A file with more than ``MAX`` valid entries is kept and trimmed to the
+        best ``MAX``.
+        """
+        self.entries, self._base, self._added = [], [], []
+        self.warning = None
+        try:
+            entries, reason = self._read()
+            if entries is None:
+                with locked(self.lock_path):
+                    entries, reason = self._read()
+                    if entries is None:
+                        self._corrupt_on_load(reason)
+                        return self
         except OSError as exc:
             what = "permission denied" if isinstance(exc, PermissionError) else _one_line(
                 exc.strerror or type(exc).__name__)
             self.warning = _one_line(
                 f"could not read high-score file {self.path} ({what}); "
                 f"starting with an empty table and not saving over it")
-            self._blocked = self.warning
             return self
-        entries, reason = _parse(blob)
-        if entries is not None:
-            self.entries = self._ranked(entries)
-            return self
-        self._set_aside(_one_line(reason))
+        self.entries = entries
+        self._base = list(entries)
         return self
 
-    def _set_aside(self, reason: str) -> None:
-        stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
-        base = f"{self.path.name}.corrupt-{stamp}"
-        target = self.path.with_name(base)
-        n = 2
+    def _corrupt_on_load(self, reason: str) -> None:
         try:
-            while target.exists():
-                target = self.path.with_name(f"{base}-{n}")
-                n += 1
-            os.rename(self.path, target)
+            target = self._set_aside()
         except OSError as exc:
             self.warning = _one_line(
                 f"high-score file {self.path} is corrupt ({reason}) and could not be moved "
                 f"aside ({exc.strerror or type(exc).__name__}); starting with an empty table "
                 f"and not saving over it")
-            self._blocked = self.warning
             return
         self.warning = _one_line(
             f"high-score file {self.path} was corrupt ({reason}); moved it to {target.name} "
             f"and started an empty table")
+
+    def _set_aside(self) -> Path:
+        """Rename the file to a free ``<name>.corrupt-<stamp>[-n]``; OSError if impossible."""
+        stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+        base = f"{self.path.name}.corrupt-{stamp}"
+        target = self.path.with_name(base)
+        n = 2
+        while target.exists():
+            target = self.path.with_name(f"{base}-{n}")
+            n += 1
+        os.rename(self.path, target)
+        return target
 
     # ------------------------------------------------------------------ queries and updates
 
@@ -270,28 +310,76 @@ class HighScores:
         rank = next((i for i, e in enumerate(self.entries) if e.score < score), len(self.entries))
         self.entries.insert(rank, clean)
         del self.entries[self.MAX:]
+        # the best MAX of this session's adds are all that can reach the merged table
+        self._added = self._ranked(self._added + [clean])
         return rank
 
     # ------------------------------------------------------------------ saving
 
-    def save(self) -> None:
-        """Write the table atomically; OSError propagates (the caller decides what to do).
+    def save(self) -> str | None:
+        """Merge with the file and write it atomically; returns a warning line or None.
 
-        Creates the directory, writes JSON to a temporary file beside the target, flushes
-        and fsyncs it, then ``os.replace``s it over the target, so the file on disk is
-        always either the old table or the new one. The temporary file is removed on
-        failure. Raises PermissionError without touching anything if :meth:`load` could not
-        read (or set aside) the existing file, so unseen scores are never overwritten.
+        Under the lock (see :func:`broadsword.fileio.locked`): re-reads the file, ranks its
+        entries followed by the entries :meth:`add` took since the last load or save (so
+        on equal scores the file's entries stay ahead), keeps the best ``MAX`` and writes
+        them with :func:`broadsword.fileio.write_atomic` (directory created, temp file
+        beside the target, fsync, ``os.replace``): the file on disk is always a complete
+        save. Entries this instance loaded are not written twice; a file that vanished
+        since counts as empty. If the file turned corrupt since, it is set aside as in
+        :meth:`load`, the merge starts from the table last read or written instead, and
+        the returned warning (also stored in ``warning``) says so. Temporaries left by
+        killed saves are removed afterwards (only while the lock is held).
+
+        On success ``entries`` becomes the merged table. Raises OSError (errno kept, the
+        high-score file named) if the file cannot be read or set aside or the write fails
+        (read-only directory, disk full...): the table file is not changed (a corrupt one
+        may already have been set aside, and ``warning`` then says so), no temporary
+        remains, and ``entries`` keeps the new scores so a later save can still write them.
         """
-        if self._blocked is not None and self.path.exists():
-            raise PermissionError(f"not overwriting {self.path}: {self._blocked}")
-        doc = {
-            "version": FORMAT_VERSION,
-            "scores": [
-                {"name": e.name, "score": e.score, "level": e.level, "date": e.date}
-                for e in self.entries
-            ],
-        }
-        data = (json.dumps(doc, indent=2, ensure_ascii=False) + "\n").encode("utf-8")
-        write_atomic(self.path, data)
-        self._blocked = None
+        warning = None
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            with locked(self.lock_path) as held:
+                on_disk, reason = self._read()
+                if on_disk is None:
+                    target = self._set_aside()
+                    warning = self.warning = _one_line(
+                        f"high-score file {self.path} was corrupt ({reason}); moved it to "
+                        f"{target.name} and saved this session's table")
+                    # the table we last saw is now only in the set-aside file: carry it as
+                    # pending, so a retry after a failed write below still includes it
+                    self._added = self._ranked(self._base + self._added)
+                    self._base, on_disk = [], []
+                merged = self._ranked(on_disk + self._added)
+                write_atomic(self.path, _encode(merged))
+                if held:
+                    remove_stale_temps(self.path)
+        except OSError as exc:
+            raise self._about_file(exc) from exc
+        self.entries = merged
+        self._base = list(merged)
+        self._added = []
+        return warning
+
+    def _about_file(self, exc: OSError) -> OSError:
+        """``exc`` restated about :attr:`path` (same errno, so the same OSError subclass);
+        a path elsewhere (a data directory that cannot be created) is kept in the message.
+        The temporary or lock file beside the table is not worth naming."""
+        if exc.errno is None:
+            return exc
+        what = exc.strerror or type(exc).__name__
+        if exc.filename is not None and Path(os.fsdecode(exc.filename)).parent != self.path.parent:
+            what = f"{what} (at {os.fsdecode(exc.filename)})"
+        return OSError(exc.errno, what, str(self.path))
+
+
+def _encode(entries: list[Entry]) -> bytes:
+    """The file's bytes for ``entries``: UTF-8 JSON, 2-space indent, trailing newline."""
+    doc = {
+        "version": FORMAT_VERSION,
+        "scores": [
+            {"name": e.name, "score": e.score, "level": e.level, "date": e.date}
+            for e in entries
+        ],
+    }
+    return (json.dumps(doc, indent=2, ensure_ascii=False) + "\n").encode("utf-8")

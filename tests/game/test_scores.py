@@ -13,7 +13,10 @@ Rules under test:
   on one line, and the table is empty -- never an exception. An unreadable file is left in
   place (warning, empty table) and ``save`` refuses to replace it.
 * ``save`` writes ``{"version": 1, "scores": [...]}`` atomically: after any failure the old
-  file is byte-for-byte intact and no temporary file remains.
+  file is byte-for-byte intact and no temporary file remains. It (and a load that sets a
+  corrupt file aside) leaves the sidecar lock file ``highscores.json.lock``. Merging with
+  other instances, the lock, kills and read-only directories: test_scores_merge.py,
+  test_scores_processes.py, test_scores_readonly.py.
 * ``data_home``: ``$BROADSWORD_DATA_DIR`` > ``$XDG_DATA_HOME/broadsword`` >
   (Windows ``%APPDATA%/broadsword``) > ``~/.local/share/broadsword``.
 """
@@ -32,6 +35,7 @@ from broadsword.game.scores import Entry, HighScores, data_home, sanitise_name
 
 DAY = "2024-05-17"
 CORRUPT_RE = re.compile(r"^highscores\.json\.corrupt-\d{8}T\d{6}Z(-\d+)?$")
+LOCK = "highscores.json.lock"  # the sidecar save() (and a corrupt-file load) locks
 
 
 def entry(name="ACE", score=100, level="1-picket", date=DAY) -> Entry:
@@ -237,7 +241,7 @@ def test_save__leaves_no_temp_files(tmp_path):
     for s in range(5):
         table.add(entry(score=s * 100))
         table.save()
-    assert listing(tmp_path) == ["highscores.json"]
+    assert listing(tmp_path) == ["highscores.json", LOCK]
 
 
 def test_save__replace_failure_keeps_old_file_and_cleans_up(tmp_path, monkeypatch):
@@ -251,7 +255,7 @@ def test_save__replace_failure_keeps_old_file_and_cleans_up(tmp_path, monkeypatc
     with pytest.raises(OSError, match="No space"):
         table.save()
     assert path.read_bytes() == before
-    assert listing(tmp_path) == ["highscores.json"]
+    assert listing(tmp_path) == ["highscores.json", LOCK]
 
 
 def test_save__fsync_failure_keeps_old_file_and_cleans_up(tmp_path, monkeypatch):
@@ -268,7 +272,7 @@ def test_save__fsync_failure_keeps_old_file_and_cleans_up(tmp_path, monkeypatch)
     with pytest.raises(OSError):
         table.save()
     assert seen and path.read_bytes() == before
-    assert listing(tmp_path) == ["highscores.json"]
+    assert listing(tmp_path) == ["highscores.json", LOCK]
 
 
 def test_save__writes_temp_in_same_directory_then_replaces(tmp_path, monkeypatch):
@@ -353,7 +357,8 @@ def test_load__corrupt_file_is_set_aside(tmp_path, kind):
     assert table.warning is not None
     assert str(path) in table.warning and "\n" not in table.warning
     assert not path.exists()
-    (aside,) = [p for p in tmp_path.iterdir()]
+    (aside,) = [p for p in tmp_path.iterdir() if p.name != LOCK]
+    assert listing(tmp_path) == sorted([aside.name, LOCK])
     assert CORRUPT_RE.match(aside.name), aside.name
     assert aside.name in table.warning
     assert aside.read_bytes() == content
@@ -382,7 +387,8 @@ def test_load__repeated_corruption_gets_distinct_names(tmp_path):
     for content in (b"one", b"two", b"three"):
         path.write_bytes(content)
         HighScores(path).load()
-    asides = sorted(tmp_path.iterdir())
+    asides = sorted(p for p in tmp_path.iterdir() if p.name != LOCK)
+    assert listing(tmp_path) == sorted([p.name for p in asides] + [LOCK])
     assert len(asides) == 3
     assert all(CORRUPT_RE.match(p.name) for p in asides)
     assert sorted(p.read_bytes() for p in asides) == [b"one", b"three", b"two"]
