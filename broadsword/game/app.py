@@ -424,7 +424,9 @@ class App:
         level = self.world.level.name if self.world else ""
         self.scores.add(Entry(name, self.final[0], level, datetime.date.today().isoformat()))
         try:
-            self.scores.save()
+            warning = self.scores.save()
+            if warning:
+                self.message = warning
         except OSError as exc:
             self.message = f"could not save high scores: {exc}"
         self.scene = "scores"
@@ -577,4 +579,7 @@ class App:
             self._text(f"{i + 1:>2}. {e.name:<12} {e.score:>10,}  {e.level}", 170 + 28 * i)
         if not self.scores.entries:
             self._text("none yet", 200)
+        if self.message:  # e.g. a save that failed: say so here, where the player is looking
+            for i, line in enumerate(self._lines(self.message, ERROR_WRAP, 3)):
+                self._text(line, 540 + 20 * i, colour=(255, 140, 120))
         self._text("Enter for the title", 500)
