@@ -3,7 +3,9 @@
     SDL_VIDEODRIVER=dummy python3 tools/screenshots.py
 
 Runs the real App loop and saves the window surface: docs/img/play.png (the second
-level in play) and docs/img/overlay.png (the bullet-hell level with the F1 overlay on).
+level in play) and docs/img/overlay.png (the bullet-hell level with the F1 overlay on);
+and the armature editor on a copy of the player's armature, with the probe touching the
+hit shape: docs/img/editor.png.
 """
 
 from __future__ import annotations
@@ -41,7 +43,28 @@ def capture(level: str, frames: int, name: str, overlay: bool = False, seed: int
     pygame.quit()
 
 
+def capture_editor(name: str = "editor.png") -> None:
+    """The editor on a temporary copy of player.armature.toml, probe on, touching the hit shape."""
+    import shutil
+
+    from broadsword.data import data_dir
+    from broadsword.game.editor import Editor
+
+    tmp = Path(tempfile.mkdtemp())
+    for f in ("player.png", "player.armature.toml"):
+        shutil.copy(data_dir("assets") / "sprites" / f, tmp / f)
+    ed = Editor(tmp / "player.armature.toml")
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_b, mod=0, unicode="b"))
+    pygame.event.post(pygame.event.Event(pygame.MOUSEMOTION, pos=ed.to_screen(6.0, -3.0), rel=(0, 0), buttons=(0, 0, 0)))
+    ed.frame()
+    ed.frame()
+    pygame.image.save(pygame.display.get_surface(), str(OUT / name))
+    print(f"{OUT / name}: probe {'CONTACT' if ed.probe_hit else 'clear'}")
+    pygame.quit()
+
+
 if __name__ == "__main__":
     OUT.mkdir(parents=True, exist_ok=True)
     capture("2-gauntlet", 710, "play.png")
     capture("3-broadsword", 420, "overlay.png", overlay=True)
+    capture_editor()
