@@ -14,6 +14,11 @@ place of ``[shapes]``; every frame names the same shapes. Coordinates are pixels
 frame around its centre, +x right, +y down. The shapes are validated
 (:class:`broadsword.collision.Armature`) but kept in the order the designer drew them, so a
 file that is loaded and saved again is unchanged.
+
+Limits: a file of at most ``FILE_MAX_BYTES`` (1 MiB, refused by its size before it is
+parsed), UTF-8 TOML; at most ``FRAMES_MAX`` frames of at most ``SHAPES_MAX`` shapes of 3 to
+``VERTICES_MAX`` vertices, each finite and within ``COORD_MAX`` px of the centre; the
+sprite is a file name beside the armature file, never a path (``../x.png``, ``/x.png``).
 """
 
 from __future__ import annotations
@@ -26,13 +31,15 @@ from pathlib import Path
 
 from ..collision import Armature
 from ..fileio import write_atomic
-from .errors import DataError
+from .errors import DataError, shown
+from .resources import read_toml
 
 SUFFIX = ".armature.toml"
 #: Shape names: lower-case identifiers. ``hit`` is required in every frame.
 SHAPE_NAME = re.compile(r"[a-z][a-z0-9_]{0,31}\Z")
 FRAMES_MAX = 64
 VERTICES_MAX = 256
+SHAPES_MAX = 16  # shapes in one frame, hit among them
 COORD_MAX = 4096.0
 FILE_MAX_BYTES = 1 << 20
 FIELDS = {"name", "sprite", "frames", "frame_time", "shapes", "frame"}
@@ -84,20 +91,8 @@ class ArmatureFile:
 
 
 def _read_toml(path: Path) -> dict:
-    try:
-        size = path.stat().st_size
-        if size > FILE_MAX_BYTES:
-            raise DataError(path, "", f"is {size:,} bytes; an armature file is at most {FILE_MAX_BYTES:,}")
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except OSError as exc:
-        raise DataError(path, "", f"cannot read: {exc.strerror or exc}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DataError(path, "", f"not valid TOML: {exc}") from None
-    except UnicodeDecodeError:
-        raise DataError(path, "", "not valid TOML: not UTF-8 text") from None
-    except RecursionError:
-        raise DataError(path, "", "not valid TOML: nested too deeply") from None
+    """The file's TOML table: at most ``FILE_MAX_BYTES`` (refused by size, unparsed), UTF-8."""
+    return read_toml(path, FILE_MAX_BYTES, "an armature file")
 
 
 def _is_number(c) -> bool:
@@ -108,14 +103,18 @@ def parse_polygon(value, path: Path, where: str, label: str) -> tuple[Armature, 
     """Validate one shape: a list of 3 to ``VERTICES_MAX`` ``[x, y]`` pairs of finite numbers
     within ``COORD_MAX`` of the origin, forming a simple polygon of non-zero area."""
     if not isinstance(value, list):
-        raise DataError(path, where, "must be a list of [x, y] pairs")
+        raise DataError(path, where, f"must be a list of [x, y] pairs, got {shown(value)}")
     if not 3 <= len(value) <= VERTICES_MAX:
         raise DataError(path, where, f"must have 3 to {VERTICES_MAX} vertices, got {len(value)}")
     for i, v in enumerate(value):
         if not (isinstance(v, list) and len(v) == 2 and all(_is_number(c) for c in v)):
-            raise DataError(path, f"{where}[{i}]", f"must be an [x, y] pair of numbers, got {v!r}"[:200])
-        if not all(math.isfinite(c) and abs(c) <= COORD_MAX for c in v):
-            raise DataError(path, f"{where}[{i}]", f"must be finite and within {COORD_MAX:g} px of the centre, got {v!r}")
+            got = shown(v)
+            if isinstance(v, list):
+                got = f"[{', '.join(shown(c) for c in v[:3])}{', ...' if len(v) > 3 else ''}]"
+            raise DataError(path, f"{where}[{i}]", f"must be an [x, y] pair of numbers, got {got}")
+        if not all(-COORD_MAX <= c <= COORD_MAX for c in v):  # nan and inf fail the range
+            raise DataError(path, f"{where}[{i}]", f"must be finite and within {COORD_MAX:g} px of the centre, "
+                                                   f"got [{shown(v[0])}, {shown(v[1])}]")
     drawn = tuple((float(x), float(y)) for x, y in value)
     try:
         return Armature(drawn, name=label), drawn
@@ -125,9 +124,11 @@ def parse_polygon(value, path: Path, where: str, label: str) -> tuple[Armature, 
 
 def _shape_set(table, path: Path, where: str, name: str) -> tuple[dict[str, Armature], dict]:
     if not isinstance(table, dict):
-        raise DataError(path, where, "must be a table of shape = [[x, y], ...]")
+        raise DataError(path, where, f"must be a table of shape = [[x, y], ...], got {shown(table)}")
     if "hit" not in table:
         raise DataError(path, f"{where}.hit", "missing: every frame needs a hit shape")
+    if len(table) > SHAPES_MAX:
+        raise DataError(path, where, f"must have at most {SHAPES_MAX} shapes, got {len(table)}")
     shapes, drawn = {}, {}
     for key in ["hit"] + [k for k in table if k != "hit"]:
         if not SHAPE_NAME.match(key):
@@ -162,18 +163,21 @@ def load_armature_file(path: str | Path) -> ArmatureFile:
         raise DataError(path, unknown[0], f"unknown field (expected some of {', '.join(sorted(FIELDS))})")
     name = doc.get("name", path.name.removesuffix(SUFFIX))
     if not isinstance(name, str) or not SHAPE_NAME.match(name.replace("-", "_")):
-        raise DataError(path, "name", "must be a short lower-case name (a-z, 0-9, _ or -)")
+        raise DataError(path, "name", f"must be a short lower-case name (a-z, 0-9, _ or -), got {shown(name)}")
     sprite = doc.get("sprite", f"{name}.png")
     if not isinstance(sprite, str) or not sprite.endswith(".png"):
-        raise DataError(path, "sprite", "must be the file name of a .png beside this file")
-    if "/" in sprite or "\\" in sprite or sprite.startswith(".") or Path(sprite).is_absolute():
-        raise DataError(path, "sprite", f"must be a file name in the same folder, not a path; got {sprite!r}")
+        raise DataError(path, "sprite", f"must be the file name of a .png beside this file, got {shown(sprite)}")
+    if ("/" in sprite or "\\" in sprite or sprite.startswith(".") or Path(sprite).is_absolute()
+            or not sprite.isprintable() or len(sprite) > 64):
+        raise DataError(path, "sprite", f"must be a file name in the same folder, not a path; got {shown(sprite)}")
     frames_n = doc.get("frames", 1)
     if not isinstance(frames_n, int) or isinstance(frames_n, bool) or not 1 <= frames_n <= FRAMES_MAX:
-        raise DataError(path, "frames", f"must be a whole number from 1 to {FRAMES_MAX}")
+        raise DataError(path, "frames", f"must be a whole number from 1 to {FRAMES_MAX}, got {shown(frames_n)}")
     frame_time = doc.get("frame_time", 0.1)
-    if not _is_number(frame_time) or not (1 / 120 <= frame_time <= 10):
-        raise DataError(path, "frame_time", "must be a number of seconds from 1/120 to 10")
+    if not _is_number(frame_time) or not (1 / 120 <= frame_time <= 10):  # nan and inf fail the range
+        finite = "finite, " if isinstance(frame_time, float) and not math.isfinite(frame_time) else ""
+        raise DataError(path, "frame_time",
+                        f"must be {finite}a number of seconds from 1/120 to 10, got {shown(frame_time)}")
     if frames_n == 1:
         if "frame" in doc:
             raise DataError(path, "frame", "only for animated sprites (frames > 1); use [shapes]")

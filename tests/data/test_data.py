@@ -156,3 +156,19 @@ def test_resolve_level__path_or_name(tmp_path):
         resolve_level("zzz")
     with pytest.raises(DataError, match="no such level file"):
         resolve_level(str(tmp_path / "missing.toml"))
+
+
+def test_level__with_nothing_to_fight_loads_and_completes_at_once(tmp_path, capsys):
+    """An empty file is broken; a level that declares no wave and no boss is a level."""
+    from broadsword.cli import main
+
+    void = tmp_path / "void.toml"
+    void.write_text('[level]\ntitle = "The Void"\n')
+    level = load_level(void)
+    assert level.waves == () and level.boss is None
+    assert main(["--headless", "--level", str(void), "--frames", "50"]) == 0
+    out = capsys.readouterr().out.splitlines()[-1]
+    assert '"complete": true' in out and '"frames": 1,' in out
+    (tmp_path / "empty.toml").write_text("\n")
+    with pytest.raises(DataError, match="empty.toml: wave: the file is empty"):
+        load_level(tmp_path / "empty.toml")
