@@ -17,15 +17,15 @@ naming the file and the field.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import sys
-from pathlib import Path
 
 import numpy as np
 
 from .fileio import write_atomic
-from .data import DataError, data_dir, list_levels, load_armatures, load_level, resolve_level
+from .data import DataError, check_level_sprites, data_dir, list_levels, load_armatures, load_level, resolve_level
 
 RECORDING_VERSION = 1
 
@@ -46,6 +46,8 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--mute", action="store_true", help="start with sound off")
     ap.add_argument("--lab", nargs="?", const="100,2000", metavar="E,B",
                     help="show the benchmark's reference scene (E ships, B bullets) live with the overlay")
+    ap.add_argument("--rotation", choices=("lut", "exact"), default=None,
+                    help="--headless only: pose armatures with this rotation mode instead of the level's scene.rotation")
     return ap
 
 
@@ -56,22 +58,44 @@ def save_recording(path, level: str, seed: int, inputs: list[int], state_hash: s
 
 
 def load_recording(path) -> dict:
-    """Parse a recording; :class:`DataError` naming the file and field if it is broken."""
+    """Parse a recording (docs/FORMATS.md); :class:`DataError` naming the file and field if it
+    is broken. The file is at most 8 MiB (refused by its size before parsing; at two hex
+    digits a frame that is over 18 hours at 60 frames a second), UTF-8 JSON read by
+    :func:`json.loads`: ``version`` 1, ``level`` a name or path, ``seed`` a whole number in
+    [0, 2**63), ``inputs`` hex with a valid input byte per frame, ``frames`` (if given)
+    their count and ``state_hash`` (if given) a string."""
+    from .data.errors import shown
+    from .data.resources import read_text
+
+    text = read_text(path, 8 << 20, "a recording")
     try:
-        doc = json.loads(Path(path).read_text())
-    except OSError as exc:
-        raise DataError(path, "", f"cannot read: {exc.strerror or exc}") from None
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        doc = json.loads(text)
+    except RecursionError:
+        raise DataError(path, "", "not a recording (bad JSON: nested too deeply)") from None
+    except ValueError as exc:  # JSONDecodeError, or an integer too long to convert
         raise DataError(path, "", f"not a recording (bad JSON: {exc})") from None
-    if not isinstance(doc, dict) or doc.get("version") != RECORDING_VERSION:
-        raise DataError(path, "version", f"must be {RECORDING_VERSION}")
-    for key, kind in (("level", str), ("seed", int), ("inputs", str)):
+    if not isinstance(doc, dict):
+        raise DataError(path, "", f"not a recording: must be a JSON object, got {shown(doc)}")
+    if type(doc.get("version")) is not int or doc["version"] != RECORDING_VERSION:
+        raise DataError(path, "version", f"must be {RECORDING_VERSION}, got {shown(doc.get('version'))}")
+    for key, kind, what in (("level", str, "a level name"), ("seed", int, "a whole number"),
+                            ("inputs", str, "a hex string")):
         if not isinstance(doc.get(key), kind) or isinstance(doc.get(key), bool):
-            raise DataError(path, key, f"missing or not a {kind.__name__}")
+            got = shown(doc[key]) if key in doc else "nothing (missing)"
+            raise DataError(path, key, f"must be {what}, got {got}")
+    if not doc["level"]:
+        raise DataError(path, "level", "must name a level, got ''")
+    if not 0 <= doc["seed"] < 2**63:
+        raise DataError(path, "seed", f"must lie in [0, 2**63), got {shown(doc['seed'])}")
     try:
         raw = bytes.fromhex(doc["inputs"])
     except ValueError:
-        raise DataError(path, "inputs", "must be a hex string") from None
+        raise DataError(path, "inputs", "must be a hex string, two digits a frame") from None
+    if "frames" in doc and (type(doc["frames"]) is not int or doc["frames"] != len(raw)):
+        raise DataError(path, "frames",
+                        f"must be the number of recorded inputs, {len(raw)}; got {shown(doc['frames'])}")
+    if not isinstance(doc.get("state_hash", ""), str):
+        raise DataError(path, "state_hash", f"must be a string, got {shown(doc['state_hash'])}")
     from .sim import Input
 
     try:
@@ -81,13 +105,21 @@ def load_recording(path) -> dict:
     return doc
 
 
-def run_headless(level_arg: str, frames: int, seed: int, use_autopilot: bool, replay: dict | None = None) -> dict:
-    """Play ``frames`` steps with no window; return the summary (DESIGN.md's JSON)."""
+def run_headless(level_arg: str, frames: int, seed: int, use_autopilot: bool, replay: dict | None = None,
+                 rotation: str | None = None) -> dict:
+    """Play ``frames`` steps with no window; return the summary (DESIGN.md's JSON).
+
+    ``rotation`` ("lut" or "exact"), when given, replaces the level's ``scene.rotation``;
+    the summary's ``rotation`` says which mode the run used.
+    """
     from .sim import IDLE, World, autopilot
 
     level_path = resolve_level(level_arg)
     level = load_level(level_path)
+    if rotation is not None:
+        level = dataclasses.replace(level, scene=dataclasses.replace(level.scene, rotation=rotation))
     armatures = load_armatures(data_dir("assets") / "sprites")
+    check_level_sprites(level, armatures)  # an unknown sprite: a DataError naming the field, not the World's ValueError
     world = World(level, armatures, seed)
     inputs = replay["decoded"] if replay else None
     recorded: list[int] = []
@@ -118,7 +150,7 @@ def run_headless(level_arg: str, frames: int, seed: int, use_autopilot: bool, re
     summary = world.summary()
     summary.update({"seed": seed, "level": level.name, "tiers": tiers, "peak_enemy_bullets": peak,
                     "collision_median_ms": round(float(np.median(ms)), 4) if ms else 0.0,
-                    "state_hash": world.state_hash()})
+                    "rotation": world.pipeline.rotation, "state_hash": world.state_hash()})
     summary["_recorded"] = recorded
     return summary
 
@@ -138,6 +170,9 @@ def main(argv: list[str] | None = None) -> int:
 
         return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:])
     args = _parser().parse_args(argv)
+    if not 0 <= args.seed < 2**63:
+        print(f"broadsword: --seed must be a whole number in [0, 2**63), got {args.seed}", file=sys.stderr)
+        return 2
     from .collision import retain_heap
 
     retain_heap()  # the application's call: keep the heap between frames (docs/PERFORMANCE.md)
@@ -155,7 +190,7 @@ def main(argv: list[str] | None = None) -> int:
             frames = args.frames if args.frames is not None else (len(replay["decoded"]) if replay else 600)
             if frames < 0:
                 raise SystemExit("broadsword: --frames must be >= 0")
-            summary = run_headless(level, frames, seed, args.autopilot, replay)
+            summary = run_headless(level, frames, seed, args.autopilot, replay, args.rotation)
             recorded = summary.pop("_recorded")
             if args.record:
                 save_recording(args.record, level, seed, recorded, summary["state_hash"])
@@ -190,8 +225,8 @@ def _play(level, seed, args, replay) -> int:
         return 1
     if args.mute:
         app.audio.toggle_mute()
-    if level is not None and lab is None:
-        app.start_run()
+    if level is not None and lab is None and app.error is None:
+        app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
     if args.record and app.world is not None:
         save_recording(args.record, app.world.level.name, seed, app.recorded, app.world.state_hash())

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pygame
 
-from ..data import DataError, list_levels, load_level, resolve_level
+from ..data import DataError, check_level_sprites, list_levels, load_level, resolve_level
 from ..sim import DT, FIELD, Input, World, autopilot
 from .audio import Audio
 from .overlay import Overlay
@@ -376,12 +376,8 @@ class App:
         try:
             path = resolve_level(self.custom_level or self.levels[run.level_index])
             level = load_level(path)
-            try:
-                world = World(level, self.bank.armatures, seed=self.seed + run.level_index)
-            except DataError:
-                raise
-            except ValueError as exc:  # the level names a ship or bullet that has no armature
-                raise DataError(path, "", str(exc)) from None
+            check_level_sprites(level, self.bank.armatures)  # names the field of an unknown sprite
+            world = World(level, self.bank.armatures, seed=self.seed + run.level_index)
         except DataError as exc:
             self._report(exc)
             self.world, self.run_state = None, None
