@@ -23,6 +23,7 @@ sprite is a file name beside the armature file, never a path (``../x.png``, ``/x
 
 from __future__ import annotations
 
+import json
 import math
 import re
 import tomllib
@@ -154,7 +155,11 @@ def _header(path: Path) -> str:
 def load_armature_file(path: str | Path) -> ArmatureFile:
     """Parse and validate one armature file; :class:`DataError` names the file and field."""
     path = Path(path)
-    doc = _read_toml(path)
+    return _parse(_read_toml(path), path, _header(path))
+
+
+def _parse(doc: dict, path: Path, header: str) -> ArmatureFile:
+    """Validate the parsed TOML table ``doc`` of the armature file ``path``."""
     if "vertices" in doc or "graze" in doc:
         key = "vertices" if "vertices" in doc else "graze"
         raise DataError(path, key, "is the old format: put the shapes under [shapes] as hit = [...] and graze = [...]")
@@ -197,7 +202,7 @@ def load_armature_file(path: str | Path) -> ArmatureFile:
             if sorted(shapes) != sorted(names):
                 raise DataError(path, f"frame[{i}]", f"must name the same shapes as frame[0]: {', '.join(names)}")
     return ArmatureFile(name, sprite, tuple(s for s, _ in sets), path, float(frame_time),
-                        tuple(d for _, d in sets), _header(path))
+                        tuple(d for _, d in sets), header)
 
 
 def load_armatures(folder: str | Path) -> dict[str, ArmatureFile]:
@@ -229,7 +234,7 @@ def format_armature_file(name: str, sprite: str, frames, frame_time: float = 0.1
     """The text of an armature file: ``frames`` is a list of ``{shape: [(x, y), ...]}``
     (``hit`` first), one per animation frame. Four vertices to a line, shortest exact floats."""
     lines = [header] if header else [f"# Armatures of {sprite}: sprite pixels, origin at the centre, +x right, +y down."]
-    lines += [f'name = "{name}"', f'sprite = "{sprite}"']
+    lines += [f"name = {json.dumps(name)}", f"sprite = {json.dumps(sprite)}"]  # a JSON string is a TOML basic string
     if len(frames) > 1:
         lines += [f"frames = {len(frames)}", f"frame_time = {_number(frame_time)}"]
     for i, shapes in enumerate(frames):
@@ -243,12 +248,10 @@ def format_armature_file(name: str, sprite: str, frames, frame_time: float = 0.1
 def save_armature_file(path: str | Path, name: str, sprite: str, frames, frame_time: float = 0.1,
                        header: str = "") -> ArmatureFile:
     """Validate ``frames`` (as :func:`format_armature_file` takes them), write the file
-    atomically and return it as loaded back. Nothing is written if a shape is invalid
-    (:class:`DataError` naming the shape)."""
+    atomically and return it as loaded back. Nothing is written if anything is invalid (a
+    shape, the name, the sprite: :class:`DataError` naming the field)."""
     path = Path(path)
     text = format_armature_file(name, sprite, frames, frame_time, header)
-    doc = tomllib.loads(text)  # validate before touching the disk: parse what would be written
-    for i, shapes in enumerate(doc.get("frame", [doc.get("shapes")])):
-        _shape_set(shapes, path, "shapes" if len(frames) == 1 else f"frame[{i}]", name)
+    _parse(tomllib.loads(text), path, header)  # validate exactly what would be written, before touching the disk
     write_atomic(path, text.encode("utf-8"))
     return load_armature_file(path)

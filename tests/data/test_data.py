@@ -172,3 +172,11 @@ def test_level__with_nothing_to_fight_loads_and_completes_at_once(tmp_path, caps
     (tmp_path / "empty.toml").write_text("\n")
     with pytest.raises(DataError, match="empty.toml: wave: the file is empty"):
         load_level(tmp_path / "empty.toml")
+
+
+@pytest.mark.parametrize("name, sprite, field", [("Bad Name", "x.png", "name"), ('a"b', "x.png", "name"), ("x", "../x.png", "sprite")])
+def test_armature_file__save_refuses_a_bad_name_or_sprite_and_writes_nothing(tmp_path, name, sprite, field):
+    path = tmp_path / "x.armature.toml"
+    with pytest.raises(DataError, match=f"x.armature.toml: {field}: "):
+        save_armature_file(path, name, sprite, [{"hit": [(0, 0), (4, 0), (0, 4)]}])
+    assert list(tmp_path.iterdir()) == []
