@@ -120,10 +120,6 @@ class World:
         self.table = LayerTable(LAYERS, tests)
         self.pipeline = Pipeline(self.shapes, self.table, tiers=level.scene.tiers, rotation=level.scene.rotation,
                                  bin_size=level.scene.bin_size, field=(0.0, 0.0, *FIELD))
-        # Half the smallest extent of each armature: a bullet moving farther than this in a
-        # frame is swept (the paper's "quick gun" fix).
-        box = self.shapes.local_box
-        self._sweep_step = 0.5 * np.minimum(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
 
         self.frame = 0
         self.score = 0
@@ -313,8 +309,12 @@ class World:
             arm = self.current_kind(arm, age)
         layer = np.concatenate([np.array(head_layer)[heads], np.full(e.n, ENEMY), np.full(eb.n, ENEMY_BULLET),
                                 np.full(pb.n, PLAYER_BULLET)]).astype(np.int64)
-        step = np.hypot(*(pos - prev).T) if len(pos) else np.zeros(0)
-        swept = (layer >= ENEMY_BULLET) & (step > self._sweep_step[arm])
+        # Every bullet that moved is swept from its last pose to this one (the paper's "quick
+        # gun" fix, at every speed): a bullet's hull translated along its step covers exactly
+        # the ground it crossed, so no contact between two frames is missed, not even a
+        # sliver at a corner. Ships and the player are not swept: they move slowly, and a
+        # jump (a respawn) must not touch what lies between the two places.
+        swept = (layer >= ENEMY_BULLET) & (pos != prev).any(axis=1)
         result = self.pipeline.step(arm, layer, pos, angle, prev, angle, swept if swept.any() else None)
         self.last = result
         self.last_objects = dict(pos=pos, angle=angle, arm=arm, layer=layer, prev=prev, swept=swept,
