@@ -64,8 +64,8 @@ from ..collision import Armature, ArmatureSet, LayerTable, Pipeline, point_in_po
 from ..collision.outline import ShapeFit, generate_armature, opaque_mask
 from ..data import DataError, data_dir, load_armature_file
 from ..data.armatures import COORD_MAX, FRAMES_MAX, SUFFIX, VERTICES_MAX, save_armature_file
-from .app import wrap_text
 from .authoring import fit_of, sprite_alpha
+from .text import wrap_text
 
 Point = tuple[float, float]
 Points = tuple[Point, ...]

@@ -15,6 +15,7 @@ import pytest
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, FIELD, IDLE, World, autopilot
+from sim_bullets import add_bullets
 
 ARMATURES = load_armatures(data_dir("assets") / "sprites")
 PICKET = load_level(resolve_level("1-picket"))
@@ -47,14 +48,6 @@ def play(w: World, frames: int, pilot=True) -> list:
         if w.over or w.complete:
             break
     return events
-
-
-def add_bullets(pool, kind: int, pos, vel, prev=None) -> None:
-    pos = np.asarray(pos, dtype=np.float64).reshape(-1, 2)
-    vel = np.asarray(vel, dtype=np.float64).reshape(-1, 2)
-    n = len(pos)
-    pool.add(pos=pos, prev=pos if prev is None else prev, vel=vel, angle=np.degrees(np.arctan2(vel[:, 0], -vel[:, 1])),
-             arm=np.full(n, kind), grazed=np.zeros(n, dtype=bool))
 
 
 COMPASS = np.array([[math.cos(a), math.sin(a)] for a in np.radians(np.arange(0.0, 360.0, 45.0))])  # (8, 2) unit

@@ -39,6 +39,7 @@ from broadsword.data import data_dir, list_levels, load_armatures, load_level, r
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, IDLE, World
 from broadsword.sim.world import ENEMY, ENEMY_BULLET, PLAYER, PLAYER_BULLET
+from sim_bullets import add_bullets
 
 ARMATURES = load_armatures(data_dir("assets") / "sprites")
 LEVELS = [load_level(resolve_level(n)) for n in list_levels()]
@@ -111,14 +112,6 @@ def place_ship(w: World, name: str, kind: int, centre=CENTRE, angle=TARGET_ANGLE
     w.enemies.prev[:] = centre
     w.enemies.angle[:] = angle
     w.enemies.hp[:] = 10**9
-
-
-def add_bullets(pool, kind_base: int, pos, vel, prev=None) -> None:
-    pos = np.asarray(pos, dtype=np.float64).reshape(-1, 2)
-    vel = np.asarray(vel, dtype=np.float64).reshape(-1, 2)
-    n = len(pos)
-    pool.add(pos=pos, prev=pos if prev is None else prev, vel=vel, angle=np.degrees(np.arctan2(vel[:, 0], -vel[:, 1])),
-             arm=np.full(n, kind_base), grazed=np.zeros(n, dtype=bool))
 
 
 def bullet_hits(w: World, target_layer: int, bullet_layer: int) -> np.ndarray:
