@@ -136,9 +136,9 @@ def run_headless(level_arg: str, frames: int, seed: int, use_autopilot: bool, re
         recorded.append(inp.to_byte())
         world.step(inp)
         peak = max(peak, world.enemy_bullets.n)
-        if world.last is not None:
-            ms.append(world.last.ms)
-            for s in world.last.stats:
+        if world.collision is not None:
+            ms.append(world.collision.result.ms)
+            for s in world.collision.result.stats:
                 t = tiers.setdefault(s.name, {"pairs_in": 0, "pairs_out": 0, "ms": 0.0})
                 t["pairs_in"] += s.pairs_in
                 t["pairs_out"] += s.pairs_out

@@ -136,6 +136,7 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
         traceback text as one string).
     """
     from .sim import DT, World, autopilot
+    from .sim.boss import BossState
 
     if frames < 0:
         raise ValueError(f"frames must be >= 0, got {frames}")
@@ -173,10 +174,10 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
             if world.over or world.complete:
                 over += world.over
                 complete += world.complete
-                score += world.score
-                hits += world.hits
+                score += world.score.points
+                hits += world.score.hits
                 longest = max(longest, world.frame)
-                boss_games += world.boss_state in ("fighting", "dead")
+                boss_games += world.boss is not None and world.boss.state is not BossState.WAITING
                 run_hash.update(world.state_hash().encode())
                 if f < frames:
                     world = World(level, armatures, game_seed(seed, games))
@@ -201,10 +202,10 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
         error = traceback.format_exc()
     wall = clock() - t_start
     if not (world.over or world.complete):  # the game in progress when the frames ran out (or failed)
-        score += world.score
-        hits += world.hits
+        score += world.score.points
+        hits += world.score.hits
         longest = max(longest, world.frame)
-        boss_games += world.boss_state in ("fighting", "dead")
+        boss_games += world.boss is not None and world.boss.state is not BossState.WAITING
         if error is None:  # after an exception the state may be broken: the error is what counts
             run_hash.update(world.state_hash().encode())
     final_rss, _ = rss_bytes()

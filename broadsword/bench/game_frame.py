@@ -37,8 +37,8 @@ def run_game_frames(level: str = "3-broadsword", warmup: int = 660, frames: int 
         app.frame(DT)  # events, one fixed step, render, present
         total.append((time.perf_counter() - t0) * 1e3)
         bullets.append(world.enemy_bullets.n + world.player_bullets.n)
-        if world.last is not None:
-            collide.append(world.last.ms)
+        if world.collision is not None:
+            collide.append(world.collision.result.ms)
     # Split one frame's cost: time the render alone on the final state.
     for _ in range(frames):
         t0 = time.perf_counter()

@@ -52,7 +52,6 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
     from ..data import load_level, resolve_level
     from ..game.sprites import SpriteBank
     from ..sim import World, autopilot
-    from ..sim.world import LAYERS
 
     pygame.init()
     bank = SpriteBank()
@@ -60,7 +59,7 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
     masks: dict[tuple[str, int, int], tuple[pygame.mask.Mask, int, int]] = {}
 
     def mask(kind, angle):
-        key = (world.names[kind], int(world.kind_frame[kind]), int(round(angle)) % 360)
+        key = (world.kinds.names[kind], int(world.kinds.frame[kind]), int(round(angle)) % 360)
         got = masks.get(key)
         if got is None:
             img = bank.rotated(key[0], key[2], key[1])
@@ -68,16 +67,17 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
         return got
 
     # Sprite half-extents per armature id (the rotated sprite fits in the unrotated diagonal).
-    half = np.array([np.hypot(*bank.images[n].get_size()) / 2 if n in bank.images else 0.0 for n in world.names])
-    entries = world.table.entries
-    counts = {f"{LAYERS[a]}/{LAYERS[b]}": {"both": 0, "armature_only": 0, "sprite_only": 0} for a, b in entries}
+    half = np.array([np.hypot(*bank.images[n].get_size()) / 2 if n in bank.images else 0.0 for n in world.kinds.names])
+    names = world.pipeline.layers.names
+    entries = world.pipeline.layers.entries
+    counts = {f"{names[a]}/{names[b]}": {"both": 0, "armature_only": 0, "sprite_only": 0} for a, b in entries}
     for _ in range(frames):
         world.step(autopilot(world))
-        if world.over or world.complete or world.last is None:
+        if world.over or world.complete or world.collision is None:
             break
-        o = world.last_objects
-        p, angle, arm, layer = o["pos"], o["angle"], o["arm"], o["layer"]
-        armature_hits = set(map(tuple, world.last.hits.tolist()))
+        o = world.collision
+        p, angle, arm, layer = o.positions, o.angles, o.armature, o.layer
+        armature_hits = set(map(tuple, o.result.hits.tolist()))
         r = half[arm]
         box = np.column_stack([p[:, 0] - r, p[:, 1] - r, p[:, 0] + r, p[:, 1] + r])
         for a, b in entries:
@@ -88,7 +88,7 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
             pairs = pairs[boxes_overlap(box, pairs)]
             seen = set()
             for i, j in pairs.tolist():
-                if world.names[arm[i]] == "graze":
+                if world.kinds.names[arm[i]] == "graze":
                     continue
                 mi, wi, hi = mask(arm[i], angle[i])
                 mj, wj, hj = mask(arm[j], angle[j])
@@ -97,9 +97,9 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
                 xj, yj = round(p[j, 0] - wj / 2), round(p[j, 1] - hj / 2)
                 if mi.overlap(mj, (xj - xi, yj - yi)) is not None:
                     seen.add((i, j))
-            key = f"{LAYERS[a]}/{LAYERS[b]}"
+            key = f"{names[a]}/{names[b]}"
             mine = {h for h in armature_hits if layer[h[0]] == a and layer[h[1]] == b}
-            if LAYERS[a] == "graze":
+            if names[a] == "graze":
                 continue  # grazes are near misses by design: no sprite to compare
             counts[key]["both"] += len(mine & seen)
             counts[key]["armature_only"] += len(mine - seen)

@@ -17,14 +17,38 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
+from enum import Enum
 from pathlib import Path
 
 from ..collision import BOUND_TIERS, BROAD_PHASES, LAST_TIERS, ROTATION_MODES
 from .errors import DataError, shown
 from .resources import read_toml
 
-PATHS = ("straight", "sine", "arc", "dive", "hold")
-PATTERNS = ("none", "aimed", "spread", "ring", "spiral")
+
+
+class PathKind(str, Enum):
+    """How a wave's ships fly (``path`` in a level file); each kind is one function in
+    :mod:`broadsword.sim.motion`."""
+
+    STRAIGHT = "straight"
+    SINE = "sine"
+    ARC = "arc"
+    DIVE = "dive"
+    HOLD = "hold"
+
+
+class FireKind(str, Enum):
+    """What a ship fires (``fire`` in a level file)."""
+
+    NONE = "none"
+    AIMED = "aimed"
+    SPREAD = "spread"
+    RING = "ring"
+    SPIRAL = "spiral"
+
+
+PATHS = tuple(k.value for k in PathKind)
+PATTERNS = tuple(k.value for k in FireKind)
 #: A level file is at most this big; a larger one is refused by its size, unparsed.
 LEVEL_MAX_BYTES = 1 << 20
 WAVES_MAX = 256
@@ -60,7 +84,7 @@ class PlayerSpec:
 
 @dataclass(frozen=True)
 class FireSpec:
-    pattern: str = "none"
+    pattern: FireKind = FireKind.NONE
     bullet: str = "pellet"
     speed: float = 160.0  # px/s
     every: float = 1.5  # s between volleys
@@ -69,10 +93,17 @@ class FireSpec:
     spin: float = 0.0  # degrees the volley turns each time (spirals)
     delay: float = 0.5  # s after spawning before the first volley
 
+    def __post_init__(self):
+        object.__setattr__(self, "pattern", FireKind(self.pattern))  # a name from a file or a test
+
+    @property
+    def fires(self) -> bool:
+        return self.pattern is not FireKind.NONE
+
 
 @dataclass(frozen=True)
 class PathSpec:
-    kind: str = "straight"
+    kind: PathKind = PathKind.STRAIGHT
     x: float = 240.0  # entry x, px
     speed: float = 120.0  # px/s
     amplitude: float = 60.0  # sine
@@ -82,6 +113,9 @@ class PathSpec:
     dive_at: float = 200.0  # dive: y where it turns toward the player
     hold_y: float = 160.0  # hold
     hold_for: float = 4.0  # hold, s
+
+    def __post_init__(self):
+        object.__setattr__(self, "kind", PathKind(self.kind))  # a name from a file or a test
 
 
 @dataclass(frozen=True)
@@ -106,13 +140,25 @@ class BossPart:
 
 
 @dataclass(frozen=True)
+class BossPhaseSpec:
+    """One phase of a boss fight: the damage it takes to end it."""
+
+    hp: int
+
+
+@dataclass(frozen=True)
 class BossSpec:
     at: float
-    hp: int
+    hp: int  # in all, over every phase
     score: int
     y: float  # where it holds
     sway: float  # px of side-to-side sway
     parts: tuple[BossPart, ...]
+    phases: tuple[BossPhaseSpec, ...] = ()  # () : one phase of ``hp``
+
+    def __post_init__(self):
+        if not self.phases:
+            object.__setattr__(self, "phases", (BossPhaseSpec(self.hp),))
 
 
 @dataclass(frozen=True)
@@ -128,10 +174,10 @@ class Level:
     @property
     def sprites(self) -> set[str]:
         """Every sprite/armature name the level uses."""
-        names = {w.enemy for w in self.waves} | {w.fire.bullet for w in self.waves if w.fire.pattern != "none"}
+        names = {w.enemy for w in self.waves} | {w.fire.bullet for w in self.waves if w.fire.fires}
         if self.boss:
             names |= {p.sprite for p in self.boss.parts}
-            names |= {p.fire.bullet for p in self.boss.parts if p.fire.pattern != "none"}
+            names |= {p.fire.bullet for p in self.boss.parts if p.fire.fires}
         return names
 
 
@@ -225,8 +271,8 @@ FIRE_KEYS = ("bullet", "bullet_speed", "fire_every", "shots", "spread", "volley_
 
 def _fire(t: _Table) -> FireSpec:
     d = FireSpec()
-    pattern = t.str("fire", d.pattern, PATTERNS)
-    if pattern == "none":
+    pattern = FireKind(t.str("fire", d.pattern.value, PATTERNS))
+    if pattern is FireKind.NONE:
         for key in FIRE_KEYS:
             if key in t.doc:
                 raise t.error(key, 'only for a ship that fires: set fire to a pattern, not "none"')
@@ -246,7 +292,7 @@ def _fire(t: _Table) -> FireSpec:
 def _path(t: _Table) -> PathSpec:
     d = PathSpec()
     return PathSpec(
-        kind=t.str("path", d.kind, PATHS),
+        kind=PathKind(t.str("path", d.kind.value, PATHS)),
         x=t.num("x", d.x, -200, 2000),
         speed=t.num("speed", d.speed, 1, 2000),
         amplitude=t.num("amplitude", d.amplitude, 0, 1000),
@@ -393,9 +439,9 @@ def check_level_sprites(level: Level, armatures) -> None:
 
     for i, w in enumerate(level.waves):
         check(f"wave[{i}].enemy", w.enemy)
-        if w.fire.pattern != "none":
+        if w.fire.fires:
             check(f"wave[{i}].bullet", w.fire.bullet)
     for i, part in enumerate(level.boss.parts if level.boss else ()):
         check(f"boss.part[{i}].sprite", part.sprite)
-        if part.fire.pattern != "none":
+        if part.fire.fires:
             check(f"boss.part[{i}].bullet", part.fire.bullet)

@@ -268,8 +268,7 @@ class App:
         elif k == pygame.K_F3:
             self.slow_motion = not self.slow_motion
         elif k == pygame.K_F4 and self.world is not None:
-            p = self.world.pipeline
-            p.rotation = "exact" if p.rotation == "lut" else "lut"
+            self.world.set_rotation("exact" if self.world.rotation == "lut" else "lut")
         if self.scene == "title":
             if k in (pygame.K_RETURN, pygame.K_z, pygame.K_SPACE):
                 self.audio.play("select")
@@ -358,9 +357,9 @@ class App:
             self.accumulator = 0.0
             self.scene = "title"
             return False
-        world.score = run.score
+        world.score.points = run.score
         if run.lives is not None:
-            world.lives = run.lives
+            world.player.lives = run.lives
         self.world = world
         self.error = None
         self.accumulator = 0.0
@@ -374,7 +373,7 @@ class App:
 
     def next_level(self) -> None:
         run, w = self.run_state, self.world
-        run.score, run.lives = w.score, w.lives
+        run.score, run.lives = w.score.points, w.player.lives
         if self.custom_level is None and run.level_index + 1 < len(self.levels):
             run.level_index += 1
             self._load_level()
@@ -382,7 +381,7 @@ class App:
             self._end_run(victory=True)
 
     def _end_run(self, victory: bool = False) -> None:
-        score = self.world.score if self.world else 0
+        score = self.world.score.points if self.world else 0
         self.final = (score, victory)
         if self.scores.qualifies(score) and score > 0:
             self.name = ""
@@ -521,7 +520,7 @@ class App:
     def _draw_complete(self) -> None:
         self._veil()
         self._text("LEVEL COMPLETE", 260, self.big, (150, 255, 200))
-        self._text(f"Score {self.world.score:,}   Grazes {self.world.grazes}", 315)
+        self._text(f"Score {self.world.score.points:,}   Grazes {self.world.score.grazes}", 315)
         self._text("Enter to continue", 350)
 
     def _draw_gameover(self) -> None:

@@ -11,7 +11,6 @@ import numpy as np
 import pygame
 
 from ..collision import BinGrid
-from ..sim.world import World
 from .render import LAYER_COLOURS
 
 
@@ -20,10 +19,14 @@ class Overlay:
         self.font = pygame.font.Font(None, 18)
         self.visible = False
 
-    def draw(self, surf: pygame.Surface, world: World, fps: float, paused: bool = False) -> None:
-        """Draw over ``surf``. ``world`` is anything with the game world's collision record:
-        ``pipeline``, ``last`` (a FrameResult) and ``last_objects`` (the arrays it was given)."""
-        result, objs = world.last, world.last_objects
+    def draw(self, surf: pygame.Surface, world, fps: float, paused: bool = False) -> None:
+        """Draw over ``surf``. ``world`` is the game's World (its ``pipeline`` and last
+        ``collision`` record) or the lab (``pipeline``, ``last`` and ``last_objects``)."""
+        record = getattr(world, "collision", None)  # until FrameResult carries its own objects
+        if record is not None:
+            result, objs = record.result, dict(pos=record.positions, layer=record.layer, swept=record.swept)
+        else:
+            result, objs = getattr(world, "last", None), getattr(world, "last_objects", {})
         if result is None:
             return
         self._grid(surf, world)
@@ -50,9 +53,9 @@ class Overlay:
         for i, j in result.hits.tolist():
             pygame.draw.line(surf, (255, 40, 40), pos[i], pos[j], 3)
             pygame.draw.circle(surf, (255, 40, 40), pos[j], 6, 2)
-        self._panel(surf, world, fps, paused)
+        self._panel(surf, world, result, objs, fps, paused)
 
-    def _grid(self, surf, world: World) -> None:
+    def _grid(self, surf, world) -> None:
         grid = world.pipeline.broad_phase
         if not isinstance(grid, BinGrid):
             return
@@ -73,15 +76,15 @@ class Overlay:
             y = oy + r * size
             pygame.draw.line(surf, line, (ox, y), (ox + cols * size, y))
 
-    def _panel(self, surf, world: World, fps: float, paused: bool) -> None:
+    def _panel(self, surf, world, result, objs, fps: float, paused: bool) -> None:
         p = world.pipeline
         lines = [f"FPS {fps:5.1f}   rotation {p.rotation} (F4)   {'PAUSED  F2: step' if paused else ''}"]
         if isinstance(p.broad_phase, BinGrid):
             lines.append(f"bins {p.broad_phase.shape[0]}x{p.broad_phase.shape[1]} of {p.broad_phase.size:.0f} px")
         lines.append(f"{'tier':<10}{'in':>9}{'out':>8}{'ms':>8}")
-        for s in world.last.stats:
+        for s in result.stats:
             lines.append(f"{s.name:<10}{s.pairs_in:>9}{s.pairs_out:>8}{s.ms:>8.3f}")
-        lines.append(f"total ms {world.last.ms:.3f}   objects {len(world.last_objects['pos'])}")
+        lines.append(f"total ms {result.ms:.3f}   objects {len(objs['pos'])}")
         w = 250
         h = 16 * len(lines) + 8
         box = pygame.Surface((w, h), pygame.SRCALPHA)

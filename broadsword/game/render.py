@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import pygame
 
-from ..sim.world import FIELD, World
+from ..sim import FIELD, World
 from .sprites import SpriteBank
 
 ROUND_BULLETS = ("pellet", "orb")  # rotation-invariant sprites: never rotated
@@ -101,22 +101,23 @@ class Renderer:
         return prev + (pos - prev) * alpha
 
     def _enemies(self, surf, world: World, alpha: float) -> None:
-        e = world.enemies
-        if not e.n:
-            return
-        pos = self._lerp(e.pos, e.prev, alpha)
-        kinds = world.current_kind(e.arm, e.age)  # the animation frame each ship shows
-        for (x, y), a, k in zip(pos.tolist(), e.angle.tolist(), kinds.tolist()):
-            img = self.bank.rotated(world.names[k], a, int(world.kind_frame[k]))
-            surf.blit(img, img.get_rect(center=(x, y)))
+        """Wave ships, then the boss's parts over them."""
+        for e in (world.ships.pool, *((world.boss.parts,) if world.boss else ())):
+            if not e.n:
+                continue
+            pos = self._lerp(e.pos, e.prev, alpha)
+            kinds = world.kinds.current(e.arm, e.age)  # the animation frame each ship shows
+            for (x, y), a, k in zip(pos.tolist(), e.angle.tolist(), kinds.tolist()):
+                img = self.bank.rotated(world.kinds.names[k], a, int(world.kinds.frame[k]))
+                surf.blit(img, img.get_rect(center=(x, y)))
 
     def _bullets(self, surf, pool, world: World, alpha: float) -> None:
         if not pool.n:
             return
         pos = self._lerp(pool.pos, pool.prev, alpha)
-        names, frame_of = world.names, world.kind_frame
+        names, frame_of = world.kinds.names, world.kinds.frame
         blits = []
-        for (x, y), a, k in zip(pos.tolist(), pool.angle.tolist(), world.current_kind(pool.arm, world.time).tolist()):
+        for (x, y), a, k in zip(pos.tolist(), pool.angle.tolist(), world.kinds.current(pool.arm, world.time).tolist()):
             name, f = names[k], int(frame_of[k])
             img = self.bank.frame(name, f) if name in ROUND_BULLETS else self.bank.rotated(name, a, f)
             w, h = img.get_size()
@@ -124,16 +125,16 @@ class Renderer:
         surf.fblits(blits)  # one call for the whole crowd
 
     def _player(self, surf, world: World, alpha: float, show_armature: bool) -> None:
-        if not world.player_alive:
+        if not world.player.alive:
             return
-        x, y = self._lerp(world.player, world.player_prev, alpha).tolist()
-        blink = world.invulnerable > 0 and (self.tick // 4) % 2 == 0
-        kind = int(world.current_kind(world.arm_id["player"], world.time))
-        img = self.bank.frame("player", int(world.kind_frame[kind]))
+        x, y = self._lerp(world.player.pos, world.player.prev, alpha).tolist()
+        blink = world.player.invulnerable > 0 and (self.tick // 4) % 2 == 0
+        kind = int(world.kinds.current(world.kinds.base["player"], world.time))
+        img = self.bank.frame("player", int(world.kinds.frame[kind]))
         if not blink:
             surf.blit(img, img.get_rect(center=(x, y)))
         if show_armature:  # the precise mode shows the real hit shape
-            pts = [(x + vx, y + vy) for vx, vy in world.shapes.armatures[kind].vertices.tolist()]
+            pts = [(x + vx, y + vy) for vx, vy in world.kinds.shapes.armatures[kind].vertices.tolist()]
             pygame.draw.polygon(surf, (255, 255, 255), pts)
             pygame.draw.polygon(surf, (255, 60, 90), pts, 1)
 
@@ -165,15 +166,15 @@ class Renderer:
         self.effects = keep
 
     def _hud(self, surf, world: World) -> None:
-        text = self.font.render(f"SCORE {world.score:>9,}", True, (235, 240, 255))
+        text = self.font.render(f"SCORE {world.score.points:>9,}", True, (235, 240, 255))
         surf.blit(text, (10, 8))
-        graze = self.font.render(f"GRAZE {world.grazes}", True, (150, 180, 255))
+        graze = self.font.render(f"GRAZE {world.score.grazes}", True, (150, 180, 255))
         surf.blit(graze, (10, 28))
         icon = self.life_icon
-        for i in range(max(world.lives - (1 if world.player_alive else 0), 0)):
+        for i in range(max(world.player.lives - (1 if world.player.alive else 0), 0)):
             surf.blit(icon, (FIELD[0] - 22 - i * (icon.get_width() + 4), 8))
-        if world.boss_state == "fighting" and world.level.boss:
-            frac = max(world.boss_hp, 0) / world.level.boss.hp
+        if world.boss is not None and world.boss.fighting:
+            frac = max(world.boss.hp, 0) / world.boss.spec.phases[world.boss.phase].hp
             pygame.draw.rect(surf, (60, 20, 30), (90, FIELD[1] - 14, FIELD[0] - 180, 6))
             pygame.draw.rect(surf, (255, 70, 90), (90, FIELD[1] - 14, (FIELD[0] - 180) * frac, 6))
         if world.time < 3.0:  # the level's title fades in and out

@@ -1,8 +1,22 @@
-"""broadsword.sim: the game's rules and state. Deterministic; no pygame, no files, no clocks."""
+"""broadsword.sim: the game's rules and state. Deterministic; no pygame, no files, no clocks.
+
+:class:`World` orders the systems, one module each: :mod:`.player`, :mod:`.weapons`,
+:mod:`.motion` (one function per path kind), :mod:`.waves` (the timeline and the ships it
+sends), :mod:`.boss`, :mod:`.emitters` (enemy volleys), :mod:`.collide` (the one pipeline
+call a frame, and its typed record), :mod:`.combat` (applying hits), :mod:`.scoring`;
+with :mod:`.layers`, :mod:`.kinds`, :mod:`.events`, :mod:`.settings`, :mod:`.hashing`,
+:mod:`.field`, :mod:`.input`, :mod:`.pool` and the :mod:`.autopilot`.
+"""
 
 from .autopilot import autopilot
+from .collide import CollisionRecord, Group
+from .events import Events
+from .field import DT, FIELD, SPAWN
 from .input import IDLE, Input
+from .layers import GameLayer, LayerIds
 from .pool import Pool
-from .world import DT, FIELD, LAYERS, Events, World
+from .settings import Settings, Toggle, ToggleEvent
+from .world import World
 
-__all__ = ["DT", "FIELD", "IDLE", "LAYERS", "Events", "Input", "Pool", "World", "autopilot"]
+__all__ = ["DT", "FIELD", "IDLE", "SPAWN", "CollisionRecord", "Events", "GameLayer", "Group", "Input", "LayerIds",
+           "Pool", "Settings", "Toggle", "ToggleEvent", "World", "autopilot"]

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .input import IDLE, Input
-from .world import DT, FIELD, SPAWN
+from .field import DT, FIELD, SPAWN
 
 LOOKAHEAD = 10  # frames ahead at which bullets are judged
 DANGER = 64.0  # px: bullets and ships nearer than this push the player away
@@ -18,14 +18,16 @@ HOME_Y = SPAWN[1]
 
 def autopilot(world) -> Input:
     """The autopilot's input for the world's next step."""
-    if not world.player_alive:
+    if not world.player.alive:
         return IDLE
-    p = world.player
+    p = world.player.pos
+    enemies = np.concatenate([world.ships.pool.pos, world.boss.parts.pos]) if world.boss else world.ships.pool.pos
+    enemy_vel = np.concatenate([world.ships.pool.vel, world.boss.parts.vel]) if world.boss else world.ships.pool.vel
     push = np.zeros(2)
     dense = 0
     for pos, vel, weight in (
         (world.enemy_bullets.pos, world.enemy_bullets.vel, 1.0),
-        (world.enemies.pos, world.enemies.vel, 3.0),
+        (enemies, enemy_vel, 3.0),
     ):
         if not len(pos):
             continue
@@ -39,12 +41,11 @@ def autopilot(world) -> Input:
                 push += weight * (d[near] / dn[:, None] ** 2).sum(axis=0) * DANGER
                 dense += int(near.sum())
     # Line up under the nearest enemy above (to shoot it); keep to the home height.
-    e = world.enemies
     target_x = FIELD[0] / 2
-    if e.n:
-        above = e.pos[:, 1] < p[1] - 40
+    if len(enemies):
+        above = enemies[:, 1] < p[1] - 40
         if above.any():
-            cand = e.pos[above]
+            cand = enemies[above]
             target_x = float(cand[np.argmin(np.abs(cand[:, 0] - p[0])), 0])
     pull = np.array([(target_x - p[0]) / 120.0, (HOME_Y - p[1]) / 160.0])
     # Walls push back too, so dodging never pins the ship in a corner.

@@ -1,73 +1,47 @@
 """The game's rules and state: a fixed-step, deterministic world. No pygame, files or clocks.
 
-One :meth:`World.step` (Game Programming Patterns, "Game Loop"; the paper, section 1.4):
+:meth:`World.step` is the one entry (Game Programming Patterns, "Game Loop"; the paper,
+section 1.4). It orders small systems, each in its own module:
 
-1. move the player from the :class:`Input`, every enemy along its path, every bullet;
-2. collide the new poses -- all of them, after all movement -- in one pipeline call;
-3. apply what collided: damage, deaths, lives, grazes, score (mark, then compact);
-4. spawn what the wave script and the firing patterns say.
+1. move: the player (:mod:`.player`), wave ships (:mod:`.motion`), the boss (:mod:`.boss`),
+   every bullet;
+2. collide the new poses -- all of them, after all movement -- in one pipeline call
+   (:mod:`.collide`);
+3. apply what collided: damage, deaths, lives, grazes, score (:mod:`.combat`; mark, then
+   compact);
+4. spawn: the player's gun (:mod:`.weapons`), the wave timeline and the boss's arrival
+   (:mod:`.waves`, :mod:`.boss`), the enemies' volleys (:mod:`.emitters`); then cull what
+   left the field.
 
-It returns the frame's :class:`Events`. The same level, seed and inputs give the same
-:meth:`World.state_hash` on every run.
-
-Coordinates are playfield pixels, +x right, +y down; angles are degrees with the
-armature convention of :mod:`broadsword.collision` (local ``(x, y)`` turns to
-``(x cos a - y sin a, x sin a + y cos a)``). Sprites face up (-y), so a ship heading along
-velocity ``(vx, vy)`` has angle ``atan2(vx, -vy)``.
+It returns the frame's :class:`~broadsword.sim.events.Events`. The same level, seed,
+settings, toggles and inputs give the same :meth:`World.state_hash` on every run.
 """
 
 from __future__ import annotations
 
-import hashlib
-import math
-from dataclasses import dataclass, field
-
 import numpy as np
 
-from ..collision import Armature, ArmatureSet, FrameResult, LayerTable, Pipeline
-from ..data.levels import FireSpec, Level, PathSpec
+from ..collision import Pipeline
+from ..data.levels import Level
+from . import emitters, hashing
+from .bullets import bullet_pool, cull_bullets, move_bullets
+from .boss import Boss, parts_pool
+from .collide import CollisionRecord, CollisionStep
+from .combat import Combat
+from .events import Events
+from .field import DT, FIELD
 from .input import Input
+from .kinds import Kinds
+from .layers import LayerIds, game_layer_table
+from .player import Player
 from .pool import Pool
+from .scoring import Score
+from .settings import Settings, Toggle, ToggleEvent
+from .waves import WaveShips, WaveTimeline
+from .weapons import PlayerGun
 
-FIELD = (480.0, 640.0)
-DT = 1.0 / 60.0
-LAYERS = ("player", "graze", "enemy_ship", "enemy_bullet", "player_bullet")
-PLAYER, GRAZE, ENEMY, ENEMY_BULLET, PLAYER_BULLET = range(5)
-INVULNERABLE_S = 2.5
-SPAWN = (FIELD[0] / 2, FIELD[1] - 70.0)
-GRAZE_SCORE = 20
-SHOT_SCORE = 0
-CLEAR_RADIUS = 90.0  # enemy bullets cleared around the player when hit (a mercy)
-
-
-@dataclass
-class Events:
-    """What happened in one step, as data (read after the step, never by callback)."""
-
-    hits: int = 0  # hit pairs the pipeline reported (all layers)
-    grazes: int = 0
-    shots: int = 0  # player bullets fired
-    enemy_shots: int = 0
-    kills: list = field(default_factory=list)  # (x, y, sprite name)
-    damaged: list = field(default_factory=list)  # (x, y) of enemies hit but not killed
-    player_hit: bool = False
-    boss_killed: bool = False
-    level_complete: bool = False
-    game_over: bool = False
-
-
-def _heading(vx: np.ndarray, vy: np.ndarray) -> np.ndarray:
-    """Angle (degrees) that turns an up-facing sprite to face velocity (vx, vy)."""
-    return np.degrees(np.arctan2(vx, -vy))
-
-
-def _frame_sets(f) -> list[dict[str, Armature]]:
-    """The shape sets of an ArmatureFile (one per animation frame), or of any object with
-    ``.armature`` and ``.graze`` (one frame)."""
-    frames = getattr(f, "frames", None)
-    if frames:
-        return list(frames)
-    return [{"hit": f.armature} | ({"graze": f.graze} if f.graze is not None else {})]
+#: Initial capacities of the bullet pools (they grow as needed).
+ENEMY_BULLETS, PLAYER_BULLETS = 1024, 128
 
 
 class World:
@@ -77,442 +51,161 @@ class World:
     ----------
     level : Level
     armatures : mapping name -> ArmatureFile (or any object with ``.armature``, ``.graze``)
-        Every sprite the level names, plus ``player`` (with a graze shape) and ``shot``. A
-        sprite with several animation frames gets one armature kind per frame.
+        Every sprite the level names, plus ``player`` (with a graze shape) and ``shot``.
     seed : int
+        Seeds the gameplay random stream (``rng``); cosmetic effects use their own.
+    settings : Settings, optional
+        What can change the outcome besides level, seed and inputs (the rotation mode).
+
+    Attributes
+    ----------
+    frame : int
+        Steps taken.
+    player : Player
+    score : Score
+    ships : WaveShips
+        The wave ships (``ships.pool``).
+    boss : Boss or None
+        None when the level has no boss.
+    enemy_bullets, player_bullets : Pool
+    kinds : Kinds
+        The armature kinds (sprite and frame of each) and their shapes.
+    layers : LayerIds
+        The id of each game layer in the pipeline's table.
+    collision : CollisionRecord or None
+        The last frame's collision, for the overlay and tests.
+    toggles : list of ToggleEvent
+        Every live switch made, with its frame (for recordings).
     """
 
-    def __init__(self, level: Level, armatures, seed: int = 0):
+    def __init__(self, level: Level, armatures, seed: int = 0, settings: Settings | None = None):
         self.level, self.seed = level, int(seed)
+        self.settings = settings or Settings()
         self.rng = np.random.default_rng(self.seed)
         missing = ({"player", "shot"} | level.sprites) - set(armatures)
         if missing:
             raise ValueError(f"level {level.name!r} needs armatures {sorted(missing)} that are not loaded")
-        # One armature kind per sprite and animation frame; a pool's ``arm`` holds the
-        # sprite's first kind and :meth:`current_kind` adds the frame shown at its age.
-        shapes: list[Armature] = []
-        kind_name, kind_frame, kind_frames, kind_time = [], [], [], []
-        self.arm_id: dict[str, int] = {}
-
-        def add(name: str, frames: list[Armature], frame_time: float) -> None:
-            self.arm_id[name] = len(shapes)
-            for i, shape in enumerate(frames):
-                shapes.append(shape)
-                kind_name.append(name)
-                kind_frame.append(i)
-                kind_frames.append(len(frames))
-                kind_time.append(frame_time)
-
-        for n in sorted({"player", "shot"} | level.sprites):
-            add(n, [fs["hit"] for fs in _frame_sets(armatures[n])], getattr(armatures[n], "frame_time", 0.1))
-        player = _frame_sets(armatures["player"])
-        add("graze", [fs.get("graze") or Armature.box(40, 40, name="graze") for fs in player],
-            getattr(armatures["player"], "frame_time", 0.1))
-        self.names = kind_name  # kind -> sprite name ("graze" for the player's graze shape)
-        self.kind_frame = np.array(kind_frame, dtype=np.int64)  # kind -> animation frame
-        self._kind_frames = np.array(kind_frames, dtype=np.int64)
-        self._kind_time = np.array(kind_time, dtype=np.float64)
-        self._animated = bool((self._kind_frames > 1).any())
-        self.shapes = ArmatureSet(shapes)
-        tests = [("player", "enemy_ship"), ("player", "enemy_bullet"), ("enemy_ship", "player_bullet")]
-        if level.scene.graze:
-            tests.insert(2, ("graze", "enemy_bullet"))
-        self.table = LayerTable(LAYERS, tests)
-        self.pipeline = Pipeline(self.shapes, self.table, tiers=level.scene.tiers, rotation=level.scene.rotation,
-                                 bin_size=level.scene.bin_size, field=(0.0, 0.0, *FIELD))
-
+        self.kinds = Kinds(armatures, level.sprites)
+        table = game_layer_table(level.scene.graze)
+        self.layers = LayerIds.of(table)
+        pipeline = Pipeline(self.kinds.shapes, table, tiers=level.scene.tiers,
+                            rotation=self.settings.rotation or level.scene.rotation, bin_size=level.scene.bin_size,
+                            field=(0.0, 0.0, *FIELD))
+        self.collide = CollisionStep(pipeline, table, self.kinds, level.scene.graze)
         self.frame = 0
-        self.score = 0
-        self.lives = level.player.lives
-        self.player = np.array(SPAWN, dtype=np.float64)
-        self.player_prev = self.player.copy()
-        self.player_alive = True
-        self.invulnerable = INVULNERABLE_S
-        self.fire_cooldown = 0.0
-        self.slow = False
         self.over = False
         self.complete = False
-        self.grazes = 0
-        self.hits = 0
-        self.enemies = Pool(
-            pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float), arm=((), int),
-            hp=((), int), age=((), float), wave=((), int), mirror=((), float), x0=((), float),
-            dive=((2,), float), next_fire=((), float), volley=((), int), part=((), int),
-        )
-        bullet_fields = dict(pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
-                             arm=((), int), grazed=((), bool))
-        self.enemy_bullets = Pool(capacity=1024, **bullet_fields)
-        self.player_bullets = Pool(capacity=128, **bullet_fields)
-        self._next_spawn = [(w.at + k * w.every, i) for i, w in enumerate(level.waves) for k in range(w.count)]
-        self._next_spawn.sort()
-        self._spawned = 0
-        self.boss_hp = 0
-        self.boss_state = "waiting" if level.boss else "none"  # waiting, fighting, dead, none
-        self.boss_pos = np.array([FIELD[0] / 2, -80.0])
-        self.boss_age = 0.0
-        self.last: FrameResult | None = None  # the last collision result, for the overlay
-        self.last_objects: dict = {}
+        self.player = Player(level.player)
+        self.score = Score()
+        self.gun = PlayerGun(level.player, self.kinds.base["shot"])
+        self.timeline = WaveTimeline(level.waves)
+        self.ships = WaveShips(level.waves, self.kinds.base)
+        self.boss = Boss(level.boss) if level.boss else None
+        self._parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
+        self.enemy_bullets = bullet_pool(ENEMY_BULLETS)
+        self.player_bullets = bullet_pool(PLAYER_BULLETS)
+        self.combat = Combat(self.player, self.score, self.ships, self.boss, self.enemy_bullets, self.player_bullets)
+        self.collision: CollisionRecord | None = None
+        self.toggles: list[ToggleEvent] = []
 
     @property
     def time(self) -> float:
+        """Seconds of play so far."""
         return self.frame * DT
 
-    def current_kind(self, base: np.ndarray, age) -> np.ndarray:
-        """The armature kinds shown now: (n,) int64 for objects of first kind ``base`` (n,)
-        aged ``age`` seconds (scalar or (n,)): frame ``floor(age / frame_time) mod frames`` of
-        their sprite. Still sprites (one frame) keep ``base``."""
-        base = np.asarray(base, dtype=np.int64)
-        if not self._animated:
-            return base
-        tick = np.floor(np.asarray(age, dtype=np.float64) / self._kind_time[base]).astype(np.int64)
-        return base + tick % self._kind_frames[base]
+    @property
+    def pipeline(self) -> Pipeline:
+        return self.collide.pipeline
+
+    @property
+    def rotation(self) -> str:
+        """The rotation mode posing uses now (``"lut"`` or ``"exact"``)."""
+        return self.pipeline.rotation
+
+    def set_rotation(self, mode: str) -> None:
+        """Switch the rotation mode live (F4), before the next step; recorded in ``toggles``."""
+        if mode != self.pipeline.rotation:
+            self.pipeline.rotation = Settings(rotation=mode).rotation
+            self.toggles.append(ToggleEvent(self.frame, Toggle.ROTATION, mode))
+
+    def apply(self, toggle: ToggleEvent) -> None:
+        """Replay a recorded toggle (its frame must be this one)."""
+        if toggle.frame != self.frame:
+            raise ValueError(f"toggle for frame {toggle.frame} applied at frame {self.frame}")
+        if toggle.toggle is Toggle.ROTATION:
+            self.set_rotation(toggle.value)
 
     # ------------------------------------------------------------------ the step
     def step(self, inp: Input) -> Events:
         ev = Events()
         if self.over or self.complete:
             return ev
-        self._move_player(inp)
-        self._move_enemies()
-        self._move_bullets(self.enemy_bullets)
-        self._move_bullets(self.player_bullets)
-        result = self._collide()
-        self._apply(result, ev)
-        self._fire_player(inp, ev)
-        self._spawn_waves()
-        self._fire_enemies(ev)
+        self._move(inp)
+        self.combat.apply(self.detect(), ev)
+        self._spawn(inp, ev)
         self._cull()
         self.frame += 1
-        if self.invulnerable > 0:
-            self.invulnerable = max(0.0, self.invulnerable - DT)
-        if self.lives <= 0:
+        self.player.tick()
+        if self.player.lives <= 0:
             self.over = ev.game_over = True
         elif self._finished():
             self.complete = ev.level_complete = True
         return ev
 
-    def _finished(self) -> bool:
-        waves_done = self._spawned >= len(self._next_spawn)
-        boss_done = self.boss_state in ("dead", "none")
-        return waves_done and boss_done and self.enemies.n == 0
+    def detect(self) -> CollisionRecord:
+        """Collide everything at its current pose in one pipeline call (the step calls it
+        after all movement) and keeps the record in ``collision``; changes nothing else."""
+        self.collision = self.collide.run(self.player, self.time, self.ships.pool, self._parts, self.enemy_bullets,
+                                          self.player_bullets)
+        return self.collision
 
-    # ------------------------------------------------------------------ movement
-    def _move_player(self, inp: Input) -> None:
-        self.player_prev = self.player.copy()
-        self.slow = inp.slow
-        spec = self.level.player
-        d = np.array([inp.dx, inp.dy], dtype=np.float64)
-        norm = math.hypot(*d)
-        if norm:
-            speed = spec.slow_speed if inp.slow else spec.speed
-            self.player += d / norm * speed * DT
-        np.clip(self.player, (12.0, 16.0), (FIELD[0] - 12.0, FIELD[1] - 16.0), out=self.player)
+    def _move(self, inp: Input) -> None:
+        self.player.move(inp)
+        self.ships.move(self.player.pos)
+        if self.boss:
+            self.boss.move()
+        move_bullets(self.enemy_bullets)
+        move_bullets(self.player_bullets)
 
-    def _move_enemies(self) -> None:
-        e = self.enemies
-        if not e.n:
+    def _spawn(self, inp: Input, ev: Events) -> None:
+        ev.shots += self.gun.fire(self.player, inp.fire, self.player_bullets)
+        for w in self.timeline.due(self.time):
+            self.ships.spawn(w, self.rng)
+        if self.boss:
+            self.boss.arrive(self.time, self.kinds.base)
+        if not self.player.alive:
             return
-        e.prev[:] = e.pos
-        e.age[:] += DT
-        for w in np.unique(e.wave).tolist():  # one vectorised pass per wave (a handful)
-            sel = np.flatnonzero(e.wave == w)
-            if w < 0:
-                self._move_boss_parts(sel)
-                continue
-            path = self.level.waves[w].path
-            e.vel[sel] = self._path_velocity(path, sel)
-        moving = e.wave >= 0
-        e.pos[moving] += e.vel[moving] * DT
-        e.angle[moving] = _heading(e.vel[moving, 0], e.vel[moving, 1])
-
-    def _path_velocity(self, p: PathSpec, sel: np.ndarray) -> np.ndarray:
-        """(k, 2) velocity of the wave's ships ``sel`` at their current age."""
-        e = self.enemies
-        age, m = e.age[sel], e.mirror[sel]
-        v = np.zeros((len(sel), 2))
-        v[:, 1] = p.speed
-        if p.kind == "sine":
-            w = 2 * np.pi / p.period
-            v[:, 0] = m * p.amplitude * w * np.cos(w * age)
-        elif p.kind == "arc":
-            turned = np.minimum(age * p.speed / p.radius, math.radians(abs(p.turn)))
-            theta = m * math.copysign(1.0, p.turn) * turned  # 0 = straight down
-            v[:, 0] = p.speed * np.sin(theta)
-            v[:, 1] = p.speed * np.cos(theta)
-        elif p.kind == "dive":
-            pos, dive = e.pos[sel], e.dive[sel]
-            turning = (pos[:, 1] >= p.dive_at) & (dive[:, 0] == 0) & (dive[:, 1] == 0)
-            if turning.any():
-                to = self.player - pos[turning]
-                to /= np.maximum(np.hypot(to[:, 0], to[:, 1]), 1e-9)[:, None]
-                dive[turning] = to
-                e.dive[sel] = dive
-            diving = (dive[:, 0] != 0) | (dive[:, 1] != 0)
-            v[diving] = dive[diving] * (1.8 * p.speed)
-        elif p.kind == "hold":
-            enter = (p.hold_y + 30.0) / p.speed
-            holding = (age >= enter) & (age < enter + p.hold_for)
-            v[holding, 1] = 0.0
-            v[holding, 0] = m[holding] * 25.0 * np.cos(age[holding] - enter)
-        return v
-
-    def _move_bullets(self, pool: Pool) -> None:
-        if pool.n:
-            pool.prev[:] = pool.pos
-            pool.pos[:] += pool.vel * DT
-
-    # ------------------------------------------------------------------ the boss
-    def _start_boss(self) -> None:
-        boss = self.level.boss
-        self.boss_state, self.boss_hp, self.boss_age = "fighting", boss.hp, 0.0
-        self.boss_pos = np.array([FIELD[0] / 2, -80.0])
-        k = len(boss.parts)
-        off = np.array([p.offset for p in boss.parts], dtype=np.float64)
-        self.enemies.add(
-            pos=self.boss_pos + off, prev=self.boss_pos + off, vel=np.zeros((k, 2)), angle=np.zeros(k),
-            arm=[self.arm_id[p.sprite] for p in boss.parts], hp=np.full(k, 1), age=np.zeros(k),
-            wave=np.full(k, -1), mirror=np.ones(k), x0=off[:, 0], dive=np.zeros((k, 2)),
-            next_fire=[p.fire.delay + 2.0 for p in boss.parts], volley=np.zeros(k, dtype=int), part=np.arange(k),
-        )
-
-    def _move_boss_parts(self, sel: np.ndarray) -> None:
-        boss = self.level.boss
-        self.boss_age += DT
-        target_y = boss.y
-        y = min(target_y, -80.0 + 90.0 * self.boss_age)
-        x = FIELD[0] / 2 + boss.sway * math.sin(0.6 * max(0.0, self.boss_age - (target_y + 80.0) / 90.0))
-        self.boss_pos = np.array([x, y])
-        e = self.enemies
-        parts = e.part[sel]
-        off = np.array([boss.parts[i].offset for i in parts.tolist()], dtype=np.float64).reshape(-1, 2)
-        spin = np.array([boss.parts[i].spin for i in parts.tolist()])
-        e.pos[sel] = self.boss_pos + off
-        e.vel[sel] = (e.pos[sel] - e.prev[sel]) / DT
-        e.angle[sel] = (spin * e.age[sel]) % 360.0
-
-    # ------------------------------------------------------------------ collision
-    def _collide(self) -> FrameResult:
-        """Collide everything in one pipeline call, after all movement (paper, 1.4)."""
-        e, eb, pb = self.enemies, self.enemy_bullets, self.player_bullets
-        vulnerable = self.player_alive and self.invulnerable <= 0
-        head_arm = [self.arm_id["player"], self.arm_id["graze"]]
-        head_layer = [PLAYER, GRAZE]
-        head_keep = [vulnerable, self.player_alive and self.level.scene.graze]
-        heads = [i for i in range(2) if head_keep[i]]
-        nh = len(heads)
-        pos = np.concatenate([np.repeat(self.player[None], nh, 0), e.pos, eb.pos, pb.pos])
-        prev = np.concatenate([np.repeat(self.player_prev[None], nh, 0), e.prev, eb.prev, pb.prev])
-        angle = np.concatenate([np.zeros(nh), e.angle, eb.angle, pb.angle])
-        arm = np.concatenate([np.array(head_arm)[heads], e.arm, eb.arm, pb.arm]).astype(np.int64)
-        if self._animated:  # ships animate by their age, the player and bullets by the clock
-            age = np.concatenate([np.full(nh, self.time), e.age, np.full(eb.n + pb.n, self.time)])
-            arm = self.current_kind(arm, age)
-        layer = np.concatenate([np.array(head_layer)[heads], np.full(e.n, ENEMY), np.full(eb.n, ENEMY_BULLET),
-                                np.full(pb.n, PLAYER_BULLET)]).astype(np.int64)
-        # Every bullet that moved is swept from its last pose to this one (the paper's "quick
-        # gun" fix, at every speed): a bullet's hull translated along its step covers exactly
-        # the ground it crossed, so no contact between two frames is missed, not even a
-        # sliver at a corner. Ships and the player are not swept: they move slowly, and a
-        # jump (a respawn) must not touch what lies between the two places.
-        swept = (layer >= ENEMY_BULLET) & (pos != prev).any(axis=1)
-        result = self.pipeline.step(arm, layer, pos, angle, prev, angle, swept if swept.any() else None)
-        self.last = result
-        self.last_objects = dict(pos=pos, angle=angle, arm=arm, layer=layer, prev=prev, swept=swept,
-                                 offsets=(nh, nh + e.n, nh + e.n + eb.n))
-        return result
-
-    def _apply(self, result: FrameResult, ev: Events) -> None:
-        hits = result.hits
-        ev.hits = len(hits)
-        self.hits += len(hits)
-        if not len(hits):
-            return
-        # Object order in the frame: [player, graze] heads, enemies, enemy bullets, player bullets.
-        e0, b0, p0 = self.last_objects["offsets"]
-        first_layer = self.last_objects["layer"][hits[:, 0]]
-        e, eb, pb = self.enemies, self.enemy_bullets, self.player_bullets
-        eb_dead = np.zeros(eb.n, dtype=bool)
-        pb_dead = np.zeros(pb.n, dtype=bool)
-        # The player: any ship or enemy bullet touching the hit armature.
-        struck = hits[first_layer == PLAYER, 1]
-        player_hit = len(struck) > 0
-        eb_dead[struck[struck >= b0] - b0] = True
-        # Grazes: enemy bullets inside the graze shape, once each, unless they hit.
-        g = hits[first_layer == GRAZE, 1] - b0
-        if len(g):
-            g = g[~eb.grazed[g] & ~eb_dead[g]]
-            eb.grazed[g] = True
-            ev.grazes = len(g)
-            self.grazes += len(g)
-            self.score += GRAZE_SCORE * len(g)
-        # Enemy ships struck by player bullets: one damage per bullet.
-        s = hits[first_layer == ENEMY]
-        damage = None
-        if len(s):
-            ship, bullet = s[:, 0] - e0, s[:, 1] - p0
-            pb_dead[bullet] = True
-            damage = np.bincount(ship, minlength=e.n)
-        eb.keep(~eb_dead)
-        pb.keep(~pb_dead)
-        if damage is not None:
-            self._damage(damage, ev)
-        if player_hit:
-            ev.player_hit = True
-            self._player_hit(ev)
-
-    def _player_hit(self, ev: Events) -> None:
-        self.lives -= 1
-        ev.kills.append((float(self.player[0]), float(self.player[1]), "player"))
-        # Mercy: clear enemy bullets around the wreck, respawn at the bottom, invulnerable.
-        eb = self.enemy_bullets
-        d = eb.pos - self.player
-        eb.keep(np.hypot(d[:, 0], d[:, 1]) > CLEAR_RADIUS)
-        self.player = np.array(SPAWN, dtype=np.float64)
-        self.player_prev = self.player.copy()
-        self.invulnerable = INVULNERABLE_S
-        if self.lives <= 0:
-            self.player_alive = False
-
-    def _damage(self, damage: np.ndarray, ev: Events) -> None:
-        e = self.enemies
-        boss_part = e.wave == -1
-        if self.boss_state == "fighting" and damage[boss_part].any():
-            self.boss_hp -= int(damage[boss_part].sum())
-            if self.boss_hp <= 0:
-                self.boss_state = "dead"
-                ev.boss_killed = True
-                self.score += self.level.boss.score
-                for x, y in e.pos[boss_part].tolist():
-                    ev.kills.append((x, y, "boss"))
-                e.hp[boss_part] = 0
-        ships = ~boss_part
-        e.hp[ships] -= damage[ships]
-        struck = ships & (damage > 0)
-        dead = struck & (e.hp <= 0)
-        for i in np.flatnonzero(dead).tolist():
-            w = self.level.waves[e.wave[i]]
-            self.score += w.score
-            ev.kills.append((float(e.pos[i, 0]), float(e.pos[i, 1]), w.enemy))
-        for i in np.flatnonzero(struck & ~dead).tolist():
-            ev.damaged.append((float(e.pos[i, 0]), float(e.pos[i, 1])))
-        e.keep(e.hp > 0)
-
-    # ------------------------------------------------------------------ spawning
-    def _fire_player(self, inp: Input, ev: Events) -> None:
-        self.fire_cooldown -= DT
-        if not (inp.fire and self.player_alive and self.fire_cooldown <= 0):
-            return
-        spec = self.level.player
-        self.fire_cooldown += spec.fire_every
-        self.fire_cooldown = max(self.fire_cooldown, 0.0)
-        x, y = self.player
-        pos = np.array([[x - 6.0, y - 14.0], [x + 6.0, y - 14.0]])
-        self.player_bullets.add(pos=pos, prev=pos, vel=np.array([[0.0, -spec.shot_speed]] * 2), angle=np.zeros(2),
-                                arm=np.full(2, self.arm_id["shot"]), grazed=np.zeros(2, dtype=bool))
-        ev.shots += 2
-
-    def _spawn_waves(self) -> None:
-        t = self.time
-        while self._spawned < len(self._next_spawn) and self._next_spawn[self._spawned][0] <= t:
-            _, w = self._next_spawn[self._spawned]
-            self._spawned += 1
-            self._spawn_ship(w)
-        if self.boss_state == "waiting" and t >= self.level.boss.at:
-            self._start_boss()
-
-    def _spawn_ship(self, w: int) -> None:
-        spec = self.level.waves[w]
-        jitter = float(self.rng.uniform(-6.0, 6.0))
-        xs = [spec.path.x + jitter]
-        mirrors = [1.0]
-        if spec.mirror:
-            xs.append(FIELD[0] - spec.path.x - jitter)
-            mirrors.append(-1.0)
-        k = len(xs)
-        pos = np.array([[x, -24.0] for x in xs])
-        self.enemies.add(
-            pos=pos, prev=pos, vel=np.zeros((k, 2)), angle=np.full(k, 180.0), arm=np.full(k, self.arm_id[spec.enemy]),
-            hp=np.full(k, spec.hp), age=np.zeros(k), wave=np.full(k, w), mirror=mirrors, x0=xs,
-            dive=np.zeros((k, 2)), next_fire=np.full(k, spec.fire.delay), volley=np.zeros(k, dtype=int),
-            part=np.full(k, -1),
-        )
-
-    def _fire_enemies(self, ev: Events) -> None:
-        e = self.enemies
-        if not e.n or not self.player_alive:
-            return
-        on_field = (e.pos[:, 1] > 0) & (e.pos[:, 1] < FIELD[1] - 40) & (e.pos[:, 0] > 0) & (e.pos[:, 0] < FIELD[0])
-        due = on_field & (e.age >= e.next_fire)
-        for w in np.unique(e.wave[due]).tolist():
-            sel = np.flatnonzero(due & (e.wave == w))
-            if w >= 0:
-                fires = [self.level.waves[w].fire] * len(sel)
-            else:
-                fires = [self.level.boss.parts[p].fire for p in e.part[sel].tolist()]
-            for spec in dict.fromkeys(fires):  # distinct patterns, in a fixed order
-                idx = sel[[f == spec for f in fires]]
-                if spec.pattern != "none":
-                    ev.enemy_shots += self._volley(spec, idx)
-                e.next_fire[idx] += spec.every
-                e.volley[idx] += 1
-
-    def _volley(self, f: FireSpec, idx: np.ndarray) -> int:
-        """Fire one volley of pattern ``f`` from each enemy ``idx``; returns bullets fired."""
-        e = self.enemies
-        origin = e.pos[idx]  # (k, 2)
-        if f.pattern == "aimed":
-            to = self.player - origin
-            base = np.degrees(np.arctan2(to[:, 1], to[:, 0]))
-        elif f.pattern == "spread":
-            base = np.full(len(idx), 90.0)  # straight down the screen
-        else:  # ring, spiral: all round, turning by `spin` each volley
-            base = e.volley[idx] * f.spin
-        if f.pattern in ("ring", "spiral"):
-            offsets = np.arange(f.shots) * (360.0 / f.shots)
-        elif f.shots > 1:
-            offsets = np.linspace(-f.spread / 2, f.spread / 2, f.shots)
-        else:
-            offsets = np.zeros(1)
-        direction = np.radians(base[:, None] + offsets[None, :]).ravel()  # screen angle, 0 = +x
-        vel = np.column_stack([np.cos(direction), np.sin(direction)]) * f.speed
-        pos = np.repeat(origin, len(offsets), axis=0)
-        n = len(pos)
-        self.enemy_bullets.add(pos=pos, prev=pos, vel=vel, angle=_heading(vel[:, 0], vel[:, 1]),
-                               arm=np.full(n, self.arm_id[f.bullet]), grazed=np.zeros(n, dtype=bool))
-        return n
+        player = self.player.pos
+        if self.boss and self.boss.parts.n:
+            parts = self.boss.parts
+            idx = np.flatnonzero(emitters.due(parts))
+            specs = [self.boss.spec.parts[p].fire for p in parts.part[idx].tolist()]
+            ev.enemy_shots += emitters.fire(parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
+        ships = self.ships.pool
+        if ships.n:
+            due = emitters.due(ships)
+            for w in np.unique(ships.wave[due]).tolist():
+                idx = np.flatnonzero(due & (ships.wave == w))
+                specs = [self.level.waves[w].fire] * len(idx)
+                ev.enemy_shots += emitters.fire(ships, idx, specs, player, self.enemy_bullets, self.kinds.base)
 
     def _cull(self) -> None:
-        w, h = FIELD
-        for pool, margin in ((self.enemy_bullets, 24.0), (self.player_bullets, 24.0)):
-            if pool.n:
-                p = pool.pos
-                pool.keep((p[:, 0] > -margin) & (p[:, 0] < w + margin) & (p[:, 1] > -margin) & (p[:, 1] < h + margin))
-        e = self.enemies
-        if e.n:
-            p = e.pos
-            gone = (e.wave >= 0) & (e.age > 1.0) & ((p[:, 1] > h + 60) | (p[:, 1] < -80) | (p[:, 0] < -80) | (p[:, 0] > w + 80))
-            e.keep(~gone)
+        cull_bullets(self.enemy_bullets)
+        cull_bullets(self.player_bullets)
+        self.ships.cull()
+
+    def _finished(self) -> bool:
+        boss_done = self.boss is None or self.boss.dead
+        return self.timeline.done and boss_done and self.ships.pool.n == 0
 
     # ------------------------------------------------------------------ observation
     def state_hash(self) -> str:
-        """Hex digest of the world's state: same level, seed and inputs give the same hash.
-
-        Positions are quantised to 1/256 px before hashing, so the digest does not hang on
-        the last bits of transcendental functions that may differ between math libraries.
-        """
-        h = hashlib.sha256()
-        h.update(np.array([self.frame, self.score, self.lives, self.grazes, self.hits, self.boss_hp], np.int64).tobytes())
-        q = lambda a: np.round(np.asarray(a, dtype=np.float64) * 256.0).astype(np.int64).tobytes()  # noqa: E731
-        h.update(q(self.player))
-        for pool in (self.enemies, self.enemy_bullets, self.player_bullets):
-            h.update(np.int64(pool.n).tobytes())
-            h.update(q(pool.pos))
-            h.update(pool.arm.astype(np.int64).tobytes())
-        h.update(self.enemies.hp.astype(np.int64).tobytes())
-        return h.hexdigest()
+        """Hex digest of the world's state (:func:`broadsword.sim.hashing.state_hash`)."""
+        return hashing.state_hash(self)
 
     def summary(self) -> dict:
         """The headline numbers of the run so far."""
-        return {"frames": self.frame, "score": self.score, "lives": self.lives, "hits": self.hits,
-                "grazes": self.grazes, "enemy_bullets": self.enemy_bullets.n, "enemies": self.enemies.n,
-                "complete": self.complete, "game_over": self.over}
+        return {"frames": self.frame, "score": self.score.points, "lives": self.player.lives,
+                "hits": self.score.hits, "grazes": self.score.grazes, "enemy_bullets": self.enemy_bullets.n,
+                "enemies": self.ships.pool.n + self._parts.n, "complete": self.complete, "game_over": self.over}
+

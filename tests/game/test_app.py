@@ -31,7 +31,7 @@ def quiet(app: App, waves=(LATE,)) -> World:
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)
     app.start_run()
     app.world = World(level, app.bank.armatures, seed=1)
-    app.world.invulnerable = 0.0
+    app.world.player.invulnerable = 0.0
     return app.world
 
 
@@ -53,18 +53,18 @@ def test_app__title_then_play(app):
 
 def test_app__player_moves_and_fires(app):
     w = quiet(app)
-    x0 = w.player[0]
+    x0 = w.player.pos[0]
     key(app, pygame.K_RIGHT)
     key(app, pygame.K_z)
     frames(app, 30)
-    assert w.player[0] == pytest.approx(x0 + 30 * w.level.player.speed * DT)
+    assert w.player.pos[0] == pytest.approx(x0 + 30 * w.level.player.speed * DT)
     assert w.player_bullets.n > 0
     key(app, pygame.K_RIGHT, down=False)
     key(app, pygame.K_z, down=False)
     frames(app, 1)
-    x1 = w.player[0]
+    x1 = w.player.pos[0]
     frames(app, 10)
-    assert w.player[0] == x1
+    assert w.player.pos[0] == x1
 
 
 def test_app__bullet_kills_enemy_and_score_rises(app):
@@ -76,32 +76,32 @@ def test_app__bullet_kills_enemy_and_score_rises(app):
     key(app, pygame.K_SPACE)
     for _ in range(240):
         frames(app, 1)
-        if w.score:
+        if w.score.points:
             break
-    assert w.score == 250 and w.enemies.n == 0
+    assert w.score.points == 250 and w.ships.pool.n == 0
 
 
 def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
     w = quiet(app)
-    bullet, vel = np.array([w.player[0], w.player[1] - 70.0]), np.array([0.0, 0.0])
-    w.enemy_bullets.add(pos=[bullet], prev=[bullet], vel=[vel], angle=[0.0], arm=[w.arm_id["needle"]], grazed=[False])
+    bullet, vel = np.array([w.player.pos[0], w.player.pos[1] - 70.0]), np.array([0.0, 0.0])
+    w.enemy_bullets.add(pos=[bullet], prev=[bullet], vel=[vel], angle=[0.0], arm=[w.kinds.base["needle"]], grazed=[False])
     # Independent expectation: move the player up frame by frame and ask the scalar
     # exact predicate when the posed armatures first share a point.
-    ids = [w.arm_id["player"], w.arm_id["needle"]]
-    p = w.player.copy()
+    ids = [w.kinds.base["player"], w.kinds.base["needle"]]
+    p = w.player.pos.copy()
     expected = None
     for k in range(1, 120):
         p[1] -= w.level.player.speed * DT
-        a, b = pose(w.shapes, ids, [p, bullet], [0.0, 0.0], w.pipeline.rotation).polygons()
+        a, b = pose(w.kinds.shapes, ids, [p, bullet], [0.0, 0.0], w.pipeline.rotation).polygons()
         if polygons_collide(a, b):
             expected = k
             break
-    lives = w.lives
+    lives = w.player.lives
     key(app, pygame.K_UP)
     hit_at = None
     for k in range(1, 120):
         frames(app, 1)
-        if w.lives < lives:
+        if w.player.lives < lives:
             hit_at = k
             break
     assert expected is not None and hit_at == expected
@@ -114,9 +114,9 @@ def test_app__pause_stops_the_world_and_f2_steps(app):
     key(app, pygame.K_ESCAPE)
     frames(app, 1)
     assert app.scene == "paused"
-    frame, x = w.frame, w.player[0]
+    frame, x = w.frame, w.player.pos[0]
     frames(app, 20)
-    assert (w.frame, w.player[0]) == (frame, x)
+    assert (w.frame, w.player.pos[0]) == (frame, x)
     key(app, pygame.K_F2)
     frames(app, 1)
     assert w.frame == frame + 1 and app.scene == "paused"
@@ -137,7 +137,7 @@ def test_app__overlay_draws_grid_and_armatures(app):
     gx = int(round(grid.origin[0] + grid.size))
     assert tuple(after[gx, 300]) == (50, 80, 130) and tuple(before[gx, 300]) != (50, 80, 130)
     # The player's armature outline, in the player layer's colour, on its first vertex.
-    vx, vy = (w.player + app.bank.armatures["player"].armature.vertices[0]).round().astype(int)
+    vx, vy = (w.player.pos + app.bank.armatures["player"].armature.vertices[0]).round().astype(int)
     near = after[vx - 1 : vx + 2, vy - 1 : vy + 2].reshape(-1, 3)
     assert any(tuple(c) == (80, 255, 255) for c in near)
 
@@ -194,9 +194,9 @@ class StubPad:
 def test_app__gamepad_moves_and_fires(app):
     w = quiet(app)
     app.pad = StubPad()
-    x0, y0 = w.player
+    x0, y0 = w.player.pos
     frames(app, 20)
-    assert w.player[0] < x0 and w.player[1] < y0 and w.player_bullets.n > 0
+    assert w.player.pos[0] < x0 and w.player.pos[1] < y0 and w.player_bullets.n > 0
 
 
 def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):

@@ -10,7 +10,7 @@ import pytest
 from broadsword.collision import point_in_polygon
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
-from broadsword.sim import World
+from broadsword.sim import Group, World
 
 WASPS = WaveSpec(at=3000.0, enemy="wasp", count=1, every=0.0, hp=1, score=0,
                  path=PathSpec(), fire=FireSpec(pattern="none", bullet="needle"), mirror=False)
@@ -34,14 +34,14 @@ def test_wasp__has_two_frames_with_their_own_hit_shapes(armatures):
 
 
 def test_current_kind__cycles_through_the_frames_by_age(world):
-    base = world.arm_id["wasp"]
-    assert world.names[base] == world.names[base + 1] == "wasp"
-    assert world.kind_frame[base] == 0 and world.kind_frame[base + 1] == 1
+    base = world.kinds.base["wasp"]
+    assert world.kinds.names[base] == world.kinds.names[base + 1] == "wasp"
+    assert world.kinds.frame[base] == 0 and world.kinds.frame[base + 1] == 1
     ages = np.array([0.0, 0.079, 0.08, 0.159, 0.16, 1.0])
-    kinds = world.current_kind(np.full(len(ages), base), ages)
+    kinds = world.kinds.current(np.full(len(ages), base), ages)
     assert (kinds - base).tolist() == [0, 0, 1, 1, 0, 0]  # 1.0 s = 12.5 frames: frame 12 mod 2
-    still = world.arm_id["shot"]
-    assert world.current_kind(np.array([still]), np.array([0.5]))[0] == still
+    still = world.kinds.base["shot"]
+    assert world.kinds.current(np.array([still]), np.array([0.5]))[0] == still
 
 
 def test_collision__uses_the_frame_the_ship_shows(world, armatures):
@@ -53,15 +53,15 @@ def test_collision__uses_the_frame_the_ship_shows(world, armatures):
     results = []
     for age in (0.02, 0.10):  # frame 0, frame 1
         w = world
-        w.enemies.keep(np.zeros(w.enemies.n, dtype=bool))
+        w.ships.pool.keep(np.zeros(w.ships.pool.n, dtype=bool))
         w.player_bullets.keep(np.zeros(w.player_bullets.n, dtype=bool))
         at = np.array([[240.0, 300.0]])
-        w.enemies.add(pos=at, prev=at, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.arm_id["wasp"]], hp=[1], age=[age],
-                      wave=[0], mirror=[1.0], x0=[240.0], dive=[[0.0, 0.0]], next_fire=[99.0], volley=[0], part=[-1])
+        w.ships.pool.add(pos=at, prev=at, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["wasp"]], hp=[1], age=[age],
+                         wave=[0], mirror=[1.0], dive=[[0.0, 0.0]], next_fire=[99.0], volley=[0])
         shot = at + np.array([wing])
-        w.player_bullets.add(pos=shot, prev=shot, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.arm_id["shot"]],
+        w.player_bullets.add(pos=shot, prev=shot, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["shot"]],
                              grazed=[False])
-        result = w._collide()
-        results.append(len(result.hits) > 0)
-        assert w.last_objects["arm"][w.last_objects["offsets"][0]] == w.arm_id["wasp"] + (0 if age < 0.08 else 1)
+        record = w.detect()
+        results.append(len(record.result.hits) > 0)
+        assert record.armature[record.spans[Group.SHIPS].start] == w.kinds.base["wasp"] + (0 if age < 0.08 else 1)
     assert results == [True, False]

@@ -15,6 +15,7 @@ import pytest
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, FIELD, IDLE, World, autopilot
+from broadsword.sim.boss import BossState
 from sim_bullets import add_bullets
 
 ARMATURES = load_armatures(data_dir("assets") / "sprites")
@@ -31,11 +32,11 @@ def wave(enemy="scout", at=0.0, count=1, fire=None, path=None, mirror=False, hp=
 
 def assert_sane(w: World) -> None:
     """Every number of the state is finite; the hash is a hex digest."""
-    assert np.isfinite(w.player).all() and np.isfinite(w.player_prev).all()
-    for pool in (w.enemies, w.enemy_bullets, w.player_bullets):
+    assert np.isfinite(w.player.pos).all() and np.isfinite(w.player.prev).all()
+    for pool in (w.ships.pool, w.enemy_bullets, w.player_bullets, *([w.boss.parts] if w.boss else [])):
         for name in ("pos", "prev", "vel", "angle"):
             assert np.isfinite(getattr(pool, name)).all(), name
-    assert np.isfinite(w.invulnerable) and np.isfinite(w.fire_cooldown)
+    assert np.isfinite(w.player.invulnerable) and np.isfinite(w.gun.cooldown)
     assert re.fullmatch(r"[0-9a-f]{64}", w.state_hash())
 
 
@@ -69,14 +70,14 @@ def test_objects_far_outside_the_field(far):
     w = World(level, ARMATURES, seed=1)
     out = MIDDLE + COMPASS * far
     for name in ("needle", "orb", "pellet"):
-        add_bullets(w.enemy_bullets, w.arm_id[name], out, -COMPASS * 1e5)
-        add_bullets(w.enemy_bullets, w.arm_id[name], out, COMPASS * 1e5)
-    add_bullets(w.player_bullets, w.arm_id["shot"], out, -COMPASS * 1e5)
+        add_bullets(w.enemy_bullets, w.kinds.base[name], out, -COMPASS * 1e5)
+        add_bullets(w.enemy_bullets, w.kinds.base[name], out, COMPASS * 1e5)
+    add_bullets(w.player_bullets, w.kinds.base["shot"], out, -COMPASS * 1e5)
     for _ in range(len(out)):
-        w._spawn_ship(0)
-    w.enemies.pos[:] = out
-    w.enemies.prev[:] = out
-    assert w.enemies.n == len(out)
+        w.ships.spawn(0, w.rng)
+    w.ships.pool.pos[:] = out
+    w.ships.pool.prev[:] = out
+    assert w.ships.pool.n == len(out)
     assert_sane(w)
     play(w, 1, pilot=False)
     # Moved, collided, and everything left beyond the field's margin culled.
@@ -84,7 +85,7 @@ def test_objects_far_outside_the_field(far):
     if far > 1e4:
         assert w.enemy_bullets.n == 0 and w.player_bullets.n == 0
     play(w, int(1.5 / DT))  # ships are culled once they are a second old
-    assert not (np.abs(w.enemies.pos - MIDDLE) > far / 2).any()
+    assert not (np.abs(w.ships.pool.pos - MIDDLE) > far / 2).any()
 
 
 @pytest.mark.parametrize("far", [1e3, 1e6, 1e9, 1e12, 1e15])
@@ -93,16 +94,16 @@ def test_a_sweep_from_far_outside_to_far_outside(far):
     ``far`` px on the other hits when its path crosses the player and not when it passes
     clear of it (the sweep is computed exactly even at these coordinates)."""
     w = World(BROADSWORD, ARMATURES, seed=1)
-    w.invulnerable = 0.0
-    p = w.player.copy()
-    clear = max(a.radius for a in w.shapes.armatures) * 2 + 1.0
-    kind = w.arm_id["needle"]
+    w.player.invulnerable = 0.0
+    p = w.player.pos.copy()
+    clear = max(a.radius for a in w.kinds.shapes.armatures) * 2 + 1.0
+    kind = w.kinds.base["needle"]
     for offset, expect in ((0.0, True), (clear, False), (-clear, False)):
         w.enemy_bullets.clear()
         add_bullets(w.enemy_bullets, kind, [[p[0] + far, p[1] + offset]], [[0.0, 0.0]],
                     prev=np.array([[p[0] - far, p[1] + offset]]))
-        w._collide()
-        assert bool(len(w.last.hits)) == expect and w.last_objects["swept"].any()
+        w.detect()
+        assert bool(len(w.collision.result.hits)) == expect and w.collision.swept.any()
     play(w, 3)
 
 
@@ -116,7 +117,7 @@ def test_ten_thousand_bullets_fired_in_one_frame_from_the_level_data():
                                                                       hold_y=100.0, hold_for=60.0)),), boss=None)
     w = World(level, ARMATURES, seed=2)
     events = play(w, 60)
-    assert w.enemies.n == 100
+    assert w.ships.pool.n == 100
     assert max(ev.enemy_shots for ev in events) == 100 * 100
 
 
@@ -126,7 +127,7 @@ def test_two_thousand_ships_spawned_in_one_frame():
                                 boss=None)
     w = World(level, ARMATURES, seed=3)
     w.step(IDLE)
-    assert w.enemies.n == 2000
+    assert w.ships.pool.n == 2000
     events = play(w, 60, pilot=False)  # they all reach the field and fire their first shot together
     assert max(ev.enemy_shots for ev in events) == 2000
     play(w, 30)
@@ -136,7 +137,7 @@ def test_tens_of_thousands_of_bullets_dropped_into_one_frame():
     """20,000 enemy and 5,000 player bullets appear in one frame, all over the field and far
     beyond it, at up to 100,000 px/s."""
     w = World(BROADSWORD, ARMATURES, seed=4)
-    w.invulnerable = 0.0
+    w.player.invulnerable = 0.0
     rng = np.random.default_rng(4)
     for pool, n, names in ((w.enemy_bullets, 20_000, ("needle", "orb", "pellet")), (w.player_bullets, 5_000, ("shot",))):
         pos = rng.uniform(-2.0, 3.0, (n, 2)) * FIELD
@@ -144,7 +145,7 @@ def test_tens_of_thousands_of_bullets_dropped_into_one_frame():
         theta = rng.uniform(0.0, 2 * math.pi, n)
         for i, name in enumerate(names):
             sel = slice(i, None, len(names))
-            add_bullets(pool, w.arm_id[name], pos[sel], np.column_stack([np.cos(theta), np.sin(theta)])[sel]
+            add_bullets(pool, w.kinds.base[name], pos[sel], np.column_stack([np.cos(theta), np.sin(theta)])[sel]
                         * speed[sel, None])
     assert w.enemy_bullets.n == 20_000 and w.player_bullets.n == 5_000
     events = play(w, 60)
@@ -156,8 +157,6 @@ def test_tens_of_thousands_of_bullets_dropped_into_one_frame():
 def test_zero_bullets_for_ten_seconds():
     """Ships that never fire and a player that never shoots: the pipeline runs every frame
     with no bullet in it."""
-    from broadsword.sim.world import ENEMY_BULLET, PLAYER_BULLET
-
     level = dataclasses.replace(PICKET, waves=(wave("scout", count=6, path=PathSpec(kind="sine", x=200.0, speed=30.0)),),
                                 boss=None)
     w = World(level, ARMATURES, seed=5)
@@ -165,9 +164,9 @@ def test_zero_bullets_for_ten_seconds():
         w.step(IDLE)
         assert_sane(w)
         assert w.enemy_bullets.n == 0 and w.player_bullets.n == 0
-        layers = w.last_objects["layer"]
-        assert layers.size >= 1 and not np.isin(layers, [ENEMY_BULLET, PLAYER_BULLET]).any()
-    assert w.frame == 600 and not w.over and w.enemies.n == 6
+        layers = w.collision.layer
+        assert layers.size >= 1 and not np.isin(layers, [w.layers.enemy_bullet, w.layers.player_bullet]).any()
+    assert w.frame == 600 and not w.over and w.ships.pool.n == 6
 
 
 def test_a_frame_with_no_object_at_all():
@@ -175,9 +174,9 @@ def test_a_frame_with_no_object_at_all():
     level = dataclasses.replace(PICKET, scene=dataclasses.replace(PICKET.scene, graze=False),
                                 waves=(wave(at=NEVER),), boss=None)
     w = World(level, ARMATURES, seed=6)
-    assert w.invulnerable > 0
+    assert w.player.invulnerable > 0
     ev = w.step(IDLE)
-    assert w.last_objects["layer"].size == 0 and len(w.last.hits) == 0 and ev.hits == 0
+    assert w.collision.layer.size == 0 and len(w.collision.result.hits) == 0 and ev.hits == 0
     play(w, 10)
 
 
@@ -200,4 +199,4 @@ def test_a_level_with_only_a_boss():
     level = dataclasses.replace(BROADSWORD, waves=())
     w = World(level, ARMATURES, seed=8)
     play(w, int((level.boss.at + 3.0) / DT))
-    assert w.boss_state in ("fighting", "dead") and w.frame > level.boss.at / DT
+    assert w.boss.state in (BossState.FIGHTING, BossState.DEAD) and w.frame > level.boss.at / DT

@@ -4,7 +4,7 @@ sweep did not pass through.
 Every test drives a :class:`~broadsword.sim.World` built from a shipped level's scene (its
 tiers, rotation mode and bin size), so the layers, the sweep rule (``World._collide``
 sweeps a bullet that moved more than half its smallest extent) and the pipeline are the
-game's own. The batch tests move bullets with ``World._move_bullets`` and collide them with
+game's own. The batch tests move bullets with ``broadsword.sim.bullets.move_bullets`` and collide them with
 ``World._collide`` -- the first two stages of ``World.step`` -- without applying the hits, so
 thousands of bullets can cross one target in the same frames; the end-to-end tests call
 ``World.step`` itself.
@@ -37,17 +37,20 @@ import pytest
 from broadsword.collision import point_in_polygon, pose
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
-from broadsword.sim import DT, IDLE, World
-from broadsword.sim.world import ENEMY, ENEMY_BULLET, PLAYER, PLAYER_BULLET
+from broadsword.sim import DT, IDLE, LayerIds, World
+from broadsword.sim.bullets import move_bullets
+from broadsword.sim.layers import game_layer_table
 from sim_bullets import add_bullets
 
+_IDS = LayerIds.of(game_layer_table())  # layer ids come from the table, by name
+ENEMY, ENEMY_BULLET, PLAYER, PLAYER_BULLET = _IDS.enemy_ship, _IDS.enemy_bullet, _IDS.player, _IDS.player_bullet
 ARMATURES = load_armatures(data_dir("assets") / "sprites")
 LEVELS = [load_level(resolve_level(n)) for n in list_levels()]
 #: Sprites of ships the player's bullets can hit, and of the bullets enemies fire.
 SHIPS = sorted({w.enemy for lv in LEVELS for w in lv.waves}
                | {p.sprite for lv in LEVELS if lv.boss for p in lv.boss.parts})
-ENEMY_SHOTS = sorted({w.fire.bullet for lv in LEVELS for w in lv.waves if w.fire.pattern != "none"}
-                     | {p.fire.bullet for lv in LEVELS if lv.boss for p in lv.boss.parts if p.fire.pattern != "none"})
+ENEMY_SHOTS = sorted({w.fire.bullet for lv in LEVELS for w in lv.waves if w.fire.fires}
+                     | {p.fire.bullet for lv in LEVELS if lv.boss for p in lv.boss.parts if p.fire.fires})
 #: The distinct collision scenes of the shipped levels.
 SCENES = list(dict.fromkeys(lv.scene for lv in LEVELS))
 #: 100 px/s to 100,000 px/s, four steps a decade.
@@ -73,7 +76,7 @@ def min_width(armature) -> float:
 
 def arena(scene) -> World:
     """A World with the given collision scene whose level knows every ship and bullet
-    sprite: one wave per ship (stationary, never due) so :meth:`World._spawn_ship` can
+    sprite: one wave per ship (stationary, never due) so :meth:`WaveShips.spawn` can
     place any of them, the bullet sprites named by the waves' fire specs."""
     shots = itertools.cycle(ENEMY_SHOTS)
     still = PathSpec(kind="straight", x=CENTRE[0], speed=0.0)
@@ -83,53 +86,53 @@ def arena(scene) -> World:
                        fire=FireSpec(pattern="aimed", bullet=next(shots)), mirror=False) for _ in ENEMY_SHOTS]
     level = dataclasses.replace(LEVELS[0], scene=scene, waves=tuple(waves), boss=None)
     w = World(level, ARMATURES, seed=0)
-    w.invulnerable = 1e9  # the player stays out of the collision unless a test exposes it
+    w.player.invulnerable = 1e9  # the player stays out of the collision unless a test exposes it
     return w
 
 
 def kinds(w: World, name: str) -> list[int]:
-    """Armature kinds (indices into ``w.shapes``) of sprite ``name``: one per animation frame."""
-    return [k for k, n in enumerate(w.names) if n == name]
+    """Armature kinds (indices into ``w.kinds.shapes``) of sprite ``name``: one per animation frame."""
+    return [k for k, n in enumerate(w.kinds.names) if n == name]
 
 
 def radius(w: World, name: str) -> float:
-    return max(w.shapes.armatures[k].radius for k in kinds(w, name))
+    return max(w.kinds.shapes.armatures[k].radius for k in kinds(w, name))
 
 
 def thinnest_ship(w: World) -> tuple[str, int]:
-    cand = [(min_width(w.shapes.armatures[k]), k) for s in SHIPS for k in kinds(w, s)]
+    cand = [(min_width(w.kinds.shapes.armatures[k]), k) for s in SHIPS for k in kinds(w, s)]
     _, k = min(cand)
-    return w.names[k], k
+    return w.kinds.names[k], k
 
 
 def place_ship(w: World, name: str, kind: int, centre=CENTRE, angle=TARGET_ANGLE) -> None:
     """Put one stationary ship of sprite ``name`` showing armature ``kind`` at ``centre``."""
-    w.enemies.clear()
-    w._spawn_ship(next(i for i, wave in enumerate(w.level.waves) if wave.enemy == name and wave.fire.pattern == "none"))
+    w.ships.pool.clear()
+    w.ships.spawn(next(i for i, wave in enumerate(w.level.waves) if wave.enemy == name and not wave.fire.fires), w.rng)
     frame_time = getattr(ARMATURES[name], "frame_time", 0.1)
-    w.enemies.age[:] = (kind - w.arm_id[name] + 0.5) * frame_time  # the animation frame showing `kind`
-    w.enemies.pos[:] = centre
-    w.enemies.prev[:] = centre
-    w.enemies.angle[:] = angle
-    w.enemies.hp[:] = 10**9
+    w.ships.pool.age[:] = (kind - w.kinds.base[name] + 0.5) * frame_time  # the animation frame showing `kind`
+    w.ships.pool.pos[:] = centre
+    w.ships.pool.prev[:] = centre
+    w.ships.pool.angle[:] = angle
+    w.ships.pool.hp[:] = 10**9
 
 
 def bullet_hits(w: World, target_layer: int, bullet_layer: int) -> np.ndarray:
     """Pool indices of the bullets (layer ``bullet_layer``) that the last collision found
     touching an object of ``target_layer``."""
-    layer = w.last_objects["layer"]
+    layer = w.collision.layer
     first = np.flatnonzero(layer == bullet_layer)
     if not first.size:
         return np.zeros(0, dtype=np.int64)
-    h = w.last.hits
+    h = w.collision.result.hits
     h = h[layer[h[:, 0]] == target_layer]
     return h[:, 1] - first[0]
 
 
 def pose_of(w: World, target_layer: int) -> tuple[np.ndarray, int]:
     """The target's posed polygon as the pipeline posed it in the last collision, and its kind."""
-    i = int(np.flatnonzero(w.last_objects["layer"] == target_layer)[0])
-    return w.last.posed.polygon(i), int(w.last_objects["arm"][i])
+    i = int(np.flatnonzero(w.collision.layer == target_layer)[0])
+    return w.collision.result.posed.polygon(i), int(w.collision.armature[i])
 
 
 def aim_points(posed: np.ndarray, centre=CENTRE) -> np.ndarray:
@@ -190,12 +193,12 @@ def run_shots(w: World, pool, target_layer: int, bullet_layer: int, base_kind: i
     clean = np.hypot(*(start - CENTRE).T) > clear
     swept = np.ones(n, dtype=bool)
     for _ in range(frames):
-        w._move_bullets(pool)
-        w._collide()
+        move_bullets(pool)
+        w.detect()
         hit[bullet_hits(w, target_layer, bullet_layer)] = True
         clean &= np.hypot(*(pool.pos - CENTRE).T) > clear
-        first = int(np.flatnonzero(w.last_objects["layer"] == bullet_layer)[0])
-        swept &= w.last_objects["swept"][first:first + n]
+        first = int(np.flatnonzero(w.collision.layer == bullet_layer)[0])
+        swept &= w.collision.swept[first:first + n]
     gone = ((pool.pos - start) * u).sum(axis=1) - ((CENTRE - start) * u).sum(axis=1)
     assert (gone > 0).all() and (np.hypot(*(pool.pos - CENTRE).T) > clear).all()  # every bullet ended past the target
     return hit, clean, swept
@@ -216,13 +219,13 @@ def test_player_bullets_never_tunnel_through_the_thinnest_ship(scene):
     w = arena(scene)
     name, kind = thinnest_ship(w)
     place_ship(w, name, kind)
-    w._collide()
+    w.detect()
     posed, used = pose_of(w, ENEMY)
     assert used == kind  # the World shows the armature chosen as the thinnest
     aims = aim_points(posed)
-    assert len(aims) >= 2 * len(w.shapes.armatures[kind].vertices)
-    r_t, r_b = w.shapes.armatures[kind].radius, radius(w, "shot")
-    check_ladder(w, w.player_bullets, ENEMY, PLAYER_BULLET, w.arm_id["shot"], aims, r_t + r_b)
+    assert len(aims) >= 2 * len(w.kinds.shapes.armatures[kind].vertices)
+    r_t, r_b = w.kinds.shapes.armatures[kind].radius, radius(w, "shot")
+    check_ladder(w, w.player_bullets, ENEMY, PLAYER_BULLET, w.kinds.base["shot"], aims, r_t + r_b)
 
 
 @pytest.mark.parametrize("ship", SHIPS)
@@ -230,17 +233,17 @@ def test_player_bullets_never_tunnel_through_any_ship_aimed_at_its_centre(ship):
     w = arena(SCENES[0])
     for kind in kinds(w, ship):
         place_ship(w, ship, kind)
-        w._collide()
+        w.detect()
         posed, used = pose_of(w, ENEMY)
         assert used == kind
-        r_t, r_b = w.shapes.armatures[kind].radius, radius(w, "shot")
-        check_ladder(w, w.player_bullets, ENEMY, PLAYER_BULLET, w.arm_id["shot"], centre_or_vertex(posed), r_t + r_b)
+        r_t, r_b = w.kinds.shapes.armatures[kind].radius, radius(w, "shot")
+        check_ladder(w, w.player_bullets, ENEMY, PLAYER_BULLET, w.kinds.base["shot"], centre_or_vertex(posed), r_t + r_b)
 
 
 def expose_player(w: World, at=CENTRE) -> None:
-    w.player = np.array(at, dtype=np.float64)
-    w.player_prev = w.player.copy()
-    w.invulnerable = 0.0
+    w.player.pos = np.array(at, dtype=np.float64)
+    w.player.prev = w.player.pos.copy()
+    w.player.invulnerable = 0.0
 
 
 @pytest.mark.parametrize("shot", ENEMY_SHOTS)
@@ -248,12 +251,12 @@ def expose_player(w: World, at=CENTRE) -> None:
 def test_enemy_bullets_never_tunnel_through_the_player(scene, shot):
     w = arena(scene)
     expose_player(w)
-    w._collide()
+    w.detect()
     posed, used = pose_of(w, PLAYER)
-    assert w.names[used] == "player"
+    assert w.kinds.names[used] == "player"
     aims = aim_points(posed)
-    r_t, r_b = w.shapes.armatures[used].radius, radius(w, shot)
-    check_ladder(w, w.enemy_bullets, PLAYER, ENEMY_BULLET, w.arm_id[shot], aims, r_t + r_b)
+    r_t, r_b = w.kinds.shapes.armatures[used].radius, radius(w, shot)
+    check_ladder(w, w.enemy_bullets, PLAYER, ENEMY_BULLET, w.kinds.base[shot], aims, r_t + r_b)
 
 
 # ---------------------------------------------------------------------- near misses and near hits
@@ -276,18 +279,18 @@ def test_a_path_that_misses_by_a_hair_never_hits_and_one_that_touches_always_doe
         name, kind = thinnest_ship(w)
         place_ship(w, name, kind)
         target_layer, pool, bullet_layer = ENEMY, w.player_bullets, PLAYER_BULLET
-    w._collide()
+    w.detect()
     target_poly, used = pose_of(w, target_layer)
     theta = np.radians(np.arange(0.0, 360.0, 0.5))
     u = np.column_stack([np.cos(theta), np.sin(theta)])
     nrm = np.column_stack([-u[:, 1], u[:, 0]])  # the path runs on this side of the target
     heading = np.degrees(np.arctan2(u[:, 0], -u[:, 1]))
-    base = w.arm_id[shot]
-    kind = int(w.current_kind(np.array([base]), w.time)[0]) if hasattr(w, "current_kind") else base
-    shapes = pose(w.shapes, np.full(len(u), kind), np.zeros((len(u), 2)), heading, w.pipeline.rotation).polygons()
+    base = w.kinds.base[shot]
+    kind = int(w.kinds.current(np.array([base]), w.time)[0]) if hasattr(w, "current_kind") else base
+    shapes = pose(w.kinds.shapes, np.full(len(u), kind), np.zeros((len(u), 2)), heading, w.pipeline.rotation).polygons()
     h_bullet = np.array([support(p, -n[None])[0] for p, n in zip(shapes, nrm)])  # the bullet's reach towards the target
     h_target = support(target_poly - CENTRE, nrm)
-    rho = w.shapes.armatures[used].radius + radius(w, shot) + 1.0
+    rho = w.kinds.shapes.armatures[used].radius + radius(w, shot) + 1.0
     for speed in SPEEDS:
         for sign in (+1, -1):  # +1: clear by delta, -1: overlapping by delta
             offset = h_target + h_bullet + sign * delta
@@ -298,11 +301,11 @@ def test_a_path_that_misses_by_a_hair_never_hits_and_one_that_touches_always_doe
             hit = np.zeros(len(u), dtype=bool)
             swept = np.ones(len(u), dtype=bool)
             for _ in range(frames):
-                w._move_bullets(pool)
-                w._collide()
+                move_bullets(pool)
+                w.detect()
                 hit[bullet_hits(w, target_layer, bullet_layer)] = True
-                first = int(np.flatnonzero(w.last_objects["layer"] == bullet_layer)[0])
-                swept &= w.last_objects["swept"][first:first + len(u)]
+                first = int(np.flatnonzero(w.collision.layer == bullet_layer)[0])
+                swept &= w.collision.swept[first:first + len(u)]
             assert swept.all(), f"{speed:.0f} px/s: a moving bullet was not swept"
             if sign > 0:
                 assert not hit.any(), f"{speed:.0f} px/s: {hit.sum()} paths {delta} px clear were called hits"
@@ -325,9 +328,9 @@ def test_a_teleported_bullet_hits_only_what_its_jump_passed_through(shot):
     else:
         expose_player(w)
         target_layer, pool, bullet_layer = PLAYER, w.enemy_bullets, ENEMY_BULLET
-    w._collide()
+    w.detect()
     target_poly, used = pose_of(w, target_layer)
-    clear = w.shapes.armatures[used].radius + radius(w, shot)
+    clear = w.kinds.shapes.armatures[used].radius + radius(w, shot)
     rng = np.random.default_rng(6)
     m = 400
     theta = np.radians(rng.uniform(25.0, 65.0, m) + 90.0 * rng.integers(0, 4, m))  # away from the axes: fat boxes
@@ -343,15 +346,15 @@ def test_a_teleported_bullet_hits_only_what_its_jump_passed_through(shot):
         box_has_target = ((np.minimum(prev, pos) <= CENTRE) & (CENTRE <= np.maximum(prev, pos))).all(axis=1)
         assert box_has_target.all()
         pool.clear()
-        add_bullets(pool, w.arm_id[shot], pos, np.zeros((m, 2)), prev=prev)
-        w._collide()
+        add_bullets(pool, w.kinds.base[shot], pos, np.zeros((m, 2)), prev=prev)
+        w.detect()
         hit = np.zeros(m, dtype=bool)
         hit[bullet_hits(w, target_layer, bullet_layer)] = True
-        first = int(np.flatnonzero(w.last_objects["layer"] == bullet_layer)[0])
-        assert w.last_objects["swept"][first:first + m].all()
+        first = int(np.flatnonzero(w.collision.layer == bullet_layer)[0])
+        assert w.collision.swept[first:first + m].all()
         assert (hit == expect).all(), f"{(hit != expect).sum()} of {m} jumps wrong (expected hit={expect})"
         if not expect and "aabb" in w.pipeline.tiers:
-            aabb = next(s for s in w.last.stats if s.name == "aabb")
+            aabb = next(s for s in w.collision.result.stats if s.name == "aabb")
             assert aabb.pairs_out >= m  # the box tier kept every one of them; the exact tier said no
 
 
@@ -364,38 +367,39 @@ def test_a_teleported_player_is_not_hit_by_what_lies_between_its_two_places():
     expose_player(w, start)
     clear = radius(w, "player") + radius(w, shot) + 1.0
     ys = np.arange(end[1] + clear, start[1] - clear, 6.0)
-    add_bullets(w.enemy_bullets, w.arm_id[shot], np.column_stack([np.full(len(ys), 240.0), ys]),
+    add_bullets(w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), 240.0), ys]),
                 np.zeros((len(ys), 2)))
     assert not w.step(IDLE).player_hit
-    w.player = end.copy()  # teleport between two steps
+    w.player.pos = end.copy()  # teleport between two steps
     ev = w.step(IDLE)
-    assert not ev.player_hit and w.lives == w.level.player.lives and w.enemy_bullets.n == len(ys)
-    add_bullets(w.enemy_bullets, w.arm_id[shot], end[None, :], np.zeros((1, 2)))
+    assert not ev.player_hit and w.player.lives == w.level.player.lives and w.enemy_bullets.n == len(ys)
+    add_bullets(w.enemy_bullets, w.kinds.base[shot], end[None, :], np.zeros((1, 2)))
     assert w.step(IDLE).player_hit
 
 
 def test_the_respawn_jump_does_not_hit_bullets_on_the_way():
     """After a hit the player reappears at the spawn point; bullets lying between the wreck
     and the spawn point (beyond the mercy radius) are not hit by that jump."""
-    from broadsword.sim.world import CLEAR_RADIUS, SPAWN
+    from broadsword.sim import SPAWN
+    from broadsword.sim.combat import CLEAR_RADIUS
 
     w = arena(SCENES[0])
     shot = ENEMY_SHOTS[0]
     wreck = np.array([SPAWN[0], 150.0])
     expose_player(w, wreck)
-    add_bullets(w.enemy_bullets, w.arm_id[shot], wreck[None, :], np.zeros((1, 2)))
+    add_bullets(w.enemy_bullets, w.kinds.base[shot], wreck[None, :], np.zeros((1, 2)))
     clear = radius(w, "player") + radius(w, shot) + 1.0
     ys = np.arange(wreck[1] + CLEAR_RADIUS + 2.0, SPAWN[1] - clear, 5.0)
-    add_bullets(w.enemy_bullets, w.arm_id[shot], np.column_stack([np.full(len(ys), SPAWN[0]), ys]),
+    add_bullets(w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), SPAWN[0]), ys]),
                 np.zeros((len(ys), 2)))
     ev = w.step(IDLE)
-    assert ev.player_hit and np.array_equal(w.player, SPAWN)
+    assert ev.player_hit and np.array_equal(w.player.pos, SPAWN)
     assert w.enemy_bullets.n == len(ys)  # only the mercy radius was cleared
-    w.invulnerable = 0.0
-    lives = w.lives
+    w.player.invulnerable = 0.0
+    lives = w.player.lives
     for _ in range(3):
         assert not w.step(IDLE).player_hit
-    assert w.lives == lives
+    assert w.player.lives == lives
 
 
 def test_a_teleported_ship_is_not_hit_by_shots_between_its_two_places():
@@ -403,15 +407,15 @@ def test_a_teleported_ship_is_not_hit_by_shots_between_its_two_places():
     name, kind = thinnest_ship(w)
     start, end = np.array([240.0, 120.0]), np.array([240.0, 480.0])
     place_ship(w, name, kind, centre=start)
-    clear = w.shapes.armatures[kind].radius + radius(w, "shot") + 1.0
+    clear = w.kinds.shapes.armatures[kind].radius + radius(w, "shot") + 1.0
     ys = np.arange(start[1] + clear, end[1] - clear, 4.0)
-    add_bullets(w.player_bullets, w.arm_id["shot"], np.column_stack([np.full(len(ys), 240.0), ys]),
+    add_bullets(w.player_bullets, w.kinds.base["shot"], np.column_stack([np.full(len(ys), 240.0), ys]),
                 np.zeros((len(ys), 2)))
     assert not w.step(IDLE).damaged
-    w.enemies.pos[:] = end  # teleport between two steps
+    w.ships.pool.pos[:] = end  # teleport between two steps
     ev = w.step(IDLE)
     assert not ev.damaged and not ev.hits and w.player_bullets.n == len(ys)
-    add_bullets(w.player_bullets, w.arm_id["shot"], end[None, :], np.zeros((1, 2)))
+    add_bullets(w.player_bullets, w.kinds.base["shot"], end[None, :], np.zeros((1, 2)))
     assert w.step(IDLE).damaged
 
 
@@ -422,9 +426,9 @@ def test_world_step_loses_a_life_for_every_aimed_bullet_at_every_speed(shot):
     each aimed at the player's centre (or a vertex, were the centre outside its armature),
     each costs exactly one life."""
     w = arena(SCENES[0])
-    w.lives = 10**6
+    w.player.lives = 10**6
     expose_player(w, CENTRE)
-    w._collide()
+    w.detect()
     aim = centre_or_vertex(pose_of(w, PLAYER)[0])[0]
     rho = radius(w, "player") + radius(w, shot) + 0.5
     theta = np.radians(np.arange(0.0, 360.0, 10.0) + 0.37)
@@ -435,13 +439,13 @@ def test_world_step_loses_a_life_for_every_aimed_bullet_at_every_speed(shot):
         for start, uj, deg in zip(starts, u, np.degrees(theta)):
             expose_player(w, CENTRE)
             w.enemy_bullets.clear()
-            add_bullets(w.enemy_bullets, w.arm_id[shot], start, uj * speed)
-            lives = w.lives
+            add_bullets(w.enemy_bullets, w.kinds.base[shot], start, uj * speed)
+            lives = w.player.lives
             hits = 0
             for _ in range(frames):
-                w.player = CENTRE.copy()  # hold the player still (a hit respawns it)
+                w.player.pos = CENTRE.copy()  # hold the player still (a hit respawns it)
                 hits += w.step(IDLE).player_hit
-            assert hits == 1 and w.lives == lives - 1, f"{shot} at {speed:.0f} px/s, {deg:.2f} deg: {hits} hits"
+            assert hits == 1 and w.player.lives == lives - 1, f"{shot} at {speed:.0f} px/s, {deg:.2f} deg: {hits} hits"
             cases += 1
     assert cases == len(SPEEDS[::2]) * 36
 
@@ -451,7 +455,7 @@ def test_world_step_damages_the_thinnest_ship_once_per_aimed_shot_at_every_speed
     bullets are removed when they hit, so the hit count is the number that hit)."""
     w = arena(SCENES[0])
     name, kind = thinnest_ship(w)
-    rho = w.shapes.armatures[kind].radius + radius(w, "shot") + 0.5
+    rho = w.kinds.shapes.armatures[kind].radius + radius(w, "shot") + 0.5
     theta = np.radians(ANGLES + 0.5)
     u = np.column_stack([np.cos(theta), np.sin(theta)])
     for speed in SPEEDS:
@@ -461,10 +465,10 @@ def test_world_step_damages_the_thinnest_ship_once_per_aimed_shot_at_every_speed
         posed, used = pose_of(w, ENEMY)
         assert used == kind
         aim = centre_or_vertex(posed)[0]
-        hp = int(w.enemies.hp[0])
+        hp = int(w.ships.pool.hp[0])
         start, frames = launch(np.repeat(aim[None, :], len(u), axis=0), u, speed, rho)
-        add_bullets(w.player_bullets, w.arm_id["shot"], start, u * speed)
+        add_bullets(w.player_bullets, w.kinds.base["shot"], start, u * speed)
         hits = 0
         for _ in range(frames):
             hits += w.step(IDLE).hits
-        assert hits == len(u) and hp - int(w.enemies.hp[0]) == len(u), f"{speed:.0f} px/s: {hits} of {len(u)} hit"
+        assert hits == len(u) and hp - int(w.ships.pool.hp[0]) == len(u), f"{speed:.0f} px/s: {hits} of {len(u)} hit"

@@ -13,7 +13,9 @@ from broadsword.collision import polygons_collide, pose
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, IDLE, Input, Pool, World, autopilot
-from broadsword.sim.world import ENEMY_BULLET, GRAZE_SCORE, INVULNERABLE_S, PLAYER_BULLET, SPAWN
+from broadsword.sim import SPAWN
+from broadsword.sim.player import INVULNERABLE_S
+from broadsword.sim.scoring import GRAZE_SCORE
 
 
 @pytest.fixture(scope="module")
@@ -32,14 +34,14 @@ def quiet_level():
 
 
 def ready(world: World) -> World:
-    world.invulnerable = 0.0  # skip the start-of-level grace period
+    world.player.invulnerable = 0.0  # skip the start-of-level grace period
     return world
 
 
 def add_bullet(world, x, y, vx, vy, name="needle"):
     pos = np.array([[x, y]], dtype=float)
     world.enemy_bullets.add(pos=pos, prev=pos, vel=[[vx, vy]], angle=[np.degrees(np.arctan2(vx, -vy))],
-                            arm=[world.arm_id[name]], grazed=[False])
+                            arm=[world.kinds.base[name]], grazed=[False])
 
 
 def test_input__byte_round_trip():
@@ -67,19 +69,19 @@ def test_pool__add_keep_grow():
 
 def test_world__player_moves_and_is_clamped(quiet_level, armatures):
     w = ready(World(quiet_level, armatures))
-    x0 = w.player[0]
+    x0 = w.player.pos[0]
     for _ in range(30):
         w.step(Input(dx=1))
-    assert w.player[0] == pytest.approx(x0 + 30 * quiet_level.player.speed * DT)
+    assert w.player.pos[0] == pytest.approx(x0 + 30 * quiet_level.player.speed * DT)
     for _ in range(400):
         w.step(Input(dx=1, dy=-1))
-    assert w.player[0] <= 480 - 12 and w.player[1] >= 16
+    assert w.player.pos[0] <= 480 - 12 and w.player.pos[1] >= 16
 
 
 def test_world__slow_mode_is_slower(quiet_level, armatures):
     w = ready(World(quiet_level, armatures))
     w.step(Input(dx=1, slow=True))
-    assert w.player[0] - SPAWN[0] == pytest.approx(quiet_level.player.slow_speed * DT)
+    assert w.player.pos[0] - SPAWN[0] == pytest.approx(quiet_level.player.slow_speed * DT)
 
 
 def test_world__player_bullet_kills_enemy_and_scores(quiet_level, armatures):
@@ -95,18 +97,18 @@ def test_world__player_bullet_kills_enemy_and_scores(quiet_level, armatures):
         if kills:
             break
     assert kills and kills[0][2] == "scout"
-    assert w.score == 123
-    assert w.enemies.n == 0
+    assert w.score.points == 123
+    assert w.ships.pool.n == 0
 
 
 def first_contact_frame(world: World, bullet_start, vel, name="needle", limit=200):
     """The first step after which the player's posed armature and the bullet's share a
     point, computed independently with the scalar exact predicate (no pipeline)."""
-    shapes, ids = world.shapes, [world.arm_id["player"], world.arm_id[name]]
+    shapes, ids = world.kinds.shapes, [world.kinds.base["player"], world.kinds.base[name]]
     angle = np.degrees(np.arctan2(vel[0], -vel[1]))
     for k in range(1, limit):
         b = np.array(bullet_start) + np.array(vel) * DT * k
-        posed = pose(shapes, ids, [world.player, b], [0.0, angle], world.pipeline.rotation)
+        posed = pose(shapes, ids, [world.player.pos, b], [0.0, angle], world.pipeline.rotation)
         p, q = posed.polygons()
         if polygons_collide(p, q):
             return k
@@ -118,22 +120,22 @@ def test_world__enemy_bullet_costs_a_life_on_the_expected_frame(quiet_level, arm
     start, vel = (SPAWN[0] + 1.5, SPAWN[1] - 60.0), (0.0, 150.0)
     expected = first_contact_frame(w, start, vel)
     add_bullet(w, *start, *vel)
-    lives = w.lives
+    lives = w.player.lives
     for k in range(1, expected + 5):
         ev = w.step(IDLE)
         if ev.player_hit:
             break
-    assert k == expected and w.lives == lives - 1
-    assert w.invulnerable == pytest.approx(INVULNERABLE_S - DT)
+    assert k == expected and w.player.lives == lives - 1
+    assert w.player.invulnerable == pytest.approx(INVULNERABLE_S - DT)
 
 
 def test_world__invulnerable_after_a_hit(quiet_level, armatures):
     w = ready(World(quiet_level, armatures))
-    w.invulnerable = 1.0
+    w.player.invulnerable = 1.0
     add_bullet(w, SPAWN[0], SPAWN[1] - 30, 0.0, 150.0)
     for _ in range(40):
         assert not w.step(IDLE).player_hit
-    assert w.lives == quiet_level.player.lives
+    assert w.player.lives == quiet_level.player.lives
 
 
 def test_world__graze_scores_once(quiet_level, armatures):
@@ -148,7 +150,7 @@ def test_world__graze_scores_once(quiet_level, armatures):
         ev = w.step(IDLE)
         assert not ev.player_hit
         total += ev.grazes
-    assert total == 1 and w.score == GRAZE_SCORE
+    assert total == 1 and w.score.points == GRAZE_SCORE
 
 
 def test_world__bullets_never_test_bullets(quiet_level, armatures):
@@ -156,12 +158,13 @@ def test_world__bullets_never_test_bullets(quiet_level, armatures):
     for k in range(20):
         add_bullet(w, 100 + k, 100, 0.0, 10.0)
     w.player_bullets.add(pos=[[105.0, 100.0]], prev=[[105.0, 100.0]], vel=[[0.0, -10.0]], angle=[0.0],
-                         arm=[w.arm_id["shot"]], grazed=[False])
+                         arm=[w.kinds.base["shot"]], grazed=[False])
     w.step(IDLE)
-    layers = w.last_objects["layer"][w.last.candidates]
+    layers = w.collision.layer[w.collision.result.candidates]
     pairs = {tuple(p) for p in layers.tolist()}
-    assert (ENEMY_BULLET, PLAYER_BULLET) not in pairs and (ENEMY_BULLET, ENEMY_BULLET) not in pairs
-    assert w.last.stats[0].pairs_out == 20 + 20  # player x 20 bullets, graze x 20 bullets
+    eb, pb = w.layers.enemy_bullet, w.layers.player_bullet
+    assert (eb, pb) not in pairs and (pb, eb) not in pairs and (eb, eb) not in pairs
+    assert w.collision.result.stats[0].pairs_out == 20 + 20  # player x 20 bullets, graze x 20 bullets
 
 
 @pytest.mark.parametrize("name", list_levels())
@@ -187,7 +190,7 @@ def test_world__level_completes_when_waves_are_cleared(quiet_level, armatures):
         if w.step(IDLE).level_complete:
             done = True
             break
-    assert done and w.complete and w.score == 0  # it flew off the screen unharmed
+    assert done and w.complete and w.score.points == 0  # it flew off the screen unharmed
 
 
 def test_sim_and_data__import_without_pygame():

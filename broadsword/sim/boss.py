@@ -1,0 +1,111 @@
+"""The boss: absent when a level has none; a state, its phases as data, and its parts.
+
+A boss enters from above at ``at`` seconds, descends to ``y`` and sways; its parts ride
+along at their offsets, each turning at its own rate and firing its own pattern. Damage
+to any part counts against the current phase's hit points; when the last phase's run out,
+the boss dies and the level can end.
+"""
+
+from __future__ import annotations
+
+import math
+from enum import Enum
+
+import numpy as np
+
+from ..data.levels import BossSpec
+from .field import DT, FIELD
+from .pool import Pool
+
+#: The boss enters from this y, descending at this speed (px, px/s).
+ENTRY_Y, DESCENT = -80.0, 90.0
+#: Its sway's angular rate, radians per second.
+SWAY_RATE = 0.6
+#: Parts hold their first volley this much longer than their pattern's delay, s.
+FIRST_VOLLEY_GRACE = 2.0
+
+
+class BossState(Enum):
+    WAITING = "waiting"  # not arrived yet
+    FIGHTING = "fighting"
+    DEAD = "dead"
+
+
+def parts_pool(capacity: int = 1) -> Pool:
+    """A pool of boss parts: pose, armature kind, age, part index and firing schedule."""
+    return Pool(capacity=capacity, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
+                arm=((), int), age=((), float), part=((), int), next_fire=((), float), volley=((), int))
+
+
+class Boss:
+    """A level's boss. ``parts`` is a pool of the parts (one object each in the collision
+    scene, on the enemy-ship layer); ``phase`` indexes ``spec.phases``; ``hp`` is what is
+    left of the current phase."""
+
+    def __init__(self, spec: BossSpec):
+        self.spec = spec
+        self.state = BossState.WAITING
+        self.phase = 0
+        self.hp = 0
+        self.age = 0.0
+        self.pos = np.array([FIELD[0] / 2, ENTRY_Y])
+        self.offsets = np.array([p.offset for p in spec.parts], dtype=np.float64).reshape(-1, 2)
+        self.spin = np.array([p.spin for p in spec.parts], dtype=np.float64)
+        self.parts = parts_pool(max(1, len(spec.parts)))
+
+    @property
+    def fighting(self) -> bool:
+        return self.state is BossState.FIGHTING
+
+    @property
+    def dead(self) -> bool:
+        return self.state is BossState.DEAD
+
+    def arrive(self, t: float, kinds_base: dict[str, int]) -> bool:
+        """Start the fight if it is time (``t`` seconds into the level); True if it started."""
+        if self.state is not BossState.WAITING or t < self.spec.at:
+            return False
+        self.state, self.phase, self.hp, self.age = BossState.FIGHTING, 0, self.spec.phases[0].hp, 0.0
+        self.pos = np.array([FIELD[0] / 2, ENTRY_Y])
+        k = len(self.spec.parts)
+        at = self.pos + self.offsets
+        self.parts.add(pos=at, prev=at, vel=np.zeros((k, 2)), angle=np.zeros(k),
+                       arm=[kinds_base[p.sprite] for p in self.spec.parts], age=np.zeros(k), part=np.arange(k),
+                       next_fire=[p.fire.delay + FIRST_VOLLEY_GRACE for p in self.spec.parts],
+                       volley=np.zeros(k, dtype=int))
+        return True
+
+    def move(self) -> None:
+        """Descend, sway, and carry the parts along, each turning at its own rate."""
+        p = self.parts
+        if not p.n:
+            return
+        p.prev[:] = p.pos
+        p.age[:] += DT
+        self.age += DT
+        y = min(self.spec.y, ENTRY_Y + DESCENT * self.age)
+        arrived = (self.spec.y - ENTRY_Y) / DESCENT  # seconds until it holds
+        x = FIELD[0] / 2 + self.spec.sway * math.sin(SWAY_RATE * max(0.0, self.age - arrived))
+        self.pos = np.array([x, y])
+        p.pos[:] = self.pos + self.offsets[p.part]
+        p.vel[:] = (p.pos - p.prev) / DT
+        p.angle[:] = (self.spin[p.part] * p.age) % 360.0
+
+    def damage(self, amount: int) -> bool:
+        """Take ``amount`` damage; True if that killed the boss (its last phase ended)."""
+        if not self.fighting or amount <= 0:
+            return False
+        self.hp -= amount
+        while self.hp <= 0 and self.phase + 1 < len(self.spec.phases):
+            self.phase += 1
+            self.hp += self.spec.phases[self.phase].hp
+        if self.hp <= 0:
+            self.state = BossState.DEAD
+            return True
+        return False
+
+    def wreck(self) -> list[tuple[float, float]]:
+        """Remove the parts; returns where they were."""
+        at = [(x, y) for x, y in self.parts.pos.tolist()]
+        self.parts.clear()
+        return at

@@ -1,0 +1,48 @@
+"""The game's collision layers and the one table that says which test which.
+
+Layer ids are never written as numbers: they come from the table by name
+(:class:`LayerIds`), so a layer added later cannot shift another's meaning.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from ..collision import LayerTable
+
+
+class GameLayer(str, Enum):
+    """A collision layer of the game (the paper's entity lists, section 2.3)."""
+
+    PLAYER = "player"  # the player's small hit armature
+    GRAZE = "graze"  # the player's larger graze shape: near misses score
+    ENEMY_SHIP = "enemy_ship"  # wave ships and boss parts
+    ENEMY_BULLET = "enemy_bullet"
+    PLAYER_BULLET = "player_bullet"
+
+
+def game_layer_table(graze: bool = True) -> LayerTable:
+    """The game's table: the player against enemy ships and enemy bullets, the graze shape
+    against enemy bullets (when the scene grazes), enemy ships against player bullets.
+    Bullets never test bullets."""
+    tests = [(GameLayer.PLAYER, GameLayer.ENEMY_SHIP), (GameLayer.PLAYER, GameLayer.ENEMY_BULLET)]
+    if graze:
+        tests.append((GameLayer.GRAZE, GameLayer.ENEMY_BULLET))
+    tests.append((GameLayer.ENEMY_SHIP, GameLayer.PLAYER_BULLET))
+    return LayerTable([g.value for g in GameLayer], [(a.value, b.value) for a, b in tests])
+
+
+@dataclass(frozen=True)
+class LayerIds:
+    """Each game layer's id in a table, looked up by name once."""
+
+    player: int
+    graze: int
+    enemy_ship: int
+    enemy_bullet: int
+    player_bullet: int
+
+    @classmethod
+    def of(cls, table: LayerTable) -> "LayerIds":
+        return cls(*(table.id(g.value) for g in GameLayer))

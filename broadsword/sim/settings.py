@@ -1,0 +1,38 @@
+"""Settings that change how a run plays out, and live toggles, as data a recording keeps."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from ..collision import ROTATION_MODES
+
+
+class Toggle(Enum):
+    """A setting the player can switch during play (each switch is recorded with its frame)."""
+
+    ROTATION = "rotation"  # F4: the paper's integer-degree table or exact sin/cos
+
+
+@dataclass(frozen=True)
+class Settings:
+    """What a run was played with, beyond its level and seed.
+
+    ``rotation`` is ``"lut"`` or ``"exact"``, or ``None`` for the level's own
+    ``scene.rotation``.
+    """
+
+    rotation: str | None = None
+
+    def __post_init__(self):
+        if self.rotation is not None and self.rotation not in ROTATION_MODES:
+            raise ValueError(f"rotation must be one of {ROTATION_MODES} or None, got {self.rotation!r}")
+
+
+@dataclass(frozen=True)
+class ToggleEvent:
+    """``toggle`` was set to ``value`` just before step ``frame`` ran."""
+
+    frame: int
+    toggle: Toggle
+    value: str
