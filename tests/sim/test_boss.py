@@ -1,0 +1,59 @@
+"""The boss: arrival, movement, phases as data, death."""
+
+import math
+
+import numpy as np
+import pytest
+
+from broadsword.data.levels import BossPart, BossPhaseSpec, BossSpec, FireSpec
+from broadsword.sim import DT, FIELD
+from broadsword.sim.boss import DESCENT, ENTRY_Y, FIRST_VOLLEY_GRACE, SWAY_RATE, Boss, BossState
+
+
+def spec(phases=(), hp=100):
+    parts = (BossPart("core", (0.0, 0.0), 0.0, FireSpec(delay=1.0)), BossPart("wing", (-40.0, 5.0), 30.0, FireSpec()))
+    return BossSpec(at=2.0, hp=hp, score=500, y=150.0, sway=80.0, parts=parts, phases=phases)
+
+
+def test_a_flat_boss_has_one_phase_of_its_hp():
+    assert spec(hp=123).phases == (BossPhaseSpec(123),)
+
+
+def test_arrives_at_its_time_with_its_parts():
+    b = Boss(spec())
+    assert b.state is BossState.WAITING and not b.arrive(1.99, {"core": 3, "wing": 4}) and b.parts.n == 0
+    assert b.arrive(2.0, {"core": 3, "wing": 4}) and b.fighting and b.hp == 100
+    assert b.parts.arm.tolist() == [3, 4] and b.parts.part.tolist() == [0, 1]
+    assert b.parts.next_fire.tolist() == [1.0 + FIRST_VOLLEY_GRACE, 0.5 + FIRST_VOLLEY_GRACE]
+    assert not b.arrive(3.0, {"core": 3, "wing": 4}) and b.parts.n == 2  # once
+
+
+def test_descends_then_sways_carrying_the_parts():
+    b = Boss(spec())
+    b.arrive(2.0, {"core": 0, "wing": 1})
+    b.move()
+    assert b.pos.tolist() == [FIELD[0] / 2, ENTRY_Y + DESCENT * DT]
+    assert b.parts.pos[1].tolist() == [FIELD[0] / 2 - 40.0, ENTRY_Y + DESCENT * DT + 5.0]
+    assert b.parts.angle[1] == pytest.approx(30.0 * DT)
+    arrived = (150.0 - ENTRY_Y) / DESCENT
+    while b.age < arrived + 1.0:
+        b.move()
+    assert b.pos[1] == 150.0
+    assert b.pos[0] == pytest.approx(FIELD[0] / 2 + 80.0 * math.sin(SWAY_RATE * (b.age - arrived)))
+    assert b.parts.vel[0] == pytest.approx((b.parts.pos[0] - b.parts.prev[0]) / DT)
+
+
+def test_damage_runs_through_the_phases_then_kills():
+    b = Boss(spec(phases=(BossPhaseSpec(10), BossPhaseSpec(20))))
+    b.arrive(2.0, {"core": 0, "wing": 1})
+    assert not b.damage(9) and b.phase == 0 and b.hp == 1
+    assert not b.damage(5) and b.phase == 1 and b.hp == 16  # the overflow carries into the next phase
+    assert b.damage(16) and b.dead
+    assert not b.damage(5)  # dead stays dead
+    assert b.wreck() == [(FIELD[0] / 2, ENTRY_Y), (FIELD[0] / 2 - 40.0, ENTRY_Y + 5.0)] and b.parts.n == 0
+
+
+def test_damage_before_the_fight_does_nothing():
+    b = Boss(spec())
+    assert not b.damage(1000) and b.state is BossState.WAITING
+    assert np.all(b.parts.pos.shape == (0, 2))

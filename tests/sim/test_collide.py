@@ -1,0 +1,77 @@
+"""The collision step's record, the layer table and the armature kinds."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.sim import IDLE, GameLayer, Group, LayerIds, World
+from broadsword.sim.layers import game_layer_table
+from sim_bullets import add_bullets
+
+ARMATURES = load_armatures(data_dir("assets") / "sprites")
+
+
+def test_layer_table__bullets_never_test_bullets_and_graze_is_optional():
+    t = game_layer_table(graze=True)
+    ids = LayerIds.of(t)
+    assert t.names == tuple(g.value for g in GameLayer)
+    assert set(t.entries) == {(ids.player, ids.enemy_ship), (ids.player, ids.enemy_bullet),
+                              (ids.graze, ids.enemy_bullet), (ids.enemy_ship, ids.player_bullet)}
+    assert (ids.graze, ids.enemy_bullet) not in game_layer_table(graze=False).entries
+
+
+def test_kinds__each_sprite_frame_and_the_graze_shape():
+    level = load_level(resolve_level("3-broadsword"))
+    w = World(level, ARMATURES)
+    k = w.kinds
+    assert {"player", "shot", "graze"} <= set(k.base) and level.sprites <= set(k.base)
+    assert k.names[k.base["graze"]] == "graze"
+    assert len(k.shapes) == len(k.names) == len(k.frame)
+
+
+def test_record__spans_cover_each_group_in_order():
+    level = load_level(resolve_level("3-broadsword"))
+    w = World(dataclasses.replace(level, waves=level.waves[:1]), ARMATURES, seed=2)
+    w.player.invulnerable = 0.0
+    for _ in range(120):  # the first wave arrives and fires
+        w.step(IDLE)
+    w.player.invulnerable = 0.0
+    add_bullets(w.player_bullets, w.kinds.base["shot"], [[10.0, 10.0]], [[0.0, -100.0]])
+    r = w.detect()
+    n = len(r.layer)
+    assert r.spans[Group.PLAYER] == slice(0, 1) and r.spans[Group.GRAZE] == slice(1, 2)
+    order = [Group.SHIPS, Group.BOSS, Group.ENEMY_BULLETS, Group.PLAYER_BULLETS]
+    assert [r.spans[g].start for g in order[1:]] == [r.spans[g].stop for g in order[:-1]]
+    assert r.spans[Group.PLAYER_BULLETS].stop == n
+    ids = w.layers
+    assert (r.layer[r.spans[Group.SHIPS]] == ids.enemy_ship).all()
+    assert (r.layer[r.spans[Group.ENEMY_BULLETS]] == ids.enemy_bullet).all()
+    assert r.positions[r.spans[Group.PLAYER_BULLETS]].tolist() == [[10.0, 10.0]]
+    # Only moving bullets are swept.
+    assert not r.swept[: r.spans[Group.ENEMY_BULLETS].start].any()
+    assert w.collision is r
+
+
+def test_record__hits_from_picks_the_first_objects_group():
+    w = World(load_level(resolve_level("1-picket")), ARMATURES)  # nothing has arrived yet
+    w.player.invulnerable = 0.0
+    p = w.player.pos
+    add_bullets(w.enemy_bullets, w.kinds.base["needle"], [p, p + (300.0, 0.0)], [[0.0, 0.0], [0.0, 0.0]])
+    r = w.detect()
+    assert r.hits_from(Group.PLAYER).tolist() == [[0, 2]]
+    assert r.hits_from(Group.GRAZE).tolist() == [[1, 2]]
+    assert r.hits_from(Group.SHIPS, Group.BOSS).shape == (0, 2)
+
+
+@pytest.mark.parametrize("vulnerable, graze, heads", [(True, True, 2), (False, True, 1), (True, False, 1)])
+def test_record__the_player_takes_part_only_as_it_may(vulnerable, graze, heads):
+    level = load_level(resolve_level("1-picket"))
+    level = dataclasses.replace(level, waves=(), boss=None, scene=dataclasses.replace(level.scene, graze=graze))
+    w = World(level, ARMATURES)
+    w.player.invulnerable = 0.0 if vulnerable else 1.0
+    r = w.detect()
+    assert len(r.layer) == heads
+    assert (r.spans[Group.PLAYER].stop - r.spans[Group.PLAYER].start) == int(vulnerable)
+    assert np.array_equal(r.layer, [w.layers.player] * int(vulnerable) + [w.layers.graze] * int(graze))
