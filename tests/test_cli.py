@@ -75,8 +75,8 @@ def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "text, field",
-    [("not json", "bad JSON"), ('{"version": 9}', "version"), ('{"version": 1, "level": "1-picket", "seed": 0, "inputs": "zz"}', "inputs"),
-     ('{"version": 1, "level": "1-picket", "seed": 0, "inputs": "ff"}', "inputs")],
+    [("not json", "bad JSON"), ('{"version": 9}', "version"), ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "zz"}', "inputs"),
+     ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "ff"}', "inputs"), ('{"version": 1}', "older Broadsword")],
 )
 def test_broken_recording__exit_2(tmp_path, capsys, text, field):
     bad = tmp_path / "rec.json"

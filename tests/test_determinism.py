@@ -14,7 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from broadsword.cli import load_recording, main
+from broadsword.cli import main
+from broadsword.data.recordings import load_recording
 from broadsword.collision import ROTATION_MODES
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
 from broadsword.sim import Input, World, autopilot
@@ -115,12 +116,13 @@ def test_a_recorded_replay_reproduces_its_hash(rotation, tmp_path, armatures, ca
     rec = tmp_path / "run.json"
     recorded = run_cli_here(["--headless", "--level", "3-broadsword", "--frames", str(FRAMES), "--seed", "5",
                              "--autopilot", "--rotation", rotation, "--record", str(rec)], capsys)
-    with cli_subprocess("--headless", "--replay", str(rec), "--rotation", rotation) as other:
+    with cli_subprocess("--headless", "--replay", str(rec)) as other:
         doc = load_recording(rec)
-        assert doc["state_hash"] == recorded["state_hash"] and len(doc["decoded"]) == recorded["frames"]
-        w = World(level_with(doc["level"], rotation), armatures, doc["seed"])
-        for inp in doc["decoded"]:
-            w.step(inp)
+        assert doc.state_hash == recorded["state_hash"] and doc.frames == recorded["frames"]
+        assert doc.settings == {"rotation": rotation}
+        w = World(level_with(doc.level, rotation), armatures, doc.seed)
+        for b in doc.inputs:
+            w.step(Input.from_byte(b))
         assert w.state_hash() == recorded["state_hash"]
         replayed = finish(other)
     assert replayed["replay_matches"] is True
@@ -135,4 +137,5 @@ def test_a_recorded_replay_reproduces_its_hash(rotation, tmp_path, armatures, ca
     tampered["inputs"] = raw.hex()
     bad = tmp_path / "tampered.json"
     bad.write_text(json.dumps(tampered))
-    assert run_cli_here(["--headless", "--replay", str(bad), "--rotation", rotation], capsys)["replay_matches"] is False
+    tampered_run = run_cli_here(["--headless", "--replay", str(bad)], capsys)
+    assert tampered_run["replay_matches"] is False

@@ -22,7 +22,9 @@ from pathlib import Path
 import pygame
 
 from ..data import DataError, check_level_sprites, list_levels, load_level, resolve_level
-from ..sim import DT, FIELD, Input, World, autopilot
+from ..data.recordings import file_sha256
+from ..sim import DT, FIELD, Carry, Input, World, autopilot
+from ..sim.replay import Recorder
 from .audio import Audio
 from .overlay import Overlay
 from .render import Renderer
@@ -131,7 +133,7 @@ class App:
         self.message = self.scores.warning  # a set-aside scores file is reported on the title
         self.font = pygame.font.Font(None, 24)
         self.big = pygame.font.Font(None, 72)
-        self.recorded: list[int] = []
+        self.recorder: Recorder | None = None  # the level in play, as a recording
         self.lab = None
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .lab import Lab
@@ -187,8 +189,8 @@ class App:
     def _step(self, paused: bool = False) -> None:
         world = self.world
         inp = autopilot(world) if self.demo else self.current_input()
-        self.recorded.append(inp.to_byte())
         ev = world.step(inp)
+        self.recorder.stepped(inp)
         self.renderer.on_events(ev)
         if ev.shots:
             self.audio.play("shot")
@@ -350,17 +352,16 @@ class App:
             path = resolve_level(self.custom_level or self.levels[run.level_index])
             level = load_level(path)
             check_level_sprites(level, self.bank.armatures)  # names the field of an unknown sprite
-            world = World(level, self.bank.armatures, seed=self.seed + run.level_index)
+            carry = Carry(run.score, run.lives)
+            world = World(level, self.bank.armatures, seed=self.seed + run.level_index, carry=carry)
         except DataError as exc:
             self._report(exc)
             self.world, self.run_state = None, None
             self.accumulator = 0.0
             self.scene = "title"
             return False
-        world.score.points = run.score
-        if run.lives is not None:
-            world.player.lives = run.lives
         self.world = world
+        self.recorder = Recorder(world, self.custom_level or self.levels[run.level_index], file_sha256(path))
         self.error = None
         self.accumulator = 0.0
         self.scene = "play"

@@ -15,8 +15,8 @@ from .field import DT, FIELD, SPAWN
 from .input import IDLE, Input
 from .layers import GameLayer, LayerIds
 from .pool import Pool
-from .settings import Settings, Toggle, ToggleEvent
+from .settings import Carry, Settings, Toggle, ToggleEvent
 from .world import World
 
-__all__ = ["DT", "FIELD", "IDLE", "SPAWN", "CollisionRecord", "Events", "GameLayer", "Group", "Input", "LayerIds",
+__all__ = ["DT", "FIELD", "IDLE", "SPAWN", "Carry", "CollisionRecord", "Events", "GameLayer", "Group", "Input", "LayerIds",
            "Pool", "Settings", "Toggle", "ToggleEvent", "World", "autopilot"]

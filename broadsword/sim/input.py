@@ -4,29 +4,31 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..data.recordings import decode_input, encode_input
+
 
 @dataclass(frozen=True)
 class Input:
-    """``dx``, ``dy`` in {-1, 0, 1} (+y is down), ``fire`` and ``slow`` (the precise mode)."""
+    """``dx``, ``dy`` in {-1, 0, 1} (+y is down), ``fire``, ``slow`` (the precise mode) and
+    ``bomb``."""
 
     dx: int = 0
     dy: int = 0
     fire: bool = False
     slow: bool = False
+    bomb: bool = False
 
     def __post_init__(self):
         if self.dx not in (-1, 0, 1) or self.dy not in (-1, 0, 1):
             raise ValueError(f"dx and dy must be -1, 0 or 1, got {self.dx}, {self.dy}")
 
     def to_byte(self) -> int:
-        """Pack into one byte (for recordings): 2 bits per axis, then fire and slow."""
-        return (self.dx + 1) | (self.dy + 1) << 2 | int(self.fire) << 4 | int(self.slow) << 5
+        """One byte, for recordings (layout: :data:`broadsword.data.recordings.INPUT_BITS`)."""
+        return encode_input(self.dx, self.dy, self.fire, self.slow, self.bomb)
 
     @classmethod
     def from_byte(cls, b: int) -> "Input":
-        if not 0 <= b < 64 or (b & 3) == 3 or (b >> 2 & 3) == 3:
-            raise ValueError(f"not an input byte: {b}")
-        return cls((b & 3) - 1, (b >> 2 & 3) - 1, bool(b >> 4 & 1), bool(b >> 5 & 1))
+        return cls(*decode_input(b))
 
 
 IDLE = Input()

@@ -30,6 +30,18 @@ class Settings:
 
 
 @dataclass(frozen=True)
+class Carry:
+    """What a run carries into its next level: the score so far and the lives left."""
+
+    score: int = 0
+    lives: int | None = None  # None: the level's own
+
+    def __post_init__(self):
+        if self.score < 0 or (self.lives is not None and self.lives < 1):
+            raise ValueError(f"a carry needs score >= 0 and lives >= 1, got {self.score}, {self.lives}")
+
+
+@dataclass(frozen=True)
 class ToggleEvent:
     """``toggle`` was set to ``value`` just before step ``frame`` ran."""
 

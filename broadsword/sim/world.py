@@ -36,7 +36,7 @@ from .layers import LayerIds, game_layer_table
 from .player import Player
 from .pool import Pool
 from .scoring import Score
-from .settings import Settings, Toggle, ToggleEvent
+from .settings import Carry, Settings, Toggle, ToggleEvent
 from .waves import WaveShips, WaveTimeline
 from .weapons import PlayerGun
 
@@ -56,6 +56,8 @@ class World:
         Seeds the gameplay random stream (``rng``); cosmetic effects use their own.
     settings : Settings, optional
         What can change the outcome besides level, seed and inputs (the rotation mode).
+    carry : Carry, optional
+        The score and lives brought from the run's previous level.
 
     Attributes
     ----------
@@ -78,9 +80,11 @@ class World:
         Every live switch made, with its frame (for recordings).
     """
 
-    def __init__(self, level: Level, armatures, seed: int = 0, settings: Settings | None = None):
+    def __init__(self, level: Level, armatures, seed: int = 0, settings: Settings | None = None,
+                 carry: Carry | None = None):
         self.level, self.seed = level, int(seed)
         self.settings = settings or Settings()
+        self.carry = carry or Carry()
         self.rng = np.random.default_rng(self.seed)
         missing = ({"player", "shot"} | level.sprites) - set(armatures)
         if missing:
@@ -95,8 +99,8 @@ class World:
         self.frame = 0
         self.over = False
         self.complete = False
-        self.player = Player(level.player)
-        self.score = Score()
+        self.player = Player(level.player, lives=self.carry.lives or level.player.lives)
+        self.score = Score(points=self.carry.score)
         self.gun = PlayerGun(level.player, self.kinds.base["shot"])
         self.timeline = WaveTimeline(level.waves)
         self.ships = WaveShips(level.waves, self.kinds.base)

@@ -22,7 +22,8 @@ from pathlib import Path
 
 import pytest
 
-from broadsword import cli
+from broadsword import cli, headless
+from broadsword.data import recordings
 from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
 from broadsword.data.armatures import FILE_MAX_BYTES, SUFFIX
 from broadsword.data.errors import FIELD_MAX_CHARS, MESSAGE_MAX_CHARS
@@ -31,7 +32,7 @@ from broadsword.data.levels import LEVEL_MAX_BYTES, check_level_sprites
 BAD = Path(__file__).parent / "bad"
 EXPECTED = tomllib.loads((BAD / "EXPECTED.toml").read_text(encoding="utf-8"))
 SPRITES = data_dir("assets") / "sprites"
-RECORDING_MAX_BYTES = 8 << 20  # cli.load_recording's limit, as its docstring states
+RECORDING_MAX_BYTES = 8 << 20  # load_recording's limit, as its docstring states
 MB20 = 20 << 20
 
 # ---------------------------------------------------------------------- files made at test time
@@ -55,7 +56,8 @@ def ring(n: int, r: float = 100.0) -> str:
     return "[" + ", ".join(pts) + "]"
 
 
-RECORDING = {"version": 1, "level": "1-picket", "seed": 9, "frames": 4, "inputs": "05050505"}
+RECORDING = {"version": 2, "game_version": "test", "level": "1-picket", "seed": 9, "settings": {"rotation": "lut"},
+             "frames": 4, "inputs": "05050505"}
 
 #: (kind, file name) -> (text maker, field, expected words): faults too big to commit.
 #: Each text is made only when its test runs.
@@ -84,7 +86,7 @@ GENERATED = {
     ("recordings", "huge.json"): (lambda: json.dumps({**RECORDING, "frames": MB20 // 2, "inputs": "05" * (MB20 // 2)}), "",
                                   f"at most {RECORDING_MAX_BYTES:,}"),
     ("recordings", "deep-nesting.json"): (lambda: "[" * DEEP + "]" * DEEP, "", "nested too deeply"),
-    ("recordings", "giant-number.json"): (lambda: '{"version": 1, "level": "1-picket", "seed": ' + "9" * 5000
+    ("recordings", "giant-number.json"): (lambda: '{"version": 2, "level": "1-picket", "seed": ' + "9" * 5000
                                           + ', "inputs": ""}', "", "bad JSON"),
 }
 
@@ -123,7 +125,7 @@ def load(kind: str, path: Path, armatures) -> object:
         return level
     if kind == "armatures":
         return load_armature_file(path)
-    return cli.load_recording(path)
+    return recordings.load_recording(path)
 
 
 def expected_error(case, tmp_path, armatures) -> tuple[Path, str]:
@@ -245,7 +247,7 @@ def test_headless_with_a_bad_armature__exit_2_and_the_loader_line(case, tmp_path
     shutil.copy(path, assets / "sprites" / path.name)
     # The headless command loads the armatures of data_dir("assets"); point it at a copy
     # of the shipped ones with the bad file added.
-    monkeypatch.setattr(cli, "data_dir", lambda kind: assets if kind == "assets" else data_dir(kind))
+    monkeypatch.setattr(headless, "data_dir", lambda kind: assets if kind == "assets" else data_dir(kind))
     code = cli.main(["--headless", "--level", "1-picket", "--frames", "5"])
     out, err = capsys.readouterr()
     assert code == 2 and out == ""
@@ -316,7 +318,7 @@ def test_size_limit__a_recording_over_8_mib_is_not_parsed(tmp_path, monkeypatch)
     calls = []
     monkeypatch.setattr(json, "loads", lambda *a, **k: calls.append(a) or {})
     with pytest.raises(DataError, match=f"at most {RECORDING_MAX_BYTES:,}"):
-        cli.load_recording(path)
+        recordings.load_recording(path)
     assert calls == []
 
 
@@ -426,7 +428,7 @@ def executing_uses(tree: ast.AST) -> list[str]:
 def test_nothing_executed__the_loaders_parse_with_tomllib_and_json_only():
     package = Path(cli.__file__).parent / "data"
     sources = {p.name: p.read_text(encoding="utf-8") for p in sorted(package.glob("*.py"))}
-    sources["cli.load_recording"] = textwrap.dedent(inspect.getsource(cli.load_recording))
+    sources["load_recording"] = textwrap.dedent(inspect.getsource(recordings.load_recording))
     assert {"levels.py", "armatures.py", "resources.py"} <= set(sources)
     for name, source in sources.items():
         assert executing_uses(ast.parse(source)) == [], name
@@ -435,5 +437,5 @@ def test_nothing_executed__the_loaders_parse_with_tomllib_and_json_only():
     assert sorted(executing_uses(ast.parse(probe))) == ["call compile", "call eval", "call exec", "from importlib",
                                                        "import pickle"]
     # The parsers are the standard ones.
-    assert "tomllib.loads(" in sources["resources.py"] and "json.loads(" in sources["cli.load_recording"]
+    assert "tomllib.loads(" in sources["resources.py"] and "json.loads(" in sources["load_recording"]
 

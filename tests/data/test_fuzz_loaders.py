@@ -1,7 +1,7 @@
 """Fuzzing the loaders (issue 6, "Reliability").
 
 Whatever the bytes, :func:`load_level`, :func:`load_armature_file` and
-:func:`broadsword.cli.load_recording` return a valid object or raise :class:`DataError`
+:func:`broadsword.data.recordings.load_recording` return a valid object or raise :class:`DataError`
 (one line, naming the file), never any other exception. Inputs: random bytes, random
 TOML-ish text, and random mutations of the shipped files (a key deleted or added, a value
 of another type, nan, inf, huge or negative numbers, deep nesting, a list grown long).
@@ -24,7 +24,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from broadsword import cli
+from broadsword import __version__
+from broadsword.data.recordings import load_recording
+from broadsword.sim import Input
 from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
 from broadsword.data.armatures import COORD_MAX, FRAMES_MAX, SUFFIX, VERTICES_MAX
 from broadsword.data.levels import check_level_sprites
@@ -33,7 +35,9 @@ from broadsword.sim import World, autopilot
 SPRITES = data_dir("assets") / "sprites"
 LEVEL_PATHS = [resolve_level(name) for name in list_levels()]
 ARMATURE_PATHS = sorted(SPRITES.glob(f"*{SUFFIX}"))
-RECORDING = {"version": 1, "level": "1-picket", "seed": 9, "frames": 6, "inputs": "051525053505", "state_hash": "0f"}
+RECORDING = {"version": 2, "game_version": __version__, "level": "1-picket", "seed": 9, "settings": {"rotation": "lut"},
+             "toggles": [[2, "rotation", "exact"]], "carry": {"score": 10, "lives": 2}, "frames": 6,
+             "inputs": "051525053505", "checkpoints": [], "state_hash": "0f"}
 FRAMES_PLAYED = 20
 SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
@@ -98,13 +102,16 @@ def try_armature(path: Path):
 
 def try_recording(path: Path):
     try:
-        doc = cli.load_recording(path)
+        rec = load_recording(path)
     except DataError as exc:
         assert_error_line(exc, path)
         return None
-    assert len(doc["decoded"]) == len(bytes.fromhex(doc["inputs"]))
-    assert isinstance(doc["seed"], int) and 0 <= doc["seed"] < 2**63 and isinstance(doc["level"], str)
-    return doc
+    decoded = [Input.from_byte(b) for b in rec.inputs]  # every byte is a valid input
+    assert len(decoded) == rec.frames
+    assert isinstance(rec.seed, int) and 0 <= rec.seed < 2**63 and isinstance(rec.level, str) and rec.level
+    assert rec.settings["rotation"] in ("lut", "exact")
+    assert all(0 <= t[0] <= rec.frames for t in rec.toggles)
+    return rec
 
 
 def assert_error_line(exc: DataError, path: Path) -> None:
@@ -336,4 +343,4 @@ def test_fuzz__the_unmutated_sources_are_valid(folder, armatures):
         assert try_armature(path) is not None
     rec = folder / "valid.json"
     rec.write_text(json.dumps(RECORDING))
-    assert try_recording(rec)["decoded"][1].fire
+    assert Input.from_byte(try_recording(rec).inputs[1]).fire
