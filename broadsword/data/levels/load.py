@@ -1,0 +1,214 @@
+"""Level files (``levels/*.toml``): the scene a level needs, its waves and its boss.
+
+The format is documented, with an example, in docs/FORMATS.md. Every number is checked
+against its range, every name against what the game knows, and unknown keys are errors
+(a typo should not be silently ignored); a :class:`DataError` names the file and the
+field, e.g. ``levels/1-picket.toml: wave[2].path: must be one of straight, sine, ...``.
+
+Limits: a file of at most ``LEVEL_MAX_BYTES`` (1 MiB, checked before parsing), UTF-8
+TOML; numbers finite (``nan`` and ``inf`` are refused) and in their ranges; at most
+``WAVES_MAX`` waves sending ``SHIPS_MAX`` ships in all, and ``PARTS_MAX`` boss parts;
+text one printable line of at most ``table.TEXT_MAX_CHARS``; sprite names are names
+(``table.SPRITE_NAME``), never paths, so ``../x`` or ``/x`` cannot reach outside the assets.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ...collision import BOUND_TIERS, BROAD_PHASES, LAST_TIERS, ROTATION_MODES
+from ..errors import DataError, shown
+from ..resources import read_toml
+from ..table import MISSING, Table
+from .specs import (PATHS, PATTERNS, BossPart, BossSpec, FireKind, FireSpec, Level, PathKind, PathSpec, PlayerSpec,
+                    SceneSpec, WaveSpec)
+
+#: A level file is at most this big; a larger one is refused by its size, unparsed.
+LEVEL_MAX_BYTES = 1 << 20
+WAVES_MAX = 256
+#: Ships all the waves of a level send, mirrored ones counted: more would only stall the game.
+SHIPS_MAX = 10_000
+PARTS_MAX = 16
+#: A boss part sits at most this many px from the boss's centre, in x and in y.
+OFFSET_MAX = 1000.0
+
+#: The keys of a firing pattern (a wave's or a boss part's), read only when it fires.
+FIRE_KEYS = ("bullet", "bullet_speed", "fire_every", "shots", "spread", "volley_turn", "fire_delay")
+
+
+def _fire(t: Table) -> FireSpec:
+    d = FireSpec()
+    pattern = FireKind(t.str("fire", d.pattern.value, PATTERNS))
+    if pattern is FireKind.NONE:
+        for key in FIRE_KEYS:
+            if key in t.doc:
+                raise t.error(key, 'only for a ship that fires: set fire to a pattern, not "none"')
+        return FireSpec()
+    return FireSpec(
+        pattern=pattern,
+        bullet=t.sprite("bullet", d.bullet),
+        speed=t.num("bullet_speed", d.speed, 10, 2000),
+        every=t.num("fire_every", d.every, 0.02, 60),
+        shots=t.int("shots", d.shots, 1, 256),
+        spread=t.num("spread", d.spread, 0, 360),
+        spin=t.num("volley_turn", d.spin, -360, 360),
+        delay=t.num("fire_delay", d.delay, 0, 600),
+    )
+
+
+def _path(t: Table) -> PathSpec:
+    d = PathSpec()
+    return PathSpec(
+        kind=PathKind(t.str("path", d.kind.value, PATHS)),
+        x=t.num("x", d.x, -200, 2000),
+        speed=t.num("speed", d.speed, 1, 2000),
+        amplitude=t.num("amplitude", d.amplitude, 0, 1000),
+        period=t.num("period", d.period, 0.1, 60),
+        radius=t.num("radius", d.radius, 1, 2000),
+        turn=t.num("turn", d.turn, -1080, 1080),
+        dive_at=t.num("dive_at", d.dive_at, -100, 2000),
+        hold_y=t.num("hold_y", d.hold_y, -100, 2000),
+        hold_for=t.num("hold_for", d.hold_for, 0, 600),
+    )
+
+
+def _tiers(value, path: Path) -> tuple[str, ...]:
+    """The scene's tiers, checked as :class:`broadsword.collision.Pipeline` requires: one
+    broad phase first, then bounds tiers, then at most one exact tier, last; none twice."""
+    known = tuple(BROAD_PHASES) + BOUND_TIERS + LAST_TIERS
+    if not (isinstance(value, list) and value and all(isinstance(x, str) for x in value)):
+        raise DataError(path, "scene.tiers", f"must be a list of tier names ({', '.join(known)}), got {shown(value)}")
+    for x in value:
+        if x not in known:
+            raise DataError(path, "scene.tiers", f"unknown tier {shown(x)}; tiers are {', '.join(known)}")
+    if value[0] not in BROAD_PHASES:
+        raise DataError(path, "scene.tiers", f"the first tier must be a broad phase ({', '.join(BROAD_PHASES)})")
+    if len(set(value)) != len(value):
+        raise DataError(path, "scene.tiers", "must name each tier once")
+    rest = value[1:]
+    if any(x in BROAD_PHASES for x in rest):
+        raise DataError(path, "scene.tiers", "must name only one broad phase, first")
+    exact = [x for x in rest if x in LAST_TIERS]
+    if len(exact) > 1 or (exact and rest[-1] != exact[0]):
+        raise DataError(path, "scene.tiers", f"may end with one exact tier ({', '.join(LAST_TIERS)}), only last")
+    return tuple(value)
+
+
+def _scene(doc, path) -> SceneSpec:
+    t = Table(doc, path, "scene")
+    d = SceneSpec()
+    tiers = _tiers(t.raw("tiers", list(d.tiers)), path)
+    size = t.raw("bin_size", "auto")
+    if size == "auto":
+        bin_size = None
+    elif _is_number(size) and 1 <= size <= 4096:  # nan and inf fail the range
+        bin_size = float(size)
+    else:
+        raise DataError(path, "scene.bin_size",
+                        f'must be "auto" or a finite number of px in [1, 4096], got {shown(size)}')
+    spec = SceneSpec(tiers, t.str("rotation", d.rotation, ROTATION_MODES), bin_size, t.bool("graze", d.graze))
+    t.done()
+    return spec
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _offset(t: Table) -> tuple[float, float]:
+    off = t.raw("offset", [0.0, 0.0])
+    lim = OFFSET_MAX
+    if not (isinstance(off, list) and len(off) == 2 and all(_is_number(c) for c in off)):
+        raise t.error("offset", f"must be an [x, y] pair of numbers, got {shown(off)}")
+    if not all(-lim <= c <= lim for c in off):  # nan and inf fail the range
+        raise t.error("offset", f"must be finite, each in [{-lim:g}, {lim:g}] px; "
+                                f"got [{shown(off[0])}, {shown(off[1])}]")
+    return float(off[0]), float(off[1])
+
+
+def load_level(path: str | Path) -> Level:
+    """Parse and validate a level file. Raises :class:`DataError` naming file and field.
+
+    The file is at most ``LEVEL_MAX_BYTES`` (refused by its size before it is parsed),
+    UTF-8 TOML; it has at most ``WAVES_MAX`` waves (``SHIPS_MAX`` ships in all) and
+    ``PARTS_MAX`` boss parts, and is not empty (a level with tables but no wave and no boss
+    is allowed: it is complete as soon as it starts). Sprite names are names, not
+    paths; whether they name loaded armatures is :func:`check_level_sprites`'s job (the
+    armatures are not loaded here).
+    """
+    path = Path(path)
+    doc = read_toml(path, LEVEL_MAX_BYTES, "a level file")
+    top = Table(doc, path, "")
+    head = Table(top.raw("level", {}), path, "level")
+    name = head.str("name", path.stem)
+    title = head.str("title", name)
+    head.done()
+    scene = _scene(top.raw("scene", {}), path)
+    p = Table(top.raw("player", {}), path, "player")
+    d = PlayerSpec()
+    player = PlayerSpec(
+        p.num("speed", d.speed, 10, 2000), p.num("slow_speed", d.slow_speed, 10, 2000),
+        p.num("fire_every", d.fire_every, 0.02, 5), p.num("shot_speed", d.shot_speed, 50, 200_000),
+        p.int("lives", d.lives, 1, 99),
+    )
+    p.done()
+    waves_doc = top.raw("wave", [])
+    if not isinstance(waves_doc, list):
+        raise DataError(path, "wave", f"must be an array of tables ([[wave]]), got {shown(waves_doc)}")
+    if len(waves_doc) > WAVES_MAX:
+        raise DataError(path, "wave", f"must be at most {WAVES_MAX} waves, got {len(waves_doc)}")
+    waves, ships = [], 0
+    for i, w in enumerate(waves_doc):
+        t = Table(w, path, f"wave[{i}]")
+        waves.append(WaveSpec(
+            at=t.num("at", 0.0, 0, 3600), enemy=t.sprite("enemy", MISSING), count=t.int("count", 1, 1, 1000),
+            every=t.num("every", 0.5, 0, 60), hp=t.int("hp", 1, 1, 100_000), score=t.int("score", 100, 0, 10**7),
+            path=_path(t), fire=_fire(t), mirror=t.bool("mirror", False),
+        ))
+        t.done(FIRE_KEYS)
+        ships += waves[-1].count * (2 if waves[-1].mirror else 1)
+        if ships > SHIPS_MAX:
+            raise t.error("count", f"the waves up to here send {ships:,} ships; "
+                                   f"a level sends at most {SHIPS_MAX:,} in all")
+    boss = None
+    if "boss" in doc:
+        t = Table(top.raw("boss", {}), path, "boss")
+        parts_doc = t.raw("part", [])
+        if not isinstance(parts_doc, list) or not parts_doc:
+            raise DataError(path, "boss.part", f"a boss needs at least one [[boss.part]], got {shown(parts_doc)}")
+        if len(parts_doc) > PARTS_MAX:
+            raise DataError(path, "boss.part", f"must be at most {PARTS_MAX} parts, got {len(parts_doc)}")
+        parts = []
+        for i, pd in enumerate(parts_doc):
+            pt = Table(pd, path, f"boss.part[{i}]")
+            parts.append(BossPart(pt.sprite("sprite", MISSING), _offset(pt), pt.num("spin", 0.0, -3600, 3600),
+                                  _fire(pt)))
+            pt.done(FIRE_KEYS)
+        boss = BossSpec(t.num("at", 0.0, 0, 3600), t.int("hp", 100, 1, 10**7), t.int("score", 10_000, 0, 10**8),
+                        t.num("y", 150.0, 0, 2000), t.num("sway", 80.0, 0, 1000), tuple(parts))
+        t.done()
+    top.done(("boss",))
+    if not doc:  # nothing at all is a broken file; a level that *declares* nothing to fight is fine
+        raise DataError(path, "wave", "the file is empty: a level needs at least one [[wave]] or a [boss]")
+    return Level(name, title, path, scene, player, tuple(waves), boss)
+
+
+def check_level_sprites(level: Level, armatures) -> None:
+    """Check that every sprite ``level`` names (waves' enemies and bullets, boss parts'
+    sprites and bullets) is among ``armatures`` (a mapping or set of names, e.g. what
+    :func:`broadsword.data.load_armatures` gives). Raises :class:`DataError` naming the
+    level file and the first field that names an unknown sprite, and the known ones."""
+    known = set(armatures)
+
+    def check(field: str, name: str) -> None:
+        if name not in known:
+            raise DataError(level.path, field, f"unknown sprite {shown(name)}; known: {', '.join(sorted(known))}")
+
+    for i, w in enumerate(level.waves):
+        check(f"wave[{i}].enemy", w.enemy)
+        if w.fire.fires:
+            check(f"wave[{i}].bullet", w.fire.bullet)
+    for i, part in enumerate(level.boss.parts if level.boss else ()):
+        check(f"boss.part[{i}].sprite", part.sprite)
+        if part.fire.fires:
+            check(f"boss.part[{i}].bullet", part.fire.bullet)

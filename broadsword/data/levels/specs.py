@@ -1,0 +1,149 @@
+"""The typed objects a level file becomes: its scene, player, waves and boss."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+from pathlib import Path
+
+
+class PathKind(str, Enum):
+    """How a wave's ships fly (``path`` in a level file); each kind is one function in
+    :mod:`broadsword.sim.motion`."""
+
+    STRAIGHT = "straight"
+    SINE = "sine"
+    ARC = "arc"
+    DIVE = "dive"
+    HOLD = "hold"
+
+
+class FireKind(str, Enum):
+    """What a ship fires (``fire`` in a level file)."""
+
+    NONE = "none"
+    AIMED = "aimed"
+    SPREAD = "spread"
+    RING = "ring"
+    SPIRAL = "spiral"
+
+
+PATHS = tuple(k.value for k in PathKind)
+PATTERNS = tuple(k.value for k in FireKind)
+
+@dataclass(frozen=True)
+class SceneSpec:
+    """What the level's collision scene computes; nothing it does not name is computed."""
+
+    tiers: tuple[str, ...] = ("bins", "aabb", "armature")
+    rotation: str = "lut"
+    bin_size: float | None = None  # None: automatic
+    graze: bool = True
+
+
+@dataclass(frozen=True)
+class PlayerSpec:
+    speed: float = 240.0  # px/s
+    slow_speed: float = 110.0
+    fire_every: float = 0.07  # s between volleys
+    shot_speed: float = 900.0
+    lives: int = 3
+
+
+@dataclass(frozen=True)
+class FireSpec:
+    pattern: FireKind = FireKind.NONE
+    bullet: str = "pellet"
+    speed: float = 160.0  # px/s
+    every: float = 1.5  # s between volleys
+    shots: int = 1  # bullets per volley
+    spread: float = 0.0  # degrees across a spread volley
+    spin: float = 0.0  # degrees the volley turns each time (spirals)
+    delay: float = 0.5  # s after spawning before the first volley
+
+    def __post_init__(self):
+        object.__setattr__(self, "pattern", FireKind(self.pattern))  # a name from a file or a test
+
+    @property
+    def fires(self) -> bool:
+        return self.pattern is not FireKind.NONE
+
+
+@dataclass(frozen=True)
+class PathSpec:
+    kind: PathKind = PathKind.STRAIGHT
+    x: float = 240.0  # entry x, px
+    speed: float = 120.0  # px/s
+    amplitude: float = 60.0  # sine
+    period: float = 2.0  # sine, s
+    radius: float = 120.0  # arc
+    turn: float = 180.0  # arc, degrees (sign = direction)
+    dive_at: float = 200.0  # dive: y where it turns toward the player
+    hold_y: float = 160.0  # hold
+    hold_for: float = 4.0  # hold, s
+
+    def __post_init__(self):
+        object.__setattr__(self, "kind", PathKind(self.kind))  # a name from a file or a test
+
+
+@dataclass(frozen=True)
+class WaveSpec:
+    at: float  # s after the level starts
+    enemy: str  # armature/sprite name
+    count: int
+    every: float
+    hp: int
+    score: int
+    path: PathSpec
+    fire: FireSpec
+    mirror: bool  # also spawn each ship mirrored about the centre line
+
+
+@dataclass(frozen=True)
+class BossPart:
+    sprite: str
+    offset: tuple[float, float]
+    spin: float  # degrees per second
+    fire: FireSpec
+
+
+@dataclass(frozen=True)
+class BossPhaseSpec:
+    """One phase of a boss fight: the damage it takes to end it."""
+
+    hp: int
+
+
+@dataclass(frozen=True)
+class BossSpec:
+    at: float
+    hp: int  # in all, over every phase
+    score: int
+    y: float  # where it holds
+    sway: float  # px of side-to-side sway
+    parts: tuple[BossPart, ...]
+    phases: tuple[BossPhaseSpec, ...] = ()  # () : one phase of ``hp``
+
+    def __post_init__(self):
+        if not self.phases:
+            object.__setattr__(self, "phases", (BossPhaseSpec(self.hp),))
+
+
+@dataclass(frozen=True)
+class Level:
+    name: str
+    title: str
+    path: Path
+    scene: SceneSpec
+    player: PlayerSpec
+    waves: tuple[WaveSpec, ...]
+    boss: BossSpec | None
+
+    @property
+    def sprites(self) -> set[str]:
+        """Every sprite/armature name the level uses."""
+        names = {w.enemy for w in self.waves} | {w.fire.bullet for w in self.waves if w.fire.fires}
+        if self.boss:
+            names |= {p.sprite for p in self.boss.parts}
+            names |= {p.fire.bullet for p in self.boss.parts if p.fire.fires}
+        return names
