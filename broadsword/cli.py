@@ -22,6 +22,7 @@ import os
 import sys
 
 from .data import DataError, list_levels
+from .data.difficulty import Difficulty
 from .data.recordings import load_recording, save_recording
 
 def _parser() -> argparse.ArgumentParser:
@@ -40,6 +41,8 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--mute", action="store_true", help="start with sound off")
     ap.add_argument("--lab", nargs="?", const="100,2000", metavar="E,B",
                     help="show the benchmark's reference scene (E ships, B bullets) live with the overlay")
+    ap.add_argument("--difficulty", choices=[d.value for d in Difficulty], default=None,
+                    help="easy, normal (default), hard or lunatic: sets the patterns' rank and the stage's values")
     ap.add_argument("--rotation", choices=("lut", "exact"), default=None,
                     help="--headless only: pose armatures with this rotation mode instead of the level's scene.rotation")
     return ap
@@ -72,9 +75,9 @@ def main(argv: list[str] | None = None) -> int:
                 print(name)
             return 0
         replay = load_recording(args.replay) if args.replay else None
-        if replay and (args.rotation or args.level):
-            print("broadsword: --replay plays the recording's own level and settings; drop --level and --rotation",
-                  file=sys.stderr)
+        if replay and (args.rotation or args.level or args.difficulty):
+            print("broadsword: --replay plays the recording's own level and settings; "
+                  "drop --level, --rotation and --difficulty", file=sys.stderr)
             return 2
         level = args.level or (replay.level if replay else list_levels()[0])
         seed = replay.seed if replay and args.seed == 0 else args.seed
@@ -87,7 +90,7 @@ def main(argv: list[str] | None = None) -> int:
             from .headless import run_headless
 
             summary, recording = run_headless(level, frames, seed, args.autopilot, replay, args.replay or "",
-                                              args.rotation)
+                                              args.rotation, Difficulty(args.difficulty or Difficulty.NORMAL))
             if args.record:
                 save_recording(args.record, recording)
             print(json.dumps(summary))

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .data import check_level_sprites, data_dir, load_armatures, load_level, resolve_level
+from .data.difficulty import Difficulty
 from .data.recordings import Recording, check_level_digest, file_sha256
 from .sim import IDLE, Carry, Settings, World, autopilot
 from .sim.replay import Playback, Recorder
@@ -34,7 +35,8 @@ def _tally(tiers: dict, stats) -> None:
 
 
 def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, replay: Recording | None = None,
-                 replay_path: str = "", rotation: str | None = None) -> tuple[dict, Recording]:
+                 replay_path: str = "", rotation: str | None = None,
+                 difficulty: Difficulty = Difficulty.NORMAL) -> tuple[dict, Recording]:
     """Play at most ``frames`` steps with no window; return the summary (DESIGN.md's JSON)
     and the run's :class:`Recording`.
 
@@ -42,14 +44,14 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
     file checked against the digest it kept); the summary then says whether every
     checkpoint and the final hash matched (``replay_matches``) and, if not, the first
     checkpoint that differed (``first_mismatch``). ``rotation``, when given, replaces the
-    level's ``scene.rotation``.
+    level's ``scene.rotation``; ``difficulty`` picks the stage's values for it.
     """
     if replay is not None:
-        settings = Settings(rotation=replay.settings["rotation"])
+        settings = Settings(rotation=replay.settings["rotation"], difficulty=replay.settings["difficulty"])
         level_ref, seed = replay.level, replay.seed
         carry = Carry(replay.carry["score"], replay.carry["lives"])
     else:
-        settings, carry = Settings(rotation=rotation), Carry()
+        settings, carry = Settings(rotation=rotation, difficulty=difficulty), Carry()
     world, digest = make_world(level_ref, seed, settings, carry)
     if replay is not None:
         check_level_digest(replay, replay_path, resolve_level(level_ref))
@@ -79,7 +81,8 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
     summary = world.summary()
     summary.update({"seed": seed, "level": world.level.name, "tiers": tiers, "peak_enemy_bullets": peak,
                     "collision_median_ms": round(float(np.median(ms)), 4) if ms else 0.0,
-                    "rotation": world.rotation, "state_hash": world.state_hash()})
+                    "rotation": world.rotation, "difficulty": world.settings.difficulty.value,
+                    "state_hash": world.state_hash()})
     if playback is not None:
         final = playback.final_check()
         summary["replay_matches"] = playback.mismatch is None and final is not False

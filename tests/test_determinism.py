@@ -119,7 +119,7 @@ def test_a_recorded_replay_reproduces_its_hash(rotation, tmp_path, armatures, ca
     with cli_subprocess("--headless", "--replay", str(rec)) as other:
         doc = load_recording(rec)
         assert doc.state_hash == recorded["state_hash"] and doc.frames == recorded["frames"]
-        assert doc.settings == {"rotation": rotation}
+        assert doc.settings == {"rotation": rotation, "difficulty": "normal"}
         w = World(level_with(doc.level, rotation), armatures, doc.seed)
         for b in doc.inputs:
             w.step(Input.from_byte(b))

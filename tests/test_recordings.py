@@ -28,7 +28,7 @@ def test_a_recording_carries_everything(tmp_path, capsys):
     rec, summary = record(tmp_path, capsys, "3-broadsword", CHECKPOINT_EVERY * 2 + 10, "--rotation", "exact")
     doc = json.loads(rec.read_text())
     assert doc["version"] == FORMAT_VERSION and doc["game_version"] == __version__
-    assert doc["level"] == "3-broadsword" and doc["seed"] == 3 and doc["settings"] == {"rotation": "exact"}
+    assert doc["level"] == "3-broadsword" and doc["seed"] == 3 and doc["settings"] == {"rotation": "exact", "difficulty": "normal"}
     assert len(doc["level_sha256"]) == 64 and doc["carry"] == {"score": 0, "lives": None}
     frames = summary["frames"]
     assert doc["frames"] == frames and [c[0] for c in doc["checkpoints"]] == list(
@@ -72,6 +72,6 @@ def test_a_changed_level_file_is_refused(tmp_path, capsys):
 
 def test_replay_refuses_level_and_rotation_overrides(tmp_path, capsys):
     rec, _ = record(tmp_path, capsys, frames=10)
-    for extra in (["--rotation", "lut"], ["--level", "1-picket"]):
+    for extra in (["--rotation", "lut"], ["--level", "1-picket"], ["--difficulty", "easy"]):
         code, _, err = run(["--headless", "--replay", str(rec), *extra], capsys)
         assert code == 2 and "--replay plays the recording's own level and settings" in err

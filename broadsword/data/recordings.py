@@ -8,7 +8,8 @@ replay is the same game or says why not. The file is UTF-8 JSON (docs/FORMATS.md
 ``level``          a shipped level's name or a level file's path
 ``level_sha256``   the level file's digest when recorded (optional); a changed file is refused
 ``seed``           a whole number in [0, 2**63)
-``settings``       ``{"rotation": "lut" | "exact"}``: every setting that changes the outcome
+``settings``       ``{"rotation": "lut" | "exact", "difficulty": "easy" | ...}``: every setting
+                   that changes the outcome
 ``carry``          (optional) ``{"score": n, "lives": n | null}``: what the run brought into this
                    level from the one before (null lives: the level's own)
 ``toggles``        ``[[frame, "rotation", value], ...]``: each live switch, applied before
@@ -31,6 +32,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..fileio import write_atomic
+from .difficulty import Difficulty
 from .errors import DataError, shown
 from .resources import read_text
 
@@ -41,7 +43,7 @@ RECORDING_MAX_BYTES = 8 << 20
 #: A state hash is kept after every this many steps.
 CHECKPOINT_EVERY = 600
 #: Settings a recording must name, and the values each may take.
-SETTINGS = {"rotation": ("lut", "exact")}
+SETTINGS = {"rotation": ("lut", "exact"), "difficulty": tuple(d.value for d in Difficulty)}
 #: Live toggles a recording may hold, and the values each may take.
 TOGGLES = {"rotation": ("lut", "exact")}
 #: At most this many toggles (one a frame would already be absurd).
@@ -124,7 +126,7 @@ def _field(doc: dict, path: Path, key: str, kind, what: str, required: bool = Tr
 
 
 def _settings(doc: dict, path: Path) -> dict:
-    s = _field(doc, path, "settings", dict, "a table of settings (rotation)")
+    s = _field(doc, path, "settings", dict, f"a table of settings ({', '.join(SETTINGS)})")
     for key in s:
         if key not in SETTINGS:
             raise DataError(path, f"settings.{key}", f"unknown setting; settings are {', '.join(SETTINGS)}")

@@ -174,7 +174,7 @@ class Renderer:
         for i in range(max(world.player.lives - (1 if world.player.alive else 0), 0)):
             surf.blit(icon, (FIELD[0] - 22 - i * (icon.get_width() + 4), 8))
         if world.boss is not None and world.boss.fighting:
-            frac = max(world.boss.hp, 0) / world.boss.spec.phases[world.boss.phase].hp
+            frac = max(world.boss.hp, 0) / world.boss.phase_hp[world.boss.phase]
             pygame.draw.rect(surf, (60, 20, 30), (90, FIELD[1] - 14, FIELD[0] - 180, 6))
             pygame.draw.rect(surf, (255, 70, 90), (90, FIELD[1] - 14, (FIELD[0] - 180) * frac, 6))
         if world.time < 3.0:  # the level's title fades in and out

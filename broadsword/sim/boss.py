@@ -13,6 +13,7 @@ from enum import Enum
 
 import numpy as np
 
+from ..data.difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..data.levels import BossSpec
 from .field import DT, FIELD
 from .pool import Pool
@@ -42,8 +43,9 @@ class Boss:
     scene, on the enemy-ship layer); ``phase`` indexes ``spec.phases``; ``hp`` is what is
     left of the current phase."""
 
-    def __init__(self, spec: BossSpec):
+    def __init__(self, spec: BossSpec, difficulty: DifficultySpec = DEFAULT_SPECS[Difficulty.NORMAL]):
         self.spec = spec
+        self.phase_hp = [difficulty.scale_hp(p.hp) for p in spec.phases]  # under the difficulty
         self.state = BossState.WAITING
         self.phase = 0
         self.hp = 0
@@ -65,7 +67,7 @@ class Boss:
         """Start the fight if it is time (``t`` seconds into the level); True if it started."""
         if self.state is not BossState.WAITING or t < self.spec.at:
             return False
-        self.state, self.phase, self.hp, self.age = BossState.FIGHTING, 0, self.spec.phases[0].hp, 0.0
+        self.state, self.phase, self.hp, self.age = BossState.FIGHTING, 0, self.phase_hp[0], 0.0
         self.pos = np.array([FIELD[0] / 2, ENTRY_Y])
         k = len(self.spec.parts)
         at = self.pos + self.offsets
@@ -98,7 +100,7 @@ class Boss:
         self.hp -= amount
         while self.hp <= 0 and self.phase + 1 < len(self.spec.phases):
             self.phase += 1
-            self.hp += self.spec.phases[self.phase].hp
+            self.hp += self.phase_hp[self.phase]
         if self.hp <= 0:
             self.state = BossState.DEAD
             return True

@@ -24,7 +24,7 @@ class Recorder:
 
     def __init__(self, world, level_ref: str, level_sha256: str = ""):
         self.world, self.level_ref, self.level_sha256 = world, level_ref, level_sha256
-        self.settings = {"rotation": world.rotation}
+        self.settings = {"rotation": world.rotation, "difficulty": world.settings.difficulty.value}
         self.inputs = bytearray()
         self.checkpoints: list[tuple[int, str]] = []
 

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 from ..collision import ROTATION_MODES
+from ..data.difficulty import Difficulty
 
 
 class Toggle(Enum):
@@ -19,12 +20,14 @@ class Settings:
     """What a run was played with, beyond its level and seed.
 
     ``rotation`` is ``"lut"`` or ``"exact"``, or ``None`` for the level's own
-    ``scene.rotation``.
+    ``scene.rotation``; ``difficulty`` picks the stage's ``[difficulty.NAME]`` values.
     """
 
     rotation: str | None = None
+    difficulty: Difficulty = Difficulty.NORMAL
 
     def __post_init__(self):
+        object.__setattr__(self, "difficulty", Difficulty(self.difficulty))  # a name from a file or a flag
         if self.rotation is not None and self.rotation not in ROTATION_MODES:
             raise ValueError(f"rotation must be one of {ROTATION_MODES} or None, got {self.rotation!r}")
 

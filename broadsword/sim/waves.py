@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..data.difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..data.levels import WaveSpec
 from .field import FIELD
 from .motion import move_wave_ships
@@ -18,10 +19,12 @@ CULL_MARGIN = (80.0, 60.0, 80.0)  # sides, bottom, top
 
 
 class WaveTimeline:
-    """The level's waves as a schedule: ``(time, wave)`` for every ship, in time order."""
+    """The level's waves flying on ``difficulty`` as a schedule: ``(time, wave)`` for every
+    ship, in time order."""
 
-    def __init__(self, waves: tuple[WaveSpec, ...]):
-        self.schedule = sorted((w.at + k * w.every, i) for i, w in enumerate(waves) for k in range(w.count))
+    def __init__(self, waves: tuple[WaveSpec, ...], difficulty: Difficulty = Difficulty.NORMAL):
+        self.schedule = sorted((w.at + k * w.every, i) for i, w in enumerate(waves) if difficulty in w.difficulties
+                               for k in range(w.count))
         self.sent = 0
 
     @property
@@ -40,8 +43,10 @@ class WaveTimeline:
 class WaveShips:
     """The ships the waves have sent: a pool, its spawning, motion and culling."""
 
-    def __init__(self, waves: tuple[WaveSpec, ...], kinds_base: dict[str, int]):
+    def __init__(self, waves: tuple[WaveSpec, ...], kinds_base: dict[str, int],
+                 difficulty: DifficultySpec = DEFAULT_SPECS[Difficulty.NORMAL]):
         self.waves = waves
+        self.hp = [difficulty.scale_hp(w.hp) for w in waves]  # under the difficulty
         self.paths = [w.path for w in waves]
         self.kind = [kinds_base[w.enemy] for w in waves]  # each wave's armature kind
         self.pool = Pool(pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
@@ -60,7 +65,7 @@ class WaveShips:
         k = len(xs)
         pos = np.array([[x, ENTRY_Y] for x in xs])
         self.pool.add(pos=pos, prev=pos, vel=np.zeros((k, 2)), angle=np.full(k, 180.0), arm=np.full(k, self.kind[w]),
-                      hp=np.full(k, spec.hp), age=np.zeros(k), wave=np.full(k, w), mirror=mirrors,
+                      hp=np.full(k, self.hp[w]), age=np.zeros(k), wave=np.full(k, w), mirror=mirrors,
                       dive=np.zeros((k, 2)), next_fire=np.full(k, spec.fire.delay), volley=np.zeros(k, dtype=int))
 
     def move(self, player: np.ndarray) -> None:

@@ -99,12 +99,14 @@ class World:
         self.frame = 0
         self.over = False
         self.complete = False
-        self.player = Player(level.player, lives=self.carry.lives or level.player.lives)
+        self.difficulty = level.difficulty[self.settings.difficulty]
+        self.rank = self.difficulty.rank  # BulletML's $rank
+        self.player = Player(level.player, lives=self.carry.lives or self.difficulty.lives or level.player.lives)
         self.score = Score(points=self.carry.score)
         self.gun = PlayerGun(level.player, self.kinds.base["shot"])
-        self.timeline = WaveTimeline(level.waves)
-        self.ships = WaveShips(level.waves, self.kinds.base)
-        self.boss = Boss(level.boss) if level.boss else None
+        self.timeline = WaveTimeline(level.waves, self.settings.difficulty)
+        self.ships = WaveShips(level.waves, self.kinds.base, self.difficulty)
+        self.boss = Boss(level.boss, self.difficulty) if level.boss else None
         self._parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
         self.enemy_bullets = bullet_pool(ENEMY_BULLETS)
         self.player_bullets = bullet_pool(PLAYER_BULLETS)

@@ -56,7 +56,7 @@ def ring(n: int, r: float = 100.0) -> str:
     return "[" + ", ".join(pts) + "]"
 
 
-RECORDING = {"version": 2, "game_version": "test", "level": "1-picket", "seed": 9, "settings": {"rotation": "lut"},
+RECORDING = {"version": 2, "game_version": "test", "level": "1-picket", "seed": 9, "settings": {"rotation": "lut", "difficulty": "normal"},
              "frames": 4, "inputs": "05050505"}
 
 #: (kind, file name) -> (text maker, field, expected words): faults too big to commit.

@@ -35,7 +35,7 @@ from broadsword.sim import World, autopilot
 SPRITES = data_dir("assets") / "sprites"
 LEVEL_PATHS = [resolve_level(name) for name in list_levels()]
 ARMATURE_PATHS = sorted(SPRITES.glob(f"*{SUFFIX}"))
-RECORDING = {"version": 2, "game_version": __version__, "level": "1-picket", "seed": 9, "settings": {"rotation": "lut"},
+RECORDING = {"version": 2, "game_version": __version__, "level": "1-picket", "seed": 9, "settings": {"rotation": "lut", "difficulty": "normal"},
              "toggles": [[2, "rotation", "exact"]], "carry": {"score": 10, "lives": 2}, "frames": 6,
              "inputs": "051525053505", "checkpoints": [], "state_hash": "0f"}
 FRAMES_PLAYED = 20

@@ -30,7 +30,7 @@ def record(seed=1, toggles_at=(200, 700), carry=None) -> tuple[World, object]:
 
 
 def play(rec) -> tuple[World, Playback]:
-    w = World(LEVEL, ARMATURES, rec.seed, Settings(rotation=rec.settings["rotation"]),
+    w = World(LEVEL, ARMATURES, rec.seed, Settings(**rec.settings),
               Carry(rec.carry["score"], rec.carry["lives"]))
     p = Playback(rec, w)
     while (inp := p.next_input()) is not None:
@@ -41,7 +41,7 @@ def play(rec) -> tuple[World, Playback]:
 
 def test_recording_carries_settings_toggles_and_checkpoints():
     w, rec = record()
-    assert rec.settings == {"rotation": "lut"} and rec.frames == w.frame
+    assert rec.settings == {"rotation": "lut", "difficulty": "normal"} and rec.frames == w.frame
     assert rec.toggles == ((200, "rotation", "exact"), (700, "rotation", "lut"))
     assert [c[0] for c in rec.checkpoints] == [CHECKPOINT_EVERY * (i + 1) for i in range(w.frame // CHECKPOINT_EVERY)]
     assert rec.state_hash == w.state_hash()

@@ -17,6 +17,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ...collision import BOUND_TIERS, BROAD_PHASES, LAST_TIERS, ROTATION_MODES
+from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..errors import DataError, shown
 from ..resources import read_toml
 from ..table import MISSING, Table
@@ -111,6 +112,37 @@ def _scene(doc, path) -> SceneSpec:
     return spec
 
 
+DIFFICULTIES = tuple(d.value for d in Difficulty)
+
+
+def _difficulties(t: Table) -> frozenset[Difficulty]:
+    """A wave's ``difficulty``: the list of difficulties it flies on (default: all)."""
+    v = t.raw("difficulty", list(DIFFICULTIES))
+    if not (isinstance(v, list) and v and all(isinstance(x, str) and x in DIFFICULTIES for x in v)):
+        raise t.error("difficulty", f"must be a non-empty list of difficulties ({', '.join(DIFFICULTIES)}), "
+                                    f"got {shown(v)}")
+    return frozenset(Difficulty(x) for x in v)
+
+
+def _difficulty(doc, path: Path) -> dict[Difficulty, DifficultySpec]:
+    """The ``[difficulty.NAME]`` tables: each overrides the defaults of its difficulty."""
+    top = Table(doc, path, "difficulty")
+    out = {}
+    for d in Difficulty:
+        base = DEFAULT_SPECS[d]
+        t = Table(top.raw(d.value, {}), path, f"difficulty.{d.value}")
+        lives, bombs = t.raw("lives", None), t.raw("bombs", None)
+        out[d] = DifficultySpec(
+            rank=t.num("rank", base.rank, 0, 1),
+            lives=base.lives if lives is None else t.int("lives", base.lives, 1, 99),
+            bombs=base.bombs if bombs is None else t.int("bombs", base.bombs, 0, 9),
+            enemy_hp=t.num("enemy_hp", base.enemy_hp, 0.1, 10),
+        )
+        t.done()
+    top.done()
+    return out
+
+
 def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
@@ -149,7 +181,7 @@ def load_level(path: str | Path) -> Level:
     player = PlayerSpec(
         p.num("speed", d.speed, 10, 2000), p.num("slow_speed", d.slow_speed, 10, 2000),
         p.num("fire_every", d.fire_every, 0.02, 5), p.num("shot_speed", d.shot_speed, 50, 200_000),
-        p.int("lives", d.lives, 1, 99),
+        p.int("lives", d.lives, 1, 99), p.int("bombs", d.bombs, 0, 9),
     )
     p.done()
     waves_doc = top.raw("wave", [])
@@ -163,7 +195,7 @@ def load_level(path: str | Path) -> Level:
         waves.append(WaveSpec(
             at=t.num("at", 0.0, 0, 3600), enemy=t.sprite("enemy", MISSING), count=t.int("count", 1, 1, 1000),
             every=t.num("every", 0.5, 0, 60), hp=t.int("hp", 1, 1, 100_000), score=t.int("score", 100, 0, 10**7),
-            path=_path(t), fire=_fire(t), mirror=t.bool("mirror", False),
+            path=_path(t), fire=_fire(t), mirror=t.bool("mirror", False), difficulties=_difficulties(t),
         ))
         t.done(FIRE_KEYS)
         ships += waves[-1].count * (2 if waves[-1].mirror else 1)
@@ -187,10 +219,11 @@ def load_level(path: str | Path) -> Level:
         boss = BossSpec(t.num("at", 0.0, 0, 3600), t.int("hp", 100, 1, 10**7), t.int("score", 10_000, 0, 10**8),
                         t.num("y", 150.0, 0, 2000), t.num("sway", 80.0, 0, 1000), tuple(parts))
         t.done()
+    difficulty = _difficulty(top.raw("difficulty", {}), path)
     top.done(("boss",))
     if not doc:  # nothing at all is a broken file; a level that *declares* nothing to fight is fine
         raise DataError(path, "wave", "the file is empty: a level needs at least one [[wave]] or a [boss]")
-    return Level(name, title, path, scene, player, tuple(waves), boss)
+    return Level(name, title, path, scene, player, tuple(waves), boss, difficulty)
 
 
 def check_level_sprites(level: Level, armatures) -> None:

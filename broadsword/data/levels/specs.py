@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
+
+from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 
 
 class PathKind(str, Enum):
@@ -48,6 +50,7 @@ class PlayerSpec:
     fire_every: float = 0.07  # s between volleys
     shot_speed: float = 900.0
     lives: int = 3
+    bombs: int = 3
 
 
 @dataclass(frozen=True)
@@ -97,6 +100,7 @@ class WaveSpec:
     path: PathSpec
     fire: FireSpec
     mirror: bool  # also spawn each ship mirrored about the centre line
+    difficulties: frozenset[Difficulty] = frozenset(Difficulty)  # the difficulties it flies on
 
 
 @dataclass(frozen=True)
@@ -138,6 +142,7 @@ class Level:
     player: PlayerSpec
     waves: tuple[WaveSpec, ...]
     boss: BossSpec | None
+    difficulty: dict[Difficulty, DifficultySpec] = field(default_factory=lambda: dict(DEFAULT_SPECS))
 
     @property
     def sprites(self) -> set[str]:

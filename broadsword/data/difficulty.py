@@ -1,0 +1,51 @@
+"""Difficulty levels and what each changes, as data a level may override.
+
+The difficulty is chosen on the title screen or with ``--difficulty``; it sets BulletML's
+``$rank`` and whatever the stage declares per difficulty in its ``[difficulty.NAME]``
+tables (docs/FORMATS.md), and recordings store it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+
+class Difficulty(str, Enum):
+    EASY = "easy"
+    NORMAL = "normal"
+    HARD = "hard"
+    LUNATIC = "lunatic"
+
+    @property
+    def title(self) -> str:
+        return self.value.capitalize()
+
+
+@dataclass(frozen=True)
+class DifficultySpec:
+    """What one difficulty changes in a stage.
+
+    ``rank`` is BulletML's ``$rank`` (0..1): patterns fire more, faster, as it grows.
+    ``lives`` and ``bombs`` (None: the stage's ``[player]`` values) are what a run starts
+    with. ``enemy_hp`` multiplies every ship's and boss phase's hit points (rounded, at
+    least 1).
+    """
+
+    rank: float
+    lives: int | None = None
+    bombs: int | None = None
+    enemy_hp: float = 1.0
+
+    def scale_hp(self, hp: int) -> int:
+        """Hit points under ``enemy_hp``: rounded half to even, at least 1."""
+        return max(1, round(hp * self.enemy_hp))
+
+
+#: The defaults, when a stage declares nothing for a difficulty.
+DEFAULT_SPECS = {
+    Difficulty.EASY: DifficultySpec(rank=0.2, lives=5, bombs=3, enemy_hp=0.75),
+    Difficulty.NORMAL: DifficultySpec(rank=0.5),
+    Difficulty.HARD: DifficultySpec(rank=0.75, enemy_hp=1.15),
+    Difficulty.LUNATIC: DifficultySpec(rank=1.0, bombs=2, enemy_hp=1.3),
+}

@@ -1,0 +1,86 @@
+"""Difficulties: what a stage declares per difficulty, and what the world makes of it."""
+
+import json
+import re
+
+import pytest
+
+from broadsword.cli import main
+from broadsword.data import DataError, data_dir, load_armatures, load_level, resolve_level
+from broadsword.data.difficulty import DEFAULT_SPECS, Difficulty
+from broadsword.sim import IDLE, Settings, World
+
+ARMATURES = load_armatures(data_dir("assets") / "sprites")
+
+LEVEL = '''
+[player]
+lives = 3
+bombs = 2
+
+[difficulty.easy]
+lives = 6
+enemy_hp = 0.5
+
+[difficulty.lunatic]
+rank = 0.95
+bombs = 1
+
+[[wave]]
+at = 0.0
+enemy = "scout"
+hp = 5
+
+[[wave]]
+at = 0.0
+enemy = "wasp"
+hp = 3
+difficulty = ["hard", "lunatic"]
+'''
+
+
+@pytest.fixture()
+def level(tmp_path):
+    p = tmp_path / "d.toml"
+    p.write_text(LEVEL)
+    return load_level(p)
+
+
+def test_declared_values_override_the_defaults(level):
+    easy, normal, lunatic = (level.difficulty[d] for d in (Difficulty.EASY, Difficulty.NORMAL, Difficulty.LUNATIC))
+    assert (easy.lives, easy.enemy_hp, easy.rank, easy.bombs) == (6, 0.5, DEFAULT_SPECS[Difficulty.EASY].rank,
+                                                                  DEFAULT_SPECS[Difficulty.EASY].bombs)
+    assert normal == DEFAULT_SPECS[Difficulty.NORMAL]
+    assert (lunatic.rank, lunatic.bombs) == (0.95, 1)
+
+
+@pytest.mark.parametrize("d, ships, hp, lives, rank", [
+    ("easy", ["scout"], [2], 6, DEFAULT_SPECS[Difficulty.EASY].rank),  # 5 * 0.5 = 2.5, half to even: 2
+    ("normal", ["scout"], [5], 3, 0.5),
+    ("lunatic", ["scout", "wasp"], [round(5 * 1.3), round(3 * 1.3)], 3, 0.95),
+])
+def test_the_world_plays_the_difficulty(level, d, ships, hp, lives, rank):
+    w = World(level, ARMATURES, settings=Settings(difficulty=d))
+    w.step(IDLE)
+    assert sorted(w.kinds.names[k] for k in w.ships.pool.arm) == sorted(ships)
+    assert sorted(w.ships.pool.hp.tolist()) == sorted(hp)
+    assert w.player.lives == lives and w.rank == rank
+
+
+def test_a_bad_difficulty_table_names_its_field(tmp_path):
+    for text, field in (('[difficulty.easy]\nrank = 1.5\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.rank"),
+                        ('[difficulty.brutal]\nrank = 0.5\n[[wave]]\nenemy = "scout"\n', "difficulty.brutal"),
+                        ('[[wave]]\nenemy = "scout"\ndifficulty = ["medium"]\n', "wave[0].difficulty"),
+                        ('[[wave]]\nenemy = "scout"\ndifficulty = []\n', "wave[0].difficulty")):
+        p = tmp_path / "bad.toml"
+        p.write_text(text)
+        with pytest.raises(DataError, match=re.escape(f"bad.toml: {field}: ")):
+            load_level(p)
+
+
+def test_headless_difficulty_flag_and_json(capsys):
+    out = {}
+    for d in ("easy", "lunatic"):
+        assert main(["--headless", "--level", "1-picket", "--frames", "30", "--difficulty", d]) == 0
+        out[d] = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert out["easy"]["difficulty"] == "easy" and out["lunatic"]["difficulty"] == "lunatic"
+    assert out["easy"]["lives"] > out["lunatic"]["lives"]
