@@ -49,7 +49,7 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
     if replay is not None:
         settings = Settings(rotation=replay.settings["rotation"], difficulty=replay.settings["difficulty"])
         level_ref, seed = replay.level, replay.seed
-        carry = Carry(replay.carry["score"], replay.carry["lives"])
+        carry = Carry(replay.carry["score"], replay.carry["lives"], replay.carry["continues"])
     else:
         settings, carry = Settings(rotation=rotation, difficulty=difficulty), Carry()
     world, digest = make_world(level_ref, seed, settings, carry)

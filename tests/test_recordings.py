@@ -29,7 +29,7 @@ def test_a_recording_carries_everything(tmp_path, capsys):
     doc = json.loads(rec.read_text())
     assert doc["version"] == FORMAT_VERSION and doc["game_version"] == __version__
     assert doc["level"] == "3-broadsword" and doc["seed"] == 3 and doc["settings"] == {"rotation": "exact", "difficulty": "normal"}
-    assert len(doc["level_sha256"]) == 64 and doc["carry"] == {"score": 0, "lives": None}
+    assert len(doc["level_sha256"]) == 64 and doc["carry"] == {"score": 0, "lives": None, "continues": 0}
     frames = summary["frames"]
     assert doc["frames"] == frames and [c[0] for c in doc["checkpoints"]] == list(
         range(CHECKPOINT_EVERY, frames + 1, CHECKPOINT_EVERY))

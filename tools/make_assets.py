@@ -596,6 +596,60 @@ def make_shot() -> pygame.Surface:
 
 
 # --------------------------------------------------------------------------------------
+# Items: dropped by enemies, collected by the player's graze shape.
+# --------------------------------------------------------------------------------------
+
+
+def _item(ramp, glyph) -> pygame.Surface:
+    """A 14x14 bevelled tile in ``ramp`` with a white ``glyph`` (a mask maker) on it."""
+    sp = Sprite(14, 14)
+    tile = (np.abs(sp.x) <= 6.0) & (np.abs(sp.y) <= 6.0) & (np.abs(sp.x) + np.abs(sp.y) <= 10.5)
+    sp.panel(tile, ramp, base=3, bevel=2, relief=2.0)
+    sp.fill(glyph(sp) & tile, (255, 255, 255))
+    sp.outline()
+    return sp.surface()
+
+
+def _bitmap(sp: Sprite, rows: list[str]) -> np.ndarray:
+    """The pixels of ``rows`` ('X' set), centred on the sprite."""
+    h, w = len(rows), len(rows[0])
+    col = np.floor(sp.x + w / 2).astype(int)
+    row = np.floor(sp.y + h / 2).astype(int)
+    inside = (col >= 0) & (col < w) & (row >= 0) & (row < h)
+    grid = np.array([[c == "X" for c in r] for r in rows])
+    return inside & grid[np.clip(row, 0, h - 1), np.clip(col, 0, w - 1)]
+
+
+def _glyph_p(sp: Sprite) -> np.ndarray:
+    """A blocky capital P, 5 px wide and 7 tall."""
+    return _bitmap(sp, ["XXXX.", "X...X", "X...X", "XXXX.", "X....", "X....", "X...."])
+
+
+def _glyph_dot(sp: Sprite) -> np.ndarray:
+    """A small diamond."""
+    return _bitmap(sp, ["..X..", ".XXX.", "XXXXX", ".XXX.", "..X.."])
+
+
+def make_item_power() -> pygame.Surface:
+    """Power item, 14x14: a red bevelled tile with a white P."""
+    return _item(RED, _glyph_p)
+
+
+def make_item_point() -> pygame.Surface:
+    """Point item, 14x14: a blue bevelled tile with a white diamond."""
+    return _item(STEEL, _glyph_dot)
+
+
+def make_item_star() -> pygame.Surface:
+    """Star, 8x8: what a cancelled enemy bullet leaves, a small amber glint."""
+    sp = Sprite(8, 8)
+    _radial(sp, 4.0, 4.0,
+            [(0.0, (255, 255, 255)), (0.35, (255, 250, 190)), (0.7, (255, 200, 60)), (1.0, (255, 140, 0))],
+            [(0.0, 1.0), (0.5, 1.0), (1.0, 0.0)], power=1.0)
+    return sp.surface()
+
+
+# --------------------------------------------------------------------------------------
 # Effects.
 # --------------------------------------------------------------------------------------
 
@@ -694,6 +748,9 @@ SPRITES = {
     "needle": make_needle,
     "orb": make_orb,
     "shot": make_shot,
+    "item_power": make_item_power,
+    "item_point": make_item_point,
+    "item_star": make_item_star,
     "spark": make_spark,
     "explosion": make_explosion,
 }

@@ -10,8 +10,8 @@ replay is the same game or says why not. The file is UTF-8 JSON (docs/FORMATS.md
 ``seed``           a whole number in [0, 2**63)
 ``settings``       ``{"rotation": "lut" | "exact", "difficulty": "easy" | ...}``: every setting
                    that changes the outcome
-``carry``          (optional) ``{"score": n, "lives": n | null}``: what the run brought into this
-                   level from the one before (null lives: the level's own)
+``carry``          (optional) ``{"score": n, "lives": n | null, "continues": n}``: what the run
+                   brought into this level from the one before (null lives: the level's own)
 ``toggles``        ``[[frame, "rotation", value], ...]``: each live switch, applied before
                    that frame's step, frames not decreasing
 ``inputs``         hex, one byte a frame (the :data:`INPUT_BITS` layout)
@@ -45,7 +45,7 @@ CHECKPOINT_EVERY = 600
 #: Settings a recording must name, and the values each may take.
 SETTINGS = {"rotation": ("lut", "exact"), "difficulty": tuple(d.value for d in Difficulty)}
 #: Live toggles a recording may hold, and the values each may take.
-TOGGLES = {"rotation": ("lut", "exact")}
+TOGGLES = {"rotation": ("lut", "exact"), "continue": ("yes",)}
 #: At most this many toggles (one a frame would already be absurd).
 TOGGLES_MAX = 100_000
 _HEX_DIGEST = re.compile(r"[0-9a-f]{64}\Z")
@@ -82,7 +82,7 @@ class Recording:
     checkpoints: tuple[tuple[int, str], ...] = ()
     state_hash: str = ""
     level_sha256: str = ""
-    carry: dict = field(default_factory=lambda: {"score": 0, "lives": None})
+    carry: dict = field(default_factory=lambda: {"score": 0, "lives": None, "continues": 0})
     game_version: str = __version__
 
     @property
@@ -140,16 +140,18 @@ def _settings(doc: dict, path: Path) -> dict:
 def _carry(doc: dict, path: Path) -> dict:
     c = _field(doc, path, "carry", dict, "a table of score and lives", required=False)
     if c is None:
-        return {"score": 0, "lives": None}
+        return {"score": 0, "lives": None, "continues": 0}
     for key in c:
-        if key not in ("score", "lives"):
-            raise DataError(path, f"carry.{key}", "unknown field (expected score, lives)")
-    score, lives = c.get("score", 0), c.get("lives")
+        if key not in ("score", "lives", "continues"):
+            raise DataError(path, f"carry.{key}", "unknown field (expected score, lives, continues)")
+    score, lives, continues = c.get("score", 0), c.get("lives"), c.get("continues", 0)
     if not _whole(score) or not 0 <= score < 2**63:
         raise DataError(path, "carry.score", f"must be a whole number in [0, 2**63), got {shown(score)}")
     if lives is not None and (not _whole(lives) or not 1 <= lives <= 99):
         raise DataError(path, "carry.lives", f"must be a whole number in [1, 99] or null, got {shown(lives)}")
-    return {"score": score, "lives": lives}
+    if not _whole(continues) or not 0 <= continues <= 99:
+        raise DataError(path, "carry.continues", f"must be a whole number in [0, 99], got {shown(continues)}")
+    return {"score": score, "lives": lives, "continues": continues}
 
 
 def _toggles(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str, str], ...]:

@@ -34,7 +34,8 @@ class Table:
             raise DataError(path, where, f"must be a table, got {shown(doc)}")
         self.doc, self.path, self.where, self.used = doc, path, where, set()
 
-    def _field(self, key):
+    def name_of(self, key):
+        """The dotted field name of ``key`` in this table, for messages."""
         return f"{self.where}.{key}" if self.where else key
 
     def raw(self, key, default):
@@ -42,11 +43,11 @@ class Table:
         self.used.add(key)
         v = self.doc.get(key, default)
         if v is MISSING:
-            raise DataError(self.path, self._field(key), "missing: this field is required")
+            raise DataError(self.path, self.name_of(key), "missing: this field is required")
         return v
 
     def error(self, key, message) -> DataError:
-        return DataError(self.path, self._field(key), message)
+        return DataError(self.path, self.name_of(key), message)
 
     def num(self, key, default, lo=-math.inf, hi=math.inf) -> float:
         """A finite number (whole or not) in [lo, hi]."""

@@ -66,6 +66,7 @@ MOVE_KEYS = {
 }
 FIRE_KEYS = {pygame.K_z, pygame.K_SPACE}
 SLOW_KEYS = {pygame.K_LSHIFT, pygame.K_RSHIFT}
+BOMB_KEYS = {pygame.K_x}
 
 
 @dataclass
@@ -232,7 +233,13 @@ class App:
             except pygame.error:
                 self.pad = None
         clamp = lambda v: max(-1, min(1, v))  # noqa: E731
-        return Input(clamp(dx), clamp(dy), fire, slow)
+        bomb = bool(self.keys & BOMB_KEYS)
+        if self.pad is not None:
+            try:
+                bomb |= self.pad.get_numbuttons() > 2 and bool(self.pad.get_button(2))
+            except pygame.error:
+                self.pad = None
+        return Input(clamp(dx), clamp(dy), fire, slow, bomb)
 
     def handle(self, event: pygame.event.Event) -> None:
         if event.type == pygame.QUIT:

@@ -15,6 +15,7 @@ import numpy as np
 import pygame
 
 from ..sim import FIELD, World
+from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .sprites import SpriteBank
 
 ROUND_BULLETS = ("pellet", "orb")  # rotation-invariant sprites: never rotated
@@ -77,7 +78,9 @@ class Renderer:
         self.tick += 1
         self._background(surf, world.frame + alpha)
         self._enemies(surf, world, alpha)
+        self._bullets(surf, world.items.pool, world, alpha)
         self._bullets(surf, world.player_bullets, world, alpha)
+        self._bomb(surf, world)
         self._player(surf, world, alpha, show_armature)
         self._bullets(surf, world.enemy_bullets, world, alpha)
         self._effects(surf)
@@ -123,6 +126,22 @@ class Renderer:
             w, h = img.get_size()
             blits.append((img, (x - w * 0.5, y - h * 0.5)))
         surf.fblits(blits)  # one call for the whole crowd
+
+    def _bomb(self, surf, world: World) -> None:
+        """The bomb: rings of light at its current radius, fading as it ends (cosmetic; the
+        armature it collides with is the polygon of that radius)."""
+        bomb = world.bomb
+        if not bomb.active:
+            return
+        x, y = world.player.pos.tolist()
+        r = bomb.radius
+        fade = max(0.0, 1.0 - bomb.age / BOMB_FRAMES)
+        layer = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
+        for k, (colour, width) in enumerate((((120, 220, 255), 6), ((255, 255, 255), 2), ((90, 140, 255), 12))):
+            a = int(200 * fade) if k < 2 else int(70 * fade)
+            pygame.draw.circle(layer, (*colour, a), (x, y), r - 4 * k, width)
+        pygame.draw.circle(layer, (80, 150, 255, int(40 * fade)), (x, y), r)
+        surf.blit(layer, (0, 0))
 
     def _player(self, surf, world: World, alpha: float, show_armature: bool) -> None:
         if not world.player.alive:
@@ -173,6 +192,10 @@ class Renderer:
         icon = self.life_icon
         for i in range(max(world.player.lives - (1 if world.player.alive else 0), 0)):
             surf.blit(icon, (FIELD[0] - 22 - i * (icon.get_width() + 4), 8))
+        bombs = self.font.render(f"BOMB {'*' * world.player.bombs}", True, (140, 220, 255))
+        surf.blit(bombs, bombs.get_rect(topright=(FIELD[0] - 10, 30)))
+        power = self.font.render(f"POWER {world.player.power / 100:.2f}", True, (255, 150, 140))
+        surf.blit(power, (10, 48))
         if world.boss is not None and world.boss.fighting:
             frac = max(world.boss.hp, 0) / world.boss.phase_hp[world.boss.phase]
             pygame.draw.rect(surf, (60, 20, 30), (90, FIELD[1] - 14, FIELD[0] - 180, 6))

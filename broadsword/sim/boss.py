@@ -32,6 +32,14 @@ class BossState(Enum):
     DEAD = "dead"
 
 
+class PhaseEnd(Enum):
+    """How a phase ended (``None`` from :meth:`Boss.damage` or :meth:`Boss.tick`: it goes on).
+    After the last phase the boss is dead, however it ended."""
+
+    BEATEN = "beaten"  # its hit points ran out
+    TIMED_OUT = "timed out"  # its time ran out
+
+
 def parts_pool(capacity: int = 1) -> Pool:
     """A pool of boss parts: pose, armature kind, age, part index and firing schedule."""
     return Pool(capacity=capacity, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
@@ -41,7 +49,7 @@ def parts_pool(capacity: int = 1) -> Pool:
 class Boss:
     """A level's boss. ``parts`` is a pool of the parts (one object each in the collision
     scene, on the enemy-ship layer); ``phase`` indexes ``spec.phases``; ``hp`` is what is
-    left of the current phase."""
+    left of the current phase, and ``phase_frames`` how many steps it has lasted."""
 
     def __init__(self, spec: BossSpec, difficulty: DifficultySpec = DEFAULT_SPECS[Difficulty.NORMAL]):
         self.spec = spec
@@ -49,6 +57,8 @@ class Boss:
         self.state = BossState.WAITING
         self.phase = 0
         self.hp = 0
+        self.phase_frames = 0
+        self.phase_limits = [round(p.time / DT) for p in spec.phases]  # each phase's time, in steps
         self.age = 0.0
         self.pos = np.array([FIELD[0] / 2, ENTRY_Y])
         self.offsets = np.array([p.offset for p in spec.parts], dtype=np.float64).reshape(-1, 2)
@@ -93,18 +103,36 @@ class Boss:
         p.vel[:] = (p.pos - p.prev) / DT
         p.angle[:] = (self.spin[p.part] * p.age) % 360.0
 
-    def damage(self, amount: int) -> bool:
-        """Take ``amount`` damage; True if that killed the boss (its last phase ended)."""
+    @property
+    def time_left(self) -> float:
+        """Seconds left in the current phase."""
+        return max(0, self.phase_limits[self.phase] - self.phase_frames) * DT
+
+    def damage(self, amount: int) -> PhaseEnd | None:
+        """Take ``amount`` damage; how the phase ended, if it did (damage beyond a phase's
+        hit points is lost: each phase starts whole)."""
         if not self.fighting or amount <= 0:
-            return False
+            return None
         self.hp -= amount
-        while self.hp <= 0 and self.phase + 1 < len(self.spec.phases):
-            self.phase += 1
-            self.hp += self.phase_hp[self.phase]
-        if self.hp <= 0:
+        return self._next_phase(PhaseEnd.BEATEN) if self.hp <= 0 else None
+
+    def tick(self) -> PhaseEnd | None:
+        """One step of the phase's clock; how the phase ended, if its time ran out."""
+        if not self.fighting or not self.parts.n:
+            return None
+        self.phase_frames += 1
+        if self.phase_frames >= self.phase_limits[self.phase]:
+            return self._next_phase(PhaseEnd.TIMED_OUT)
+        return None
+
+    def _next_phase(self, how: PhaseEnd) -> PhaseEnd:
+        if self.phase + 1 >= len(self.spec.phases):
             self.state = BossState.DEAD
-            return True
-        return False
+            return how
+        self.phase += 1
+        self.hp = self.phase_hp[self.phase]
+        self.phase_frames = 0
+        return how
 
     def wreck(self) -> list[tuple[float, float]]:
         """Remove the parts; returns where they were."""

@@ -16,19 +16,19 @@ import numpy as np
 from ..collision import FrameResult, LayerTable, Pipeline
 from .kinds import Kinds
 from .layers import LayerIds
-from .player import Player
-from .pool import Pool
 
 
 class Group(Enum):
     """The groups of objects in the frame, in the order they are laid out."""
 
     PLAYER = "player"  # the hit armature, while vulnerable
-    GRAZE = "graze"  # the graze shape, while alive and the scene grazes
+    GRAZE = "graze"  # the graze shape, while alive, if the scene grazes or an item is out (it collects them)
+    BOMB = "bomb"  # the bomb, while it lasts
     SHIPS = "ships"  # wave ships
     BOSS = "boss"  # boss parts
     ENEMY_BULLETS = "enemy_bullets"
     PLAYER_BULLETS = "player_bullets"
+    ITEMS = "items"
 
 
 @dataclass(frozen=True)
@@ -56,11 +56,18 @@ class CollisionRecord:
 
     def hits_from(self, *groups: Group) -> np.ndarray:
         """(h, 2) hit pairs whose first object belongs to one of ``groups``."""
+        return self._hits(0, groups)
+
+    def hits_on(self, *groups: Group) -> np.ndarray:
+        """(h, 2) hit pairs whose second object belongs to one of ``groups``."""
+        return self._hits(1, groups)
+
+    def _hits(self, column: int, groups) -> np.ndarray:
         hits = self.result.hits
         keep = np.zeros(len(hits), dtype=bool)
         for g in groups:
             s = self.spans[g]
-            keep |= (hits[:, 0] >= s.start) & (hits[:, 0] < s.stop)
+            keep |= (hits[:, column] >= s.start) & (hits[:, column] < s.stop)
         return hits[keep]
 
 
@@ -71,41 +78,49 @@ class CollisionStep:
         self.pipeline, self.kinds, self.graze = pipeline, kinds, graze
         self.ids = LayerIds.of(table)
 
-    def run(self, player: Player, time: float, ships: Pool, parts: Pool, enemy_bullets: Pool,
-            player_bullets: Pool) -> CollisionRecord:
-        ids, kinds = self.ids, self.kinds
-        heads = []
+    def run(self, world) -> CollisionRecord:
+        """Collide ``world``'s objects at their current poses (one pipeline call)."""
+        ids, kinds, player = self.ids, self.kinds, world.player
+        heads = []  # (group, kind, layer, position, last position)
         if player.vulnerable:
-            heads.append((Group.PLAYER, kinds.base["player"], ids.player))
-        if player.alive and self.graze:
-            heads.append((Group.GRAZE, kinds.base["graze"], ids.graze))
+            heads.append((Group.PLAYER, kinds.base["player"], ids.player, player.pos, player.prev))
+        if player.alive and (self.graze or world.items.pool.n):  # only what the frame needs
+            heads.append((Group.GRAZE, kinds.base["graze"], ids.graze, player.pos, player.prev))
+        if world.bomb.active:
+            heads.append((Group.BOMB, world.bomb.kind, ids.bomb, player.pos, player.pos))
+        groups = [(Group.SHIPS, world.ships.pool, ids.enemy_ship), (Group.BOSS, world.parts, ids.enemy_ship),
+                  (Group.ENEMY_BULLETS, world.enemy_bullets, ids.enemy_bullet),
+                  (Group.PLAYER_BULLETS, world.player_bullets, ids.player_bullet),
+                  (Group.ITEMS, world.items.pool, ids.item)]
         nh = len(heads)
-        groups = [(Group.SHIPS, ships, ids.enemy_ship), (Group.BOSS, parts, ids.enemy_ship),
-                  (Group.ENEMY_BULLETS, enemy_bullets, ids.enemy_bullet),
-                  (Group.PLAYER_BULLETS, player_bullets, ids.player_bullet)]
         spans = {g: slice(0, 0) for g in Group}
-        for i, (g, _, _) in enumerate(heads):
-            spans[g] = slice(i, i + 1)
+        for i, h in enumerate(heads):
+            spans[h[0]] = slice(i, i + 1)
         start = nh
         for g, pool, _ in groups:
             spans[g] = slice(start, start + pool.n)
             start += pool.n
-        pos = np.concatenate([np.repeat(player.pos[None], nh, 0)] + [p.pos for _, p, _ in groups])
-        prev = np.concatenate([np.repeat(player.prev[None], nh, 0)] + [p.prev for _, p, _ in groups])
+        pos = np.concatenate([np.array([h[3] for h in heads], dtype=np.float64).reshape(nh, 2)]
+                             + [p.pos for _, p, _ in groups])
+        prev = np.concatenate([np.array([h[4] for h in heads], dtype=np.float64).reshape(nh, 2)]
+                              + [p.prev for _, p, _ in groups])
         angle = np.concatenate([np.zeros(nh)] + [p.angle for _, p, _ in groups])
         arm = np.concatenate([np.array([h[1] for h in heads], dtype=np.int64)] + [p.arm for _, p, _ in groups])
         arm = arm.astype(np.int64, copy=False)
-        if kinds.animated:  # ships and parts animate by their age, the player and bullets by the clock
-            bullets = enemy_bullets.n + player_bullets.n
-            age = np.concatenate([np.full(nh, time), ships.age, parts.age, np.full(bullets, time)])
-            arm = kinds.current(arm, age)
+        if kinds.animated:  # ships and parts animate by their age, the player, bullets and items by the clock
+            t = world.time
+            rest = world.enemy_bullets.n + world.player_bullets.n + world.items.pool.n
+            age = np.concatenate([np.full(nh, t), world.ships.pool.age, world.parts.age, np.full(rest, t)])
+            animated = np.ones(len(arm), dtype=bool)
+            animated[spans[Group.BOMB]] = False  # the bomb's kind is its size, not an animation frame
+            arm = np.where(animated, kinds.current(arm, age), arm)
         layer = np.concatenate([np.array([h[2] for h in heads], dtype=np.int64)]
                                + [np.full(p.n, lid, dtype=np.int64) for _, p, lid in groups])
         # Every bullet that moved is swept from its last pose to this one (the paper's "quick
         # gun" fix, at every speed): a bullet's hull translated along its step covers exactly
         # the ground it crossed, so no contact between two frames is missed, not even a
-        # sliver at a corner. Ships and the player are not swept: they move slowly, and a
-        # jump (a respawn) must not touch what lies between the two places.
+        # sliver at a corner. Ships, items and the player are not swept: they move slowly,
+        # and a jump (a respawn) must not touch what lies between the two places.
         swept = (layer == ids.enemy_bullet) | (layer == ids.player_bullet)
         swept &= (pos != prev).any(axis=1)
         result = self.pipeline.step(arm, layer, pos, angle, prev, angle, swept if swept.any() else None)

@@ -1,4 +1,4 @@
-"""Applying a frame's hits: the player struck, grazes, ships and the boss damaged.
+"""Applying a frame's hits: the player struck, grazes, items, bombs, ships and the boss hurt.
 
 Removal is deferred (Game Programming Patterns, "Update Method"): what dies is marked
 during the pass and the pools are compacted once at the end, so nothing is removed while
@@ -9,13 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .boss import Boss
+from .bombs import BOSS_DAMAGE
 from .collide import CollisionRecord, Group
 from .events import Events
-from .player import Player
-from .pool import Pool
-from .scoring import Score
-from .waves import WaveShips
+from .items import STAR_SCORE, ItemKind, point_value
+from .player import POWER_STEP
 
 #: Enemy bullets within this many px of the player's wreck are cleared (a mercy).
 CLEAR_RADIUS = 90.0
@@ -24,73 +22,107 @@ CLEAR_RADIUS = 90.0
 class Combat:
     """Resolves each frame's :class:`CollisionRecord` against the world's state."""
 
-    def __init__(self, player: Player, score: Score, ships: WaveShips, boss: Boss | None, enemy_bullets: Pool,
-                 player_bullets: Pool):
-        self.player, self.score, self.ships, self.boss = player, score, ships, boss
-        self.enemy_bullets, self.player_bullets = enemy_bullets, player_bullets
+    def __init__(self, world):
+        self.world = world
 
     def apply(self, record: CollisionRecord, ev: Events) -> None:
+        w = self.world
         hits = record.result.hits
         ev.hits = len(hits)
-        self.score.hits += len(hits)
+        w.score.hits += len(hits)
         if not len(hits):
             return
         spans = record.spans
-        b0, p0 = spans[Group.ENEMY_BULLETS].start, spans[Group.PLAYER_BULLETS].start
-        eb, pb = self.enemy_bullets, self.player_bullets
+        b0, p0, i0 = (spans[g].start for g in (Group.ENEMY_BULLETS, Group.PLAYER_BULLETS, Group.ITEMS))
+        eb, pb = w.enemy_bullets, w.player_bullets
         eb_dead = np.zeros(eb.n, dtype=bool)
         pb_dead = np.zeros(pb.n, dtype=bool)
         # The player: any ship or enemy bullet touching the hit armature.
         struck = record.hits_from(Group.PLAYER)[:, 1]
         eb_dead[struck[struck >= b0] - b0] = True  # the rest are ships
         # Grazes: enemy bullets inside the graze shape, once each, unless they hit.
-        g = record.hits_from(Group.GRAZE)[:, 1] - b0
+        g = record.hits_from(Group.GRAZE)
+        g = g[(g[:, 1] >= b0) & (g[:, 1] < p0)][:, 1] - b0
         if len(g):
             g = g[~eb.grazed[g] & ~eb_dead[g]]
             eb.grazed[g] = True
             ev.grazes = len(g)
-            self.score.graze(len(g))
-        # Ships and boss parts struck by player bullets: one damage per bullet.
-        on_ships = record.hits_from(Group.SHIPS)
-        on_boss = record.hits_from(Group.BOSS)
+            w.score.graze(len(g))
+        self._collect(record.hits_on(Group.ITEMS)[:, 1] - i0, ev)
+        # The bomb: bullets it touches are cancelled into stars; ships it touches are hurt.
+        bombed = record.hits_from(Group.BOMB)[:, 1]
+        cancelled = bombed[(bombed >= b0) & (bombed < p0)] - b0
+        if len(cancelled):
+            w.items.drop_many(eb.pos[cancelled], ItemKind.STAR, homing=True)
+            eb_dead[cancelled] = True
+        # Ships and boss parts struck by player bullets: each bullet's damage.
+        on_ships, on_boss = record.hits_from(Group.SHIPS), record.hits_from(Group.BOSS)
         pb_dead[on_ships[:, 1] - p0] = True
         pb_dead[on_boss[:, 1] - p0] = True
+        s0 = spans[Group.SHIPS].start
+        damage = np.bincount(on_ships[:, 0] - s0, weights=pb.damage[on_ships[:, 1] - p0],
+                             minlength=w.ships.pool.n).astype(np.int64)
+        boss_damage = int(pb.damage[on_boss[:, 1] - p0].sum())
+        if w.bomb.damaging():
+            bombed_ships = bombed[(bombed >= s0) & (bombed < spans[Group.SHIPS].stop)] - s0
+            damage += np.bincount(bombed_ships, minlength=w.ships.pool.n)
+            if ((bombed >= spans[Group.BOSS].start) & (bombed < spans[Group.BOSS].stop)).any():
+                boss_damage += BOSS_DAMAGE
         eb.keep(~eb_dead)
         pb.keep(~pb_dead)
-        if len(on_boss) and self.boss is not None:
-            self._damage_boss(len(on_boss), ev)
-        if len(on_ships):
-            s = spans[Group.SHIPS]
-            self._damage_ships(np.bincount(on_ships[:, 0] - s.start, minlength=self.ships.pool.n), ev)
+        if boss_damage and w.boss is not None:
+            w.damage_boss(boss_damage, ev)
+        if damage.any():
+            self._damage_ships(damage, ev)
         if len(struck):
-            self._player_hit(ev)
+            w.player.strike()
+            ev.player_struck = True
 
-    def _damage_boss(self, amount: int, ev: Events) -> None:
-        boss = self.boss
-        if boss.damage(amount):
-            ev.boss_killed = True
-            self.score.award(boss.spec.score)
-            ev.kills.extend((x, y, "boss") for x, y in boss.wreck())
+    def _collect(self, taken: np.ndarray, ev: Events) -> None:
+        """The items the graze shape touched: power, points, stars."""
+        if not len(taken):
+            return
+        w = self.world
+        items = w.items.pool
+        for i in taken.tolist():
+            kind = ItemKind(int(items.kind[i]))
+            if kind is ItemKind.POWER and w.player.gain_power(POWER_STEP):
+                continue
+            if kind is ItemKind.STAR:
+                w.score.award(STAR_SCORE)
+            else:  # a point item, or a power item at full power (worth a point item)
+                w.score.award(point_value(float(items.pos[i, 1]), w.score.grazes, bool(items.homing[i])))
+        ev.items += len(taken)
+        w.score.items += len(taken)
+        gone = np.zeros(items.n, dtype=bool)
+        gone[taken] = True
+        items.keep(~gone)
 
     def _damage_ships(self, damage: np.ndarray, ev: Events) -> None:
-        e = self.ships.pool
+        w = self.world
+        e = w.ships.pool
         e.hp[:] -= damage
         struck = damage > 0
         dead = struck & (e.hp <= 0)
         for i in np.flatnonzero(dead).tolist():
-            w = self.ships.waves[e.wave[i]]
-            self.score.award(w.score)
-            ev.kills.append((float(e.pos[i, 0]), float(e.pos[i, 1]), w.enemy))
+            spec = w.ships.waves[e.wave[i]]
+            w.score.award(spec.score)
+            ev.kills.append((float(e.pos[i, 0]), float(e.pos[i, 1]), spec.enemy))
+            w.items.drop(e.pos[i], [ItemKind.POWER] * spec.drops.power + [ItemKind.POINT] * spec.drops.point)
         for i in np.flatnonzero(struck & ~dead).tolist():
             ev.damaged.append((float(e.pos[i, 0]), float(e.pos[i, 1])))
         e.keep(e.hp > 0)
 
-    def _player_hit(self, ev: Events) -> None:
-        p = self.player
+    def lose_life(self, ev: Events) -> None:
+        """The death-bomb window closed: the life is lost."""
+        w = self.world
+        p = w.player
         ev.player_hit = True
         ev.kills.append((float(p.pos[0]), float(p.pos[1]), "player"))
         # Mercy: clear enemy bullets around the wreck before respawning.
-        eb = self.enemy_bullets
+        eb = w.enemy_bullets
         d = eb.pos - p.pos
-        eb.keep(np.hypot(d[:, 0], d[:, 1]) > CLEAR_RADIUS)
-        p.hit()
+        eb.keep(np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]) > CLEAR_RADIUS)
+        wreck = p.pos.copy()
+        lost = p.hit()
+        w.items.drop(wreck, [ItemKind.POWER] * (lost // POWER_STEP // 2))  # half the lost power, to win back

@@ -16,8 +16,9 @@ def _quantised(a) -> bytes:
 
 
 def state_hash(world) -> str:
-    """Hex SHA-256 of the world's state: the tallies, the boss, the player, and every pool's
-    count, positions (to 1/256 px) and armature kinds (and the ships' hit points).
+    """Hex SHA-256 of the world's state: the tallies, the boss, the player, the bomb, and
+    every pool's count, positions (to 1/256 px) and armature kinds (and the ships' hit
+    points).
 
     Game state is computed with correctly rounded operations only (DESIGN.md,
     Determinism), so the quantisation is not what makes the digest portable; it keeps the
@@ -26,12 +27,15 @@ def state_hash(world) -> str:
     h = hashlib.sha256()
     boss = world.boss
     boss_state = (boss.hp, boss.phase, list(type(boss.state)).index(boss.state)) if boss else (0, 0, -1)
-    p = world.player
-    h.update(np.array([world.frame, world.score.points, p.lives, world.score.grazes, world.score.hits, *boss_state],
-                      np.int64).tobytes())
+    p, s = world.player, world.score
+    tallies = [world.frame, s.points, s.grazes, s.hits, s.items, s.extends, p.lives, p.bombs, p.power, p.stricken,
+               p.misses, world.bomb.age, world.progress.bombs_used, world.progress.continues_used, *boss_state]
+    h.update(np.array(tallies, np.int64).tobytes())
     h.update(_quantised(p.pos))
-    parts = [world.ships.pool] + ([boss.parts] if boss else []) + [world.enemy_bullets, world.player_bullets]
-    for pool in parts:
+    if boss:
+        h.update(np.int64(boss.phase_frames).tobytes())
+    pools = [world.ships.pool, world.parts, world.enemy_bullets, world.player_bullets, world.items.pool]
+    for pool in pools:
         h.update(np.int64(pool.n).tobytes())
         h.update(_quantised(pool.pos))
         h.update(pool.arm.astype(np.int64).tobytes())

@@ -15,6 +15,8 @@ from ..collision import Armature, ArmatureSet
 
 #: The player's graze shape when its armature file names none: a 40 x 40 px box.
 DEFAULT_GRAZE = (40.0, 40.0)
+#: Sprites every level has: the player, its shot and the items.
+ALWAYS = frozenset({"player", "shot", "item_power", "item_point", "item_star"})
 #: Seconds a frame shows when an armature file does not say.
 DEFAULT_FRAME_TIME = 0.1
 
@@ -36,8 +38,10 @@ class Kinds:
     armatures : mapping name -> ArmatureFile
         Every sprite the level names, plus ``player`` and ``shot``.
     names : iterable of str
-        The sprites to pack (``player`` and ``shot`` are always added). The player's graze
-        shape becomes a kind of its own, named ``graze``.
+        The sprites to pack (``player``, ``shot`` and the items are always added). The
+        player's graze shape becomes a kind of its own, named ``graze``.
+    extra : mapping name -> list of Armature, optional
+        Shapes made in code (the bomb's), one kind per entry, as animation frames are.
 
     Attributes
     ----------
@@ -51,7 +55,7 @@ class Kinds:
         The hit shape of each kind, for the pipeline.
     """
 
-    def __init__(self, armatures: Mapping, names):
+    def __init__(self, armatures: Mapping, names, extra: Mapping[str, list[Armature]] | None = None):
         shapes: list[Armature] = []
         self.base: dict[str, int] = {}
         self.names: list[str] = []
@@ -66,10 +70,12 @@ class Kinds:
                 count.append(len(frames))
                 time.append(frame_time)
 
-        for n in sorted({"player", "shot"} | set(names)):
+        for n in sorted(ALWAYS | set(names)):
             add(n, [fs["hit"] for fs in frame_sets(armatures[n])], getattr(armatures[n], "frame_time", DEFAULT_FRAME_TIME))
         add("graze", [fs.get("graze") or Armature.box(*DEFAULT_GRAZE, name="graze") for fs in frame_sets(armatures["player"])],
             getattr(armatures["player"], "frame_time", DEFAULT_FRAME_TIME))
+        for n, shapes_of in (extra or {}).items():
+            add(n, list(shapes_of), DEFAULT_FRAME_TIME)
         self.frame = np.array(frame, dtype=np.int64)
         self._count = np.array(count, dtype=np.int64)
         self._time = np.array(time, dtype=np.float64)

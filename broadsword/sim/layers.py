@@ -20,16 +20,19 @@ class GameLayer(str, Enum):
     ENEMY_SHIP = "enemy_ship"  # wave ships and boss parts
     ENEMY_BULLET = "enemy_bullet"
     PLAYER_BULLET = "player_bullet"
+    ITEM = "item"  # power and point items, collected by the graze shape
+    BOMB = "bomb"  # the player's bomb: clears enemy bullets, hurts enemy ships
 
 
 def game_layer_table(graze: bool = True) -> LayerTable:
     """The game's table: the player against enemy ships and enemy bullets, the graze shape
-    against enemy bullets (when the scene grazes), enemy ships against player bullets.
-    Bullets never test bullets."""
+    against enemy bullets (when the scene grazes) and items, enemy ships against player
+    bullets, the bomb against enemy bullets and enemy ships. Bullets never test bullets."""
     tests = [(GameLayer.PLAYER, GameLayer.ENEMY_SHIP), (GameLayer.PLAYER, GameLayer.ENEMY_BULLET)]
     if graze:
         tests.append((GameLayer.GRAZE, GameLayer.ENEMY_BULLET))
-    tests.append((GameLayer.ENEMY_SHIP, GameLayer.PLAYER_BULLET))
+    tests += [(GameLayer.ENEMY_SHIP, GameLayer.PLAYER_BULLET), (GameLayer.GRAZE, GameLayer.ITEM),
+              (GameLayer.BOMB, GameLayer.ENEMY_BULLET), (GameLayer.BOMB, GameLayer.ENEMY_SHIP)]
     return LayerTable([g.value for g in GameLayer], [(a.value, b.value) for a, b in tests])
 
 
@@ -42,6 +45,8 @@ class LayerIds:
     enemy_ship: int
     enemy_bullet: int
     player_bullet: int
+    item: int
+    bomb: int
 
     @classmethod
     def of(cls, table: LayerTable) -> "LayerIds":

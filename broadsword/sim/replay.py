@@ -38,7 +38,7 @@ class Recorder:
         carry = self.world.carry
         return Recording(self.level_ref, self.world.seed, dict(self.settings), bytes(self.inputs), toggles,
                          tuple(self.checkpoints), self.world.state_hash(), self.level_sha256,
-                         carry={"score": carry.score, "lives": carry.lives})
+                         carry={"score": carry.score, "lives": carry.lives, "continues": carry.continues})
 
 
 @dataclass(frozen=True)

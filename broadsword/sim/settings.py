@@ -13,6 +13,7 @@ class Toggle(Enum):
     """A setting the player can switch during play (each switch is recorded with its frame)."""
 
     ROTATION = "rotation"  # F4: the paper's integer-degree table or exact sin/cos
+    CONTINUE = "continue"  # after a game over, the player chose to play on
 
 
 @dataclass(frozen=True)
@@ -34,14 +35,16 @@ class Settings:
 
 @dataclass(frozen=True)
 class Carry:
-    """What a run carries into its next level: the score so far and the lives left."""
+    """What a run carries into its next level: the score so far, the lives left and the
+    continues used."""
 
     score: int = 0
     lives: int | None = None  # None: the level's own
+    continues: int = 0
 
     def __post_init__(self):
-        if self.score < 0 or (self.lives is not None and self.lives < 1):
-            raise ValueError(f"a carry needs score >= 0 and lives >= 1, got {self.score}, {self.lives}")
+        if self.score < 0 or (self.lives is not None and self.lives < 1) or self.continues < 0:
+            raise ValueError(f"a carry needs score >= 0, lives >= 1 and continues >= 0, got {self}")
 
 
 @dataclass(frozen=True)

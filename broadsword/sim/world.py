@@ -3,15 +3,16 @@
 :meth:`World.step` is the one entry (Game Programming Patterns, "Game Loop"; the paper,
 section 1.4). It orders small systems, each in its own module:
 
+0. the bomb button, and the death-bomb window (:mod:`.bombs`, :mod:`.progress`);
 1. move: the player (:mod:`.player`), wave ships (:mod:`.motion`), the boss (:mod:`.boss`),
-   every bullet;
+   every bullet and item (:mod:`.items`);
 2. collide the new poses -- all of them, after all movement -- in one pipeline call
    (:mod:`.collide`);
-3. apply what collided: damage, deaths, lives, grazes, score (:mod:`.combat`; mark, then
-   compact);
+3. apply what collided: damage, deaths, grazes, items, the bomb's work, score
+   (:mod:`.combat`; mark, then compact);
 4. spawn: the player's gun (:mod:`.weapons`), the wave timeline and the boss's arrival
-   (:mod:`.waves`, :mod:`.boss`), the enemies' volleys (:mod:`.emitters`); then cull what
-   left the field.
+   (:mod:`.waves`, :mod:`.boss`), the enemies' volleys (:mod:`.emitters`); run the boss's
+   phase clock; cull what left the field; extends and the stage's end (:mod:`.progress`).
 
 It returns the frame's :class:`~broadsword.sim.events.Events`. The same level, seed,
 settings, toggles and inputs give the same :meth:`World.state_hash` on every run.
@@ -24,17 +25,20 @@ import numpy as np
 from ..collision import Pipeline
 from ..data.levels import Level
 from . import emitters, hashing
-from .bullets import bullet_pool, cull_bullets, move_bullets
+from .bombs import NAME as BOMB, Bomb, bomb_armatures
 from .boss import Boss, parts_pool
+from .bullets import bullet_pool, cull_bullets, move_bullets
 from .collide import CollisionRecord, CollisionStep
 from .combat import Combat
 from .events import Events
 from .field import DT, FIELD
 from .input import Input
-from .kinds import Kinds
+from .items import Items
+from .kinds import ALWAYS, Kinds
 from .layers import LayerIds, game_layer_table
 from .player import Player
 from .pool import Pool
+from .progress import Progress
 from .scoring import Score
 from .settings import Carry, Settings, Toggle, ToggleEvent
 from .waves import WaveShips, WaveTimeline
@@ -51,13 +55,14 @@ class World:
     ----------
     level : Level
     armatures : mapping name -> ArmatureFile (or any object with ``.armature``, ``.graze``)
-        Every sprite the level names, plus ``player`` (with a graze shape) and ``shot``.
+        Every sprite the level names, plus ``player`` (with a graze shape), ``shot`` and the
+        items' sprites.
     seed : int
         Seeds the gameplay random stream (``rng``); cosmetic effects use their own.
     settings : Settings, optional
-        What can change the outcome besides level, seed and inputs (the rotation mode).
+        What can change the outcome besides level, seed and inputs (rotation, difficulty).
     carry : Carry, optional
-        The score and lives brought from the run's previous level.
+        The score, lives and continues brought from the run's previous level.
 
     Attributes
     ----------
@@ -65,11 +70,17 @@ class World:
         Steps taken.
     player : Player
     score : Score
+    progress : Progress
+        Bombs used, continues, bonuses: the stage-level rules.
     ships : WaveShips
         The wave ships (``ships.pool``).
     boss : Boss or None
         None when the level has no boss.
+    parts : Pool
+        The boss's parts (an empty pool without a boss).
     enemy_bullets, player_bullets : Pool
+    items : Items
+    bomb : Bomb
     kinds : Kinds
         The armature kinds (sprite and frame of each) and their shapes.
     layers : LayerIds
@@ -86,10 +97,10 @@ class World:
         self.settings = settings or Settings()
         self.carry = carry or Carry()
         self.rng = np.random.default_rng(self.seed)
-        missing = ({"player", "shot"} | level.sprites) - set(armatures)
+        missing = (ALWAYS | level.sprites) - set(armatures)
         if missing:
             raise ValueError(f"level {level.name!r} needs armatures {sorted(missing)} that are not loaded")
-        self.kinds = Kinds(armatures, level.sprites)
+        self.kinds = Kinds(armatures, level.sprites, extra={BOMB: bomb_armatures()})
         table = game_layer_table(level.scene.graze)
         self.layers = LayerIds.of(table)
         pipeline = Pipeline(self.kinds.shapes, table, tiers=level.scene.tiers,
@@ -101,18 +112,24 @@ class World:
         self.complete = False
         self.difficulty = level.difficulty[self.settings.difficulty]
         self.rank = self.difficulty.rank  # BulletML's $rank
-        self.player = Player(level.player, lives=self.carry.lives or self.difficulty.lives or level.player.lives)
+        self.start_lives = self.difficulty.lives or level.player.lives
+        bombs = level.player.bombs if self.difficulty.bombs is None else self.difficulty.bombs
+        self.player = Player(level.player, lives=self.carry.lives or self.start_lives, bombs=bombs)
         self.score = Score(points=self.carry.score)
+        self.progress = Progress(self, self.carry.continues)
         self.gun = PlayerGun(level.player, self.kinds.base["shot"])
         self.timeline = WaveTimeline(level.waves, self.settings.difficulty)
         self.ships = WaveShips(level.waves, self.kinds.base, self.difficulty)
         self.boss = Boss(level.boss, self.difficulty) if level.boss else None
-        self._parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
+        self.parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
         self.enemy_bullets = bullet_pool(ENEMY_BULLETS)
         self.player_bullets = bullet_pool(PLAYER_BULLETS)
-        self.combat = Combat(self.player, self.score, self.ships, self.boss, self.enemy_bullets, self.player_bullets)
+        self.items = Items(self.kinds.base)
+        self.bomb = Bomb(self.kinds.base[BOMB])
+        self.combat = Combat(self)
         self.collision: CollisionRecord | None = None
         self.toggles: list[ToggleEvent] = []
+        self._bomb_held = False
 
     @property
     def time(self) -> float:
@@ -134,36 +151,63 @@ class World:
             self.pipeline.rotation = Settings(rotation=mode).rotation
             self.toggles.append(ToggleEvent(self.frame, Toggle.ROTATION, mode))
 
+    def continue_game(self) -> None:
+        """Continue after a game over (see :meth:`Progress.continue_game`); recorded in ``toggles``."""
+        self.progress.continue_game()
+        self.toggles.append(ToggleEvent(self.frame, Toggle.CONTINUE, "yes"))
+
     def apply(self, toggle: ToggleEvent) -> None:
         """Replay a recorded toggle (its frame must be this one)."""
         if toggle.frame != self.frame:
             raise ValueError(f"toggle for frame {toggle.frame} applied at frame {self.frame}")
         if toggle.toggle is Toggle.ROTATION:
             self.set_rotation(toggle.value)
+        elif toggle.toggle is Toggle.CONTINUE:
+            self.continue_game()
 
     # ------------------------------------------------------------------ the step
     def step(self, inp: Input) -> Events:
         ev = Events()
         if self.over or self.complete:
             return ev
+        pressed, self._bomb_held = inp.bomb and not self._bomb_held, inp.bomb
+        if pressed:
+            self.progress.bomb(ev)
+        if self.player.stricken:
+            self.player.stricken -= 1
+            if not self.player.stricken:
+                self.progress.missed()
+                self.combat.lose_life(ev)
         self._move(inp)
         self.combat.apply(self.detect(), ev)
         self._spawn(inp, ev)
+        if self.boss is not None:
+            how = self.boss.tick()
+            if how is not None:
+                self.progress.phase_ended(how, ev)
         self._cull()
         self.frame += 1
         self.player.tick()
+        self.bomb.tick()
+        self.progress.extends(ev)
         if self.player.lives <= 0:
             self.over = ev.game_over = True
         elif self._finished():
             self.complete = ev.level_complete = True
+            self.progress.cleared(ev)
         return ev
 
     def detect(self) -> CollisionRecord:
         """Collide everything at its current pose in one pipeline call (the step calls it
-        after all movement) and keeps the record in ``collision``; changes nothing else."""
-        self.collision = self.collide.run(self.player, self.time, self.ships.pool, self._parts, self.enemy_bullets,
-                                          self.player_bullets)
+        after all movement) and keep the record in ``collision``; changes nothing else."""
+        self.collision = self.collide.run(self)
         return self.collision
+
+    def damage_boss(self, amount: int, ev: Events) -> None:
+        """Hurt the boss; a phase that ends goes through :meth:`Progress.phase_ended`."""
+        how = self.boss.damage(amount)
+        if how is not None:
+            self.progress.phase_ended(how, ev)
 
     def _move(self, inp: Input) -> None:
         self.player.move(inp)
@@ -172,21 +216,21 @@ class World:
             self.boss.move()
         move_bullets(self.enemy_bullets)
         move_bullets(self.player_bullets)
+        self.items.move(self.player.pos, self.player.alive)
 
     def _spawn(self, inp: Input, ev: Events) -> None:
         ev.shots += self.gun.fire(self.player, inp.fire, self.player_bullets)
         for w in self.timeline.due(self.time):
             self.ships.spawn(w, self.rng)
-        if self.boss:
-            self.boss.arrive(self.time, self.kinds.base)
+        if self.boss and self.boss.arrive(self.time, self.kinds.base):
+            ev.boss_arrived = True
         if not self.player.alive:
             return
         player = self.player.pos
-        if self.boss and self.boss.parts.n:
-            parts = self.boss.parts
-            idx = np.flatnonzero(emitters.due(parts))
-            specs = [self.boss.spec.parts[p].fire for p in parts.part[idx].tolist()]
-            ev.enemy_shots += emitters.fire(parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
+        if self.parts.n:
+            idx = np.flatnonzero(emitters.due(self.parts))
+            specs = [self.boss.spec.parts[p].fire for p in self.parts.part[idx].tolist()]
+            ev.enemy_shots += emitters.fire(self.parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
         ships = self.ships.pool
         if ships.n:
             due = emitters.due(ships)
@@ -199,6 +243,7 @@ class World:
         cull_bullets(self.enemy_bullets)
         cull_bullets(self.player_bullets)
         self.ships.cull()
+        self.items.cull()
 
     def _finished(self) -> bool:
         boss_done = self.boss is None or self.boss.dead
@@ -213,5 +258,7 @@ class World:
         """The headline numbers of the run so far."""
         return {"frames": self.frame, "score": self.score.points, "lives": self.player.lives,
                 "hits": self.score.hits, "grazes": self.score.grazes, "enemy_bullets": self.enemy_bullets.n,
-                "enemies": self.ships.pool.n + self._parts.n, "complete": self.complete, "game_over": self.over}
-
+                "enemies": self.ships.pool.n + self.parts.n, "complete": self.complete, "game_over": self.over,
+                "stage_cleared": self.complete, "bombs_used": self.progress.bombs_used,
+                "continues_used": self.progress.continues_used, "misses": self.player.misses,
+                "items": self.score.items, "power": self.player.power / 100}

@@ -13,6 +13,7 @@ from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.game.app import App
 from broadsword.game.scores import HighScores
+from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim import DT, World
 
 LATE = WaveSpec(at=3000.0, enemy="scout", count=1, every=0.0, hp=1, score=0, path=PathSpec(),
@@ -84,7 +85,7 @@ def test_app__bullet_kills_enemy_and_score_rises(app):
 def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
     w = quiet(app)
     bullet, vel = np.array([w.player.pos[0], w.player.pos[1] - 70.0]), np.array([0.0, 0.0])
-    w.enemy_bullets.add(pos=[bullet], prev=[bullet], vel=[vel], angle=[0.0], arm=[w.kinds.base["needle"]], grazed=[False])
+    w.enemy_bullets.add(pos=[bullet], prev=[bullet], vel=[vel], angle=[0.0], arm=[w.kinds.base["needle"]], damage=[1], grazed=[False])
     # Independent expectation: move the player up frame by frame and ask the scalar
     # exact predicate when the posed armatures first share a point.
     ids = [w.kinds.base["player"], w.kinds.base["needle"]]
@@ -98,13 +99,16 @@ def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
             break
     lives = w.player.lives
     key(app, pygame.K_UP)
-    hit_at = None
+    hit_at = lost_at = None
     for k in range(1, 120):
         frames(app, 1)
-        if w.player.lives < lives:
+        if w.player.stricken and hit_at is None:
             hit_at = k
+        if w.player.lives < lives:
+            lost_at = k
             break
-    assert expected is not None and hit_at == expected
+    # Struck on the predicted frame; the life goes when the death-bomb window closes.
+    assert expected is not None and hit_at == expected and lost_at == expected + DEATHBOMB_FRAMES
 
 
 def test_app__pause_stops_the_world_and_f2_steps(app):

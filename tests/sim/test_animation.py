@@ -60,7 +60,7 @@ def test_collision__uses_the_frame_the_ship_shows(world, armatures):
                          wave=[0], mirror=[1.0], dive=[[0.0, 0.0]], next_fire=[99.0], volley=[0])
         shot = at + np.array([wing])
         w.player_bullets.add(pos=shot, prev=shot, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["shot"]],
-                             grazed=[False])
+                             damage=[1], grazed=[False])
         record = w.detect()
         results.append(len(record.result.hits) > 0)
         assert record.armature[record.spans[Group.SHIPS].start] == w.kinds.base["wasp"] + (0 if age < 0.08 else 1)

@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from broadsword.data.levels import BossPart, BossPhaseSpec, BossSpec, FireSpec
+from broadsword.data.levels.specs import FLAT_PHASE_TIME
 from broadsword.sim import DT, FIELD
-from broadsword.sim.boss import DESCENT, ENTRY_Y, FIRST_VOLLEY_GRACE, SWAY_RATE, Boss, BossState
+from broadsword.sim.boss import DESCENT, ENTRY_Y, FIRST_VOLLEY_GRACE, SWAY_RATE, Boss, BossState, PhaseEnd
 
 
 def spec(phases=(), hp=100):
@@ -16,7 +17,7 @@ def spec(phases=(), hp=100):
 
 
 def test_a_flat_boss_has_one_phase_of_its_hp():
-    assert spec(hp=123).phases == (BossPhaseSpec(123),)
+    assert spec(hp=123).phases == (BossPhaseSpec(123, time=FLAT_PHASE_TIME, bonus=0),)
 
 
 def test_arrives_at_its_time_with_its_parts():
@@ -46,14 +47,24 @@ def test_descends_then_sways_carrying_the_parts():
 def test_damage_runs_through_the_phases_then_kills():
     b = Boss(spec(phases=(BossPhaseSpec(10), BossPhaseSpec(20))))
     b.arrive(2.0, {"core": 0, "wing": 1})
-    assert not b.damage(9) and b.phase == 0 and b.hp == 1
-    assert not b.damage(5) and b.phase == 1 and b.hp == 16  # the overflow carries into the next phase
-    assert b.damage(16) and b.dead
-    assert not b.damage(5)  # dead stays dead
+    assert b.damage(9) is None and b.phase == 0 and b.hp == 1
+    assert b.damage(5) is PhaseEnd.BEATEN and b.phase == 1 and b.hp == 20  # each phase starts whole
+    assert b.damage(19) is None and b.damage(1) is PhaseEnd.BEATEN and b.dead
+    assert b.damage(5) is None  # dead stays dead
+
+
+def test_a_phase_ends_when_its_time_runs_out():
+    b = Boss(spec(phases=(BossPhaseSpec(10, time=1.0), BossPhaseSpec(20, time=2.0))))
+    b.arrive(2.0, {"core": 0, "wing": 1})
+    ends = [b.tick() for _ in range(round(1.0 / DT))]
+    assert ends[:-1] == [None] * (len(ends) - 1) and ends[-1] is PhaseEnd.TIMED_OUT
+    assert b.phase == 1 and b.phase_frames == 0 and b.time_left == pytest.approx(2.0)
+    ends = [b.tick() for _ in range(round(2.0 / DT))]
+    assert ends[-1] is PhaseEnd.TIMED_OUT and b.dead
     assert b.wreck() == [(FIELD[0] / 2, ENTRY_Y), (FIELD[0] / 2 - 40.0, ENTRY_Y + 5.0)] and b.parts.n == 0
 
 
 def test_damage_before_the_fight_does_nothing():
     b = Boss(spec())
-    assert not b.damage(1000) and b.state is BossState.WAITING
+    assert b.damage(1000) is None and b.state is BossState.WAITING
     assert np.all(b.parts.pos.shape == (0, 2))

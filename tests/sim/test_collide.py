@@ -7,6 +7,7 @@ import pytest
 
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.sim import IDLE, GameLayer, Group, LayerIds, World
+from broadsword.sim.items import ItemKind
 from broadsword.sim.layers import game_layer_table
 from sim_bullets import add_bullets
 
@@ -18,8 +19,10 @@ def test_layer_table__bullets_never_test_bullets_and_graze_is_optional():
     ids = LayerIds.of(t)
     assert t.names == tuple(g.value for g in GameLayer)
     assert set(t.entries) == {(ids.player, ids.enemy_ship), (ids.player, ids.enemy_bullet),
-                              (ids.graze, ids.enemy_bullet), (ids.enemy_ship, ids.player_bullet)}
+                              (ids.graze, ids.enemy_bullet), (ids.enemy_ship, ids.player_bullet),
+                              (ids.graze, ids.item), (ids.bomb, ids.enemy_bullet), (ids.bomb, ids.enemy_ship)}
     assert (ids.graze, ids.enemy_bullet) not in game_layer_table(graze=False).entries
+    assert (ids.graze, ids.item) in game_layer_table(graze=False).entries  # items are collected all the same
 
 
 def test_kinds__each_sprite_frame_and_the_graze_shape():
@@ -65,13 +68,19 @@ def test_record__hits_from_picks_the_first_objects_group():
     assert r.hits_from(Group.SHIPS, Group.BOSS).shape == (0, 2)
 
 
-@pytest.mark.parametrize("vulnerable, graze, heads", [(True, True, 2), (False, True, 1), (True, False, 1)])
-def test_record__the_player_takes_part_only_as_it_may(vulnerable, graze, heads):
+@pytest.mark.parametrize("vulnerable, graze, items, heads",
+                         [(True, True, False, 2), (False, True, False, 1), (True, False, False, 1), (True, False, True, 2)])
+def test_record__the_player_takes_part_only_as_it_may(vulnerable, graze, items, heads):
+    """The hit shape while vulnerable; the graze shape while alive if the scene grazes, or
+    if an item is out (it collects items even in a scene that does not score grazes)."""
     level = load_level(resolve_level("1-picket"))
     level = dataclasses.replace(level, waves=(), boss=None, scene=dataclasses.replace(level.scene, graze=graze))
     w = World(level, ARMATURES)
     w.player.invulnerable = 0.0 if vulnerable else 1.0
+    if items:
+        w.items.drop((100.0, 100.0), [ItemKind.POINT])
     r = w.detect()
-    assert len(r.layer) == heads
+    assert len(r.layer) == heads + int(items)
     assert (r.spans[Group.PLAYER].stop - r.spans[Group.PLAYER].start) == int(vulnerable)
-    assert np.array_equal(r.layer, [w.layers.player] * int(vulnerable) + [w.layers.graze] * int(graze))
+    grazing = graze or items
+    assert np.array_equal(r.layer[:heads], [w.layers.player] * int(vulnerable) + [w.layers.graze] * int(grazing))

@@ -53,5 +53,8 @@ def test_a_hit_clears_enemy_bullets_near_the_wreck_only():
     add_bullets(w.enemy_bullets, w.kinds.base["needle"], [p, near, far], np.zeros((3, 2)))
     ev = Events()
     w.combat.apply(w.detect(), ev)
-    assert ev.player_hit and w.player.lives == BROADSWORD.player.lives - 1
+    assert ev.player_struck and not ev.player_hit and w.player.stricken  # the death-bomb window opens
+    assert w.enemy_bullets.pos.tolist() == [near.tolist(), far.tolist()]  # the bullet that struck is gone
+    w.combat.lose_life(ev)  # the window closed without a bomb
+    assert ev.player_hit and w.player.lives == BROADSWORD.player.lives - 1 and not w.player.stricken
     assert w.enemy_bullets.pos.tolist() == [far.tolist()]

@@ -149,7 +149,7 @@ def test_tens_of_thousands_of_bullets_dropped_into_one_frame():
                         * speed[sel, None])
     assert w.enemy_bullets.n == 20_000 and w.player_bullets.n == 5_000
     events = play(w, 60)
-    assert events[0].hits > 0 and events[0].player_hit
+    assert events[0].hits > 0 and events[0].player_struck
     assert w.player_bullets.n < 5_000
 
 

@@ -31,7 +31,7 @@ def record(seed=1, toggles_at=(200, 700), carry=None) -> tuple[World, object]:
 
 def play(rec) -> tuple[World, Playback]:
     w = World(LEVEL, ARMATURES, rec.seed, Settings(**rec.settings),
-              Carry(rec.carry["score"], rec.carry["lives"]))
+              Carry(**rec.carry))
     p = Playback(rec, w)
     while (inp := p.next_input()) is not None:
         w.step(inp)
@@ -73,7 +73,7 @@ def test_toggles_change_the_game():
 
 def test_carry_is_part_of_the_recording():
     w, rec = record(toggles_at=(), carry=Carry(score=5000, lives=2))
-    assert rec.carry == {"score": 5000, "lives": 2}
+    assert rec.carry == {"score": 5000, "lives": 2, "continues": 0}
     again, p = play(rec)
     assert p.mismatch is None and p.final_check() is True and again.score.points >= 5000
 

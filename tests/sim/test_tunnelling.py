@@ -38,6 +38,7 @@ from broadsword.collision import point_in_polygon, pose
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, IDLE, LayerIds, World
+from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim.bullets import move_bullets
 from broadsword.sim.layers import game_layer_table
 from sim_bullets import add_bullets
@@ -374,7 +375,7 @@ def test_a_teleported_player_is_not_hit_by_what_lies_between_its_two_places():
     ev = w.step(IDLE)
     assert not ev.player_hit and w.player.lives == w.level.player.lives and w.enemy_bullets.n == len(ys)
     add_bullets(w.enemy_bullets, w.kinds.base[shot], end[None, :], np.zeros((1, 2)))
-    assert w.step(IDLE).player_hit
+    assert w.step(IDLE).player_struck
 
 
 def test_the_respawn_jump_does_not_hit_bullets_on_the_way():
@@ -392,6 +393,10 @@ def test_the_respawn_jump_does_not_hit_bullets_on_the_way():
     ys = np.arange(wreck[1] + CLEAR_RADIUS + 2.0, SPAWN[1] - clear, 5.0)
     add_bullets(w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), SPAWN[0]), ys]),
                 np.zeros((len(ys), 2)))
+    assert w.step(IDLE).player_struck
+    assert w.enemy_bullets.n == len(ys)  # the bullet that struck is gone
+    for _ in range(DEATHBOMB_FRAMES - 1):  # the death-bomb window: no bomb comes
+        assert not w.step(IDLE).player_hit
     ev = w.step(IDLE)
     assert ev.player_hit and np.array_equal(w.player.pos, SPAWN)
     assert w.enemy_bullets.n == len(ys)  # only the mercy radius was cleared
@@ -444,7 +449,9 @@ def test_world_step_loses_a_life_for_every_aimed_bullet_at_every_speed(shot):
             hits = 0
             for _ in range(frames):
                 w.player.pos = CENTRE.copy()  # hold the player still (a hit respawns it)
-                hits += w.step(IDLE).player_hit
+                hits += w.step(IDLE).player_struck
+            for _ in range(DEATHBOMB_FRAMES):  # the death-bomb window closes: the life goes
+                w.step(IDLE)
             assert hits == 1 and w.player.lives == lives - 1, f"{shot} at {speed:.0f} px/s, {deg:.2f} deg: {hits} hits"
             cases += 1
     assert cases == len(SPEEDS[::2]) * 36

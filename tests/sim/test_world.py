@@ -11,11 +11,12 @@ import pytest
 
 from broadsword.collision import polygons_collide, pose
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
-from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
+from broadsword.data.levels import Drops, FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, IDLE, Input, Pool, World, autopilot
 from broadsword.sim import SPAWN
 from broadsword.sim.player import INVULNERABLE_S
-from broadsword.sim.scoring import GRAZE_SCORE
+from broadsword.sim.bombs import DEATHBOMB_FRAMES
+from broadsword.sim.scoring import CLEAR_BONUS, GRAZE_SCORE, NO_BOMB_BONUS, NO_MISS_BONUS
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +42,7 @@ def ready(world: World) -> World:
 def add_bullet(world, x, y, vx, vy, name="needle"):
     pos = np.array([[x, y]], dtype=float)
     world.enemy_bullets.add(pos=pos, prev=pos, vel=[[vx, vy]], angle=[np.degrees(np.arctan2(vx, -vy))],
-                            arm=[world.kinds.base[name]], grazed=[False])
+                            arm=[world.kinds.base[name]], damage=[1], grazed=[False])
 
 
 def test_input__byte_round_trip():
@@ -85,8 +86,9 @@ def test_world__slow_mode_is_slower(quiet_level, armatures):
 
 
 def test_world__player_bullet_kills_enemy_and_scores(quiet_level, armatures):
-    wave = WaveSpec(at=0.0, enemy="scout", count=1, every=0.0, hp=2, score=123,
-                    path=PathSpec(kind="straight", x=SPAWN[0], speed=40.0), fire=FireSpec(), mirror=False)
+    wave = WaveSpec(at=0.0, enemy="scout", count=1, every=0.0, hp=2, score=120,
+                    path=PathSpec(kind="straight", x=SPAWN[0], speed=40.0), fire=FireSpec(), mirror=False,
+                    drops=Drops(power=0, point=0))
     level = dataclasses.replace(quiet_level, waves=(wave, LATE))
     w = World(level, armatures, seed=0)
     w.rng = np.random.default_rng(0)
@@ -97,7 +99,7 @@ def test_world__player_bullet_kills_enemy_and_scores(quiet_level, armatures):
         if kills:
             break
     assert kills and kills[0][2] == "scout"
-    assert w.score.points == 123
+    assert w.score.points == 120
     assert w.ships.pool.n == 0
 
 
@@ -123,10 +125,30 @@ def test_world__enemy_bullet_costs_a_life_on_the_expected_frame(quiet_level, arm
     lives = w.player.lives
     for k in range(1, expected + 5):
         ev = w.step(IDLE)
-        if ev.player_hit:
+        if ev.player_struck:
             break
-    assert k == expected and w.player.lives == lives - 1
+    assert k == expected and w.player.stricken and w.player.lives == lives  # the death-bomb window opens
+    for k in range(1, DEATHBOMB_FRAMES + 1):
+        ev = w.step(IDLE)
+        assert ev.player_hit == (k == DEATHBOMB_FRAMES)  # no bomb came: the life goes when it closes
+    assert w.player.lives == lives - 1
     assert w.player.invulnerable == pytest.approx(INVULNERABLE_S - DT)
+
+
+def test_world__a_bomb_in_the_death_bomb_window_saves_the_life(quiet_level, armatures):
+    w = ready(World(quiet_level, armatures))
+    start, vel = (SPAWN[0] + 1.5, SPAWN[1] - 60.0), (0.0, 150.0)
+    add_bullet(w, *start, *vel)
+    lives, bombs = w.player.lives, w.player.bombs
+    while not w.step(IDLE).player_struck:
+        pass
+    for _ in range(DEATHBOMB_FRAMES - 1):
+        assert not w.step(IDLE).player_hit
+    ev = w.step(Input(bomb=True))  # the last frame of the window
+    assert ev.bomb and not ev.player_hit and not w.player.stricken
+    for _ in range(3 * DEATHBOMB_FRAMES):
+        assert not w.step(Input(bomb=True)).bomb  # held: one bomb per press
+    assert w.player.lives == lives and w.player.bombs == bombs - 1 and w.progress.bombs_used == 1
 
 
 def test_world__invulnerable_after_a_hit(quiet_level, armatures):
@@ -158,7 +180,7 @@ def test_world__bullets_never_test_bullets(quiet_level, armatures):
     for k in range(20):
         add_bullet(w, 100 + k, 100, 0.0, 10.0)
     w.player_bullets.add(pos=[[105.0, 100.0]], prev=[[105.0, 100.0]], vel=[[0.0, -10.0]], angle=[0.0],
-                         arm=[w.kinds.base["shot"]], grazed=[False])
+                         arm=[w.kinds.base["shot"]], damage=[1], grazed=[False])
     w.step(IDLE)
     layers = w.collision.layer[w.collision.result.candidates]
     pairs = {tuple(p) for p in layers.tolist()}
@@ -190,7 +212,9 @@ def test_world__level_completes_when_waves_are_cleared(quiet_level, armatures):
         if w.step(IDLE).level_complete:
             done = True
             break
-    assert done and w.complete and w.score.points == 0  # it flew off the screen unharmed
+    # It flew off the screen unharmed: nothing scored but the stage's bonuses.
+    assert done and w.complete and w.score.points == CLEAR_BONUS + NO_MISS_BONUS + NO_BOMB_BONUS
+    assert [name for name, _ in w.progress.bonuses] == ["stage clear", "no miss", "no bomb"]
 
 
 def test_sim_and_data__import_without_pygame():

@@ -21,8 +21,8 @@ from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..errors import DataError, shown
 from ..resources import read_toml
 from ..table import MISSING, Table
-from .specs import (PATHS, PATTERNS, BossPart, BossSpec, FireKind, FireSpec, Level, PathKind, PathSpec, PlayerSpec,
-                    SceneSpec, WaveSpec)
+from .specs import (BOSS_DROPS, PATHS, PATTERNS, BossPart, BossPhaseSpec, BossSpec, Drops, FireKind, FireSpec, Level, PathKind,
+                    PathSpec, PlayerSpec, SceneSpec, WaveSpec)
 
 #: A level file is at most this big; a larger one is refused by its size, unparsed.
 LEVEL_MAX_BYTES = 1 << 20
@@ -112,6 +112,37 @@ def _scene(doc, path) -> SceneSpec:
     return spec
 
 
+#: A boss has at most this many phases.
+PHASES_MAX = 8
+
+
+def _drops(t: Table, default: Drops) -> Drops:
+    """``drops = { power = n, point = n }``: the items left on death."""
+    d = Table(t.raw("drops", {}), t.path, t.name_of("drops"))
+    out = Drops(d.int("power", default.power, 0, 64), d.int("point", default.point, 0, 64))
+    d.done()
+    return out
+
+
+def _phases(t: Table) -> tuple[BossPhaseSpec, ...]:
+    """``[[boss.phase]]``: each phase's hp, time and bonus (none: one phase of ``boss.hp``)."""
+    raw = t.raw("phase", [])
+    if not isinstance(raw, list):
+        raise t.error("phase", f"must be an array of tables ([[boss.phase]]), got {shown(raw)}")
+    if len(raw) > PHASES_MAX:
+        raise t.error("phase", f"must be at most {PHASES_MAX} phases, got {len(raw)}")
+    if raw and "hp" in t.doc:
+        raise t.error("hp", "give the hp of each [[boss.phase]] instead, not both")
+    out = []
+    for i, doc in enumerate(raw):
+        p = Table(doc, t.path, f"{t.where}.phase[{i}]")
+        d = BossPhaseSpec(1)
+        out.append(BossPhaseSpec(p.int("hp", MISSING, 1, 10**7), p.num("time", d.time, 5, 600),
+                                 p.int("bonus", d.bonus, 0, 10**8)))
+        p.done()
+    return tuple(out)
+
+
 DIFFICULTIES = tuple(d.value for d in Difficulty)
 
 
@@ -196,6 +227,7 @@ def load_level(path: str | Path) -> Level:
             at=t.num("at", 0.0, 0, 3600), enemy=t.sprite("enemy", MISSING), count=t.int("count", 1, 1, 1000),
             every=t.num("every", 0.5, 0, 60), hp=t.int("hp", 1, 1, 100_000), score=t.int("score", 100, 0, 10**7),
             path=_path(t), fire=_fire(t), mirror=t.bool("mirror", False), difficulties=_difficulties(t),
+            drops=_drops(t, Drops()),
         ))
         t.done(FIRE_KEYS)
         ships += waves[-1].count * (2 if waves[-1].mirror else 1)
@@ -216,8 +248,11 @@ def load_level(path: str | Path) -> Level:
             parts.append(BossPart(pt.sprite("sprite", MISSING), _offset(pt), pt.num("spin", 0.0, -3600, 3600),
                                   _fire(pt)))
             pt.done(FIRE_KEYS)
-        boss = BossSpec(t.num("at", 0.0, 0, 3600), t.int("hp", 100, 1, 10**7), t.int("score", 10_000, 0, 10**8),
-                        t.num("y", 150.0, 0, 2000), t.num("sway", 80.0, 0, 1000), tuple(parts))
+        phases = _phases(t)
+        hp = sum(p.hp for p in phases) if phases else t.int("hp", 100, 1, 10**7)
+        boss = BossSpec(t.num("at", 0.0, 0, 3600), hp, t.int("score", 10_000, 0, 10**8),
+                        t.num("y", 150.0, 0, 2000), t.num("sway", 80.0, 0, 1000), tuple(parts), phases,
+                        _drops(t, BOSS_DROPS))
         t.done()
     difficulty = _difficulty(top.raw("difficulty", {}), path)
     top.done(("boss",))

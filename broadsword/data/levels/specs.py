@@ -90,6 +90,20 @@ class PathSpec:
 
 
 @dataclass(frozen=True)
+class Drops:
+    """Items an enemy leaves when it dies."""
+
+    power: int = 1
+    point: int = 1
+
+
+#: The time limit of a boss given without phases (its one phase), s.
+FLAT_PHASE_TIME = 600.0
+#: What a boss leaves when it dies, unless its level says otherwise.
+BOSS_DROPS = Drops(power=8, point=16)
+
+
+@dataclass(frozen=True)
 class WaveSpec:
     at: float  # s after the level starts
     enemy: str  # armature/sprite name
@@ -101,6 +115,7 @@ class WaveSpec:
     fire: FireSpec
     mirror: bool  # also spawn each ship mirrored about the centre line
     difficulties: frozenset[Difficulty] = frozenset(Difficulty)  # the difficulties it flies on
+    drops: Drops = Drops()
 
 
 @dataclass(frozen=True)
@@ -113,9 +128,13 @@ class BossPart:
 
 @dataclass(frozen=True)
 class BossPhaseSpec:
-    """One phase of a boss fight: the damage it takes to end it."""
+    """One phase of a boss fight: the damage that ends it, the seconds it lasts at most
+    (running out ends it with no bonus), and the bonus for ending it without a miss or a
+    bomb."""
 
     hp: int
+    time: float = 40.0
+    bonus: int = 10_000
 
 
 @dataclass(frozen=True)
@@ -127,10 +146,11 @@ class BossSpec:
     sway: float  # px of side-to-side sway
     parts: tuple[BossPart, ...]
     phases: tuple[BossPhaseSpec, ...] = ()  # () : one phase of ``hp``
+    drops: Drops = field(default_factory=lambda: BOSS_DROPS)
 
     def __post_init__(self):
-        if not self.phases:
-            object.__setattr__(self, "phases", (BossPhaseSpec(self.hp),))
+        if not self.phases:  # the flat form: one phase with all the hit points and no hurry
+            object.__setattr__(self, "phases", (BossPhaseSpec(self.hp, time=FLAT_PHASE_TIME, bonus=0),))
 
 
 @dataclass(frozen=True)
