@@ -12,7 +12,7 @@ import numpy as np
 from .data import check_level_sprites, data_dir, load_armatures, load_level, resolve_level
 from .data.difficulty import Difficulty
 from .data.recordings import Recording, check_level_digest, file_sha256
-from .sim import IDLE, Carry, Settings, World, autopilot
+from .sim import IDLE, Carry, Pilot, Settings, World
 from .sim.replay import Playback, Recorder
 
 
@@ -57,6 +57,7 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
         check_level_digest(replay, replay_path, resolve_level(level_ref))
     recorder = Recorder(world, level_ref, digest)
     playback = Playback(replay, world) if replay is not None else None
+    pilot = Pilot()
     tiers: dict[str, dict] = {}
     ms, peak = [], 0
     for _ in range(frames):
@@ -65,7 +66,7 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
             if inp is None:
                 break
         else:
-            inp = autopilot(world) if use_autopilot else IDLE
+            inp = pilot(world) if use_autopilot else IDLE
         world.step(inp)
         recorder.stepped(inp)
         if playback is not None:
@@ -79,7 +80,7 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
     for t in tiers.values():
         t["ms"] = round(t["ms"], 3)
     summary = world.summary()
-    summary.update({"seed": seed, "level": world.level.name, "tiers": tiers, "peak_enemy_bullets": peak,
+    summary.update({"seed": seed, "level": world.level.name, "tiers": tiers, "peak_bullets": peak,
                     "collision_median_ms": round(float(np.median(ms)), 4) if ms else 0.0,
                     "rotation": world.rotation, "difficulty": world.settings.difficulty.value,
                     "state_hash": world.state_hash()})

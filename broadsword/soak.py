@@ -135,7 +135,7 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
         shared machine, mostly other tenants), ``error`` (``None``, or the exception's
         traceback text as one string).
     """
-    from .sim import DT, World, autopilot
+    from .sim import DT, Pilot, World
     from .sim.boss import BossState
 
     if frames < 0:
@@ -161,11 +161,12 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
     clock = time.perf_counter
     t_start = clock()
     world = World(level, armatures, game_seed(seed, 0))
+    pilot = Pilot()
     f = 0
     try:
         while f < frames:
             t0 = clock()
-            world.step(autopilot(world))
+            world.step(pilot(world))
             took = clock() - t0
             step_max = max(step_max, took)
             slow_steps += took > DT
@@ -181,6 +182,7 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
                 run_hash.update(world.state_hash().encode())
                 if f < frames:
                     world = World(level, armatures, game_seed(seed, games))
+                    pilot = Pilot()
                     games += 1
             if f % sample_every == 0 or f == warmup or f == frames:
                 rss, _ = rss_bytes()

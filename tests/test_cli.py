@@ -31,7 +31,7 @@ def test_headless__every_level_runs_600_frames_with_the_autopilot(level, capsys)
     assert s["level"] == level and s["seed"] == 3
     assert s["frames"] == 600 or s["complete"] or s["game_over"]
     assert s["tiers"]["armature"]["pairs_in"] >= s["tiers"]["armature"]["pairs_out"]
-    assert s["score"] > 0  # the autopilot shoots things
+    assert s["shots_landed"] > 0  # the autopilot shoots things (level 3's first ships take 220 shots to kill)
 
 
 def test_headless__same_arguments_same_hash(capsys):

@@ -18,7 +18,7 @@ from broadsword.cli import main
 from broadsword.data.recordings import load_recording
 from broadsword.collision import ROTATION_MODES
 from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
-from broadsword.sim import Input, World, autopilot
+from broadsword.sim import Input, Pilot, World
 
 ROOT = Path(__file__).resolve().parents[1]
 ROTATIONS = ROTATION_MODES  # ("exact", "lut")
@@ -39,10 +39,11 @@ def level_with(name: str, rotation: str):
 def trajectory(level, armatures, seed: int, frames: int = FRAMES) -> list[str]:
     """State hashes every CHECK_EVERY frames of an autopilot run (stops at the game's end)."""
     w = World(level, armatures, seed)
+    pilot = Pilot()
     assert w.pipeline.rotation == level.scene.rotation
     out = []
     for f in range(1, frames + 1):
-        w.step(autopilot(w))
+        w.step(pilot(w))
         if f % CHECK_EVERY == 0 or w.over or w.complete:
             out.append(w.state_hash())
         if w.over or w.complete:

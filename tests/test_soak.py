@@ -26,7 +26,7 @@ import pytest
 from broadsword import soak as soak_mod
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
-from broadsword.sim import World, autopilot
+from broadsword.sim import Pilot, World
 
 ROOT = Path(__file__).resolve().parents[1]
 FIELDS = {"level", "seed", "frames", "frames_requested", "warmup", "games", "restarts", "games_over",
@@ -91,8 +91,9 @@ def test_soak_restarts_after_game_over_with_derived_seeds(armatures, broadsword_
     left, game = 400, 0
     while left:
         w = World(deadly, armatures, soak_mod.game_seed(3, game))
+        pilot = Pilot()
         while left and not w.over:
-            w.step(autopilot(w))
+            w.step(pilot(w))
             left -= 1
         h.update(w.state_hash().encode())
         game += 1

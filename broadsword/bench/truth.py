@@ -51,11 +51,12 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
 
     from ..data import load_level, resolve_level
     from ..game.sprites import SpriteBank
-    from ..sim import World, autopilot
+    from ..sim import Pilot, World
 
     pygame.init()
     bank = SpriteBank()
     world = World(load_level(resolve_level(level_name)), bank.armatures, seed)
+    pilot = Pilot()
     masks: dict[tuple[str, int, int], tuple[pygame.mask.Mask, int, int]] = {}
 
     def mask(kind, angle):
@@ -72,7 +73,7 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
     entries = world.pipeline.layers.entries
     counts = {f"{names[a]}/{names[b]}": {"both": 0, "armature_only": 0, "sprite_only": 0} for a, b in entries}
     for _ in range(frames):
-        world.step(autopilot(world))
+        world.step(pilot(world))
         if world.over or world.complete or world.collision is None:
             break
         o = world.collision

@@ -23,7 +23,7 @@ import pygame
 
 from ..data import DataError, check_level_sprites, list_levels, load_level, resolve_level
 from ..data.recordings import file_sha256
-from ..sim import DT, FIELD, Carry, Input, World, autopilot
+from ..sim import DT, FIELD, Carry, Input, Pilot, World
 from ..sim.replay import Recorder
 from .audio import Audio
 from .overlay import Overlay
@@ -189,7 +189,7 @@ class App:
 
     def _step(self, paused: bool = False) -> None:
         world = self.world
-        inp = autopilot(world) if self.demo else self.current_input()
+        inp = self.pilot(world) if self.demo else self.current_input()
         ev = world.step(inp)
         self.recorder.stepped(inp)
         self.renderer.on_events(ev)
@@ -368,6 +368,7 @@ class App:
             self.scene = "title"
             return False
         self.world = world
+        self.pilot = Pilot()  # the demo's player, fresh for each level
         self.recorder = Recorder(world, self.custom_level or self.levels[run.level_index], file_sha256(path))
         self.error = None
         self.accumulator = 0.0

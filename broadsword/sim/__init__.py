@@ -8,7 +8,7 @@ with :mod:`.layers`, :mod:`.kinds`, :mod:`.events`, :mod:`.settings`, :mod:`.has
 :mod:`.field`, :mod:`.input`, :mod:`.pool` and the :mod:`.autopilot`.
 """
 
-from .autopilot import autopilot
+from .autopilot import Pilot
 from .collide import CollisionRecord, Group
 from .events import Events
 from .field import DT, FIELD, SPAWN
@@ -19,4 +19,4 @@ from .settings import Carry, Settings, Toggle, ToggleEvent
 from .world import World
 
 __all__ = ["DT", "FIELD", "IDLE", "SPAWN", "Carry", "CollisionRecord", "Events", "GameLayer", "Group", "Input", "LayerIds",
-           "Pool", "Settings", "Toggle", "ToggleEvent", "World", "autopilot"]
+           "Pool", "Settings", "Toggle", "ToggleEvent", "Pilot", "World"]

@@ -1,57 +1,140 @@
-"""A simple deterministic player: dodges what is coming, lines up under enemies, fires.
+"""The autopilot: a player with a human's limits, for demos, soaks and measured balance.
 
-Good enough to survive a while and to exercise every system; a pure function of the
-world's state, so a run with the autopilot is as reproducible as a recording.
+It plays as a person would (issue 12, "balance is measured"):
+
+* it sees only the present frame -- what is on the screen: where things are and how they
+  are moving -- never the future, a pattern's script or a random draw;
+* it reacts late: what it decides from frame ``t`` is pressed at frame ``t + REACTION``
+  (12 frames, 200 ms), so it must judge where bullets will be by then, as a player does;
+* it moves as the player moves: one :class:`~broadsword.sim.Input` a frame, at the ship's
+  own speeds; it may bomb when it sees no way out, and it collects items.
+
+Each decision weighs the nine stick directions at both speeds: the ship is imagined
+flying that way (after the moves already pressed and not yet felt) while every bullet
+near it flies straight on, and the choice with the least danger, plus a pull toward a
+target to shoot and the home row, wins. Everything is a pure function of what it saw, so
+a run with the autopilot is as reproducible as a recording.
 """
 
 from __future__ import annotations
 
+from collections import deque
+
 import numpy as np
 
-from .input import IDLE, Input
 from .field import DT, FIELD, SPAWN
+from .input import IDLE, Input
 
-LOOKAHEAD = 10  # frames ahead at which bullets are judged
-DANGER = 64.0  # px: bullets and ships nearer than this push the player away
+#: Frames between seeing and pressing (200 ms).
+REACTION = 12
+#: How far past the moment its press takes effect it looks, frames.
+HORIZON = 14
+#: Bullets and ships within this many px of the ship are judged; the rest are ignored.
+NEAR = 150.0
+#: A predicted pass closer than this (px, centre to centre) is a hit; closer than
+#: CAREFUL costs in proportion.
+HIT, CAREFUL = 9.0, 26.0
+#: Bomb when the best choice still passes within HIT of something.
+BOMB_WHEN_TRAPPED = True
 HOME_Y = SPAWN[1]
+_DIRS = np.array([(dx, dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1)], dtype=np.float64)
 
 
-def autopilot(world) -> Input:
-    """The autopilot's input for the world's next step."""
-    if not world.player.alive:
-        return IDLE
-    p = world.player.pos
-    enemies = np.concatenate([world.ships.pool.pos, world.boss.parts.pos]) if world.boss else world.ships.pool.pos
-    enemy_vel = np.concatenate([world.ships.pool.vel, world.boss.parts.vel]) if world.boss else world.ships.pool.vel
-    push = np.zeros(2)
-    dense = 0
-    for pos, vel, weight in (
-        (world.enemy_bullets.pos, world.enemy_bullets.vel, 1.0),
-        (enemies, enemy_vel, 3.0),
-    ):
+class Pilot:
+    """A stateful autopilot: call it once per frame with the world; it returns the input
+    to press now (decided ``REACTION`` frames ago)."""
+
+    def __init__(self, reaction: int = REACTION):
+        self.pending: deque[Input] = deque([IDLE] * reaction)
+
+    def __call__(self, world) -> Input:
+        self.pending.append(self.decide(world))
+        return self.pending.popleft()
+
+    # ------------------------------------------------------------------ deciding
+    def decide(self, world) -> Input:
+        """What to press ``REACTION`` frames from now, judged from this frame."""
+        p = world.player
+        if not p.alive:
+            return IDLE
+        spec = world.level.player
+        start = self._where_i_will_be(p.pos, spec)
+        threats, speeds = self._threats(world, start)
+        frames = np.arange(1, HORIZON + 1, dtype=np.float64)
+        lead = len(self.pending)  # frames until this press is felt
+        best, best_cost, best_min = None, np.inf, np.inf
+        target = self._target_x(world, p.pos)
+        for slow in (False, True):
+            speed = (spec.slow_speed if slow else spec.speed) * DT
+            for d in _DIRS:
+                n = np.sqrt(d[0] * d[0] + d[1] * d[1])
+                step = d / n * speed if n else d
+                path = start + step * frames[:, None]  # (H, 2)
+                np.clip(path, (12.0, 16.0), (FIELD[0] - 12.0, FIELD[1] - 16.0), out=path)
+                cost, closest = self._danger(path, threats, speeds, lead)
+                cost += self._preference(path[-1], target, world)
+                if cost < best_cost:
+                    best, best_cost, best_min = (int(d[0]), int(d[1]), slow), cost, closest
+        dx, dy, slow = best
+        bomb = BOMB_WHEN_TRAPPED and best_min < HIT and p.bombs > 0 and not world.bomb.active
+        return Input(dx, dy, fire=True, slow=slow, bomb=bomb)
+
+    def _where_i_will_be(self, pos, spec) -> np.ndarray:
+        """Where the ship will be when this press is felt: after the presses still pending."""
+        at = pos.astype(np.float64).copy()
+        for inp in self.pending:
+            steps = inp.dx * inp.dx + inp.dy * inp.dy
+            if steps:
+                speed = spec.slow_speed if inp.slow else spec.speed
+                at += np.array([inp.dx, inp.dy], dtype=np.float64) / np.sqrt(float(steps)) * speed * DT
+        return np.clip(at, (12.0, 16.0), (FIELD[0] - 12.0, FIELD[1] - 16.0))
+
+    def _threats(self, world, at) -> tuple[np.ndarray, np.ndarray]:
+        """Positions (m, 2) and velocities (m, 2, px/frame) of the bullets and ships seen near
+        where the ship will be (ships count as bigger threats: twice each)."""
+        pos = [world.enemy_bullets.pos, world.ships.pool.pos, world.parts.pos]
+        vel = [world.enemy_bullets.vel, world.ships.pool.vel, world.parts.vel]
+        pos = np.concatenate(pos)
+        vel = np.concatenate(vel) * DT
         if not len(pos):
-            continue
-        ahead = pos + vel * (LOOKAHEAD * DT)
-        for q in (pos, ahead):
-            d = p - q
-            dist = np.hypot(d[:, 0], d[:, 1])
-            near = dist < DANGER
-            if near.any():
-                dn = np.maximum(dist[near], 4.0)
-                push += weight * (d[near] / dn[:, None] ** 2).sum(axis=0) * DANGER
-                dense += int(near.sum())
-    # Line up under the nearest enemy above (to shoot it); keep to the home height.
-    target_x = FIELD[0] / 2
-    if len(enemies):
-        above = enemies[:, 1] < p[1] - 40
-        if above.any():
-            cand = enemies[above]
-            target_x = float(cand[np.argmin(np.abs(cand[:, 0] - p[0])), 0])
-    pull = np.array([(target_x - p[0]) / 120.0, (HOME_Y - p[1]) / 160.0])
-    # Walls push back too, so dodging never pins the ship in a corner.
-    wall = np.array([1.0 / max(p[0] - 8, 8) - 1.0 / max(FIELD[0] - 8 - p[0], 8),
-                     1.0 / max(p[1] - 8, 8) - 1.0 / max(FIELD[1] - 8 - p[1], 8)]) * 30.0
-    move = push + pull + wall
-    dx = int(np.sign(move[0])) if abs(move[0]) > 0.12 else 0
-    dy = int(np.sign(move[1])) if abs(move[1]) > 0.12 else 0
-    return Input(dx, dy, fire=True, slow=dense >= 6)
+            return pos, vel
+        d = pos - at
+        reach = NEAR + np.sqrt(vel[:, 0] * vel[:, 0] + vel[:, 1] * vel[:, 1]) * (len(self.pending) + HORIZON)
+        near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < reach * reach
+        return pos[near], vel[near]
+
+    def _danger(self, path, threats, speeds, lead) -> tuple[float, float]:
+        """Cost of flying ``path`` (H, 2) with the threats flying straight on; and the
+        closest pass. The threats are as seen ``lead`` frames before the path starts."""
+        if not len(threats):
+            return 0.0, np.inf
+        t = lead + np.arange(1, len(path) + 1, dtype=np.float64)  # frames from seeing to each point
+        future = threats[None, :, :] + speeds[None, :, :] * t[:, None, None]  # (H, m, 2)
+        d = future - path[:, None, :]
+        dist = np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1])
+        closest = float(dist.min())
+        near = np.clip(CAREFUL - dist, 0.0, None)
+        weight = 1.0 / (1.0 + 0.15 * np.arange(len(path)))[:, None]  # the nearer future counts more
+        cost = float((near * near * weight).sum()) + 1e6 * float((dist < HIT).sum())
+        return cost, closest
+
+    def _target_x(self, world, pos) -> float:
+        """Under the lowest enemy above (the nearest threat, and the quickest to reach with
+        shots), else the centre."""
+        enemies = np.concatenate([world.ships.pool.pos, world.parts.pos])
+        if len(enemies):
+            above = (enemies[:, 1] < pos[1] - 40) & (enemies[:, 1] > 0)
+            if above.any():
+                cand = enemies[above]
+                return float(cand[np.argmax(cand[:, 1]), 0])
+        return FIELD[0] / 2
+
+    def _preference(self, end, target_x, world) -> float:
+        """Soft pulls: under the target, near the home row, toward items falling nearby."""
+        cost = 0.02 * abs(end[0] - target_x) + 0.01 * abs(end[1] - HOME_Y)
+        items = world.items.pool
+        if items.n:
+            d = items.pos - end
+            dist = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+            cost -= 0.5 * float(np.clip(1.0 - dist / 120.0, 0.0, None).sum())
+        return cost

@@ -59,6 +59,7 @@ class Combat:
         on_ships, on_boss = record.hits_from(Group.SHIPS), record.hits_from(Group.BOSS)
         pb_dead[on_ships[:, 1] - p0] = True
         pb_dead[on_boss[:, 1] - p0] = True
+        w.score.landed += len(on_ships) + len(on_boss)
         s0 = spans[Group.SHIPS].start
         damage = np.bincount(on_ships[:, 0] - s0, weights=pb.damage[on_ships[:, 1] - p0],
                              minlength=w.ships.pool.n).astype(np.int64)

@@ -24,6 +24,7 @@ class Score:
     grazes: int = 0
     hits: int = 0  # hit pairs the pipeline reported, all layers
     items: int = 0  # items collected
+    landed: int = 0  # the player's shots that hit a ship or the boss
     extends: int = 0  # extends given so far
 
     def __post_init__(self):

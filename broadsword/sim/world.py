@@ -261,4 +261,4 @@ class World:
                 "enemies": self.ships.pool.n + self.parts.n, "complete": self.complete, "game_over": self.over,
                 "stage_cleared": self.complete, "bombs_used": self.progress.bombs_used,
                 "continues_used": self.progress.continues_used, "misses": self.player.misses,
-                "items": self.score.items, "power": self.player.power / 100}
+                "items": self.score.items, "shots_landed": self.score.landed, "power": self.player.power / 100}

@@ -30,7 +30,7 @@ from broadsword.sim import Input
 from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
 from broadsword.data.armatures import COORD_MAX, FRAMES_MAX, SUFFIX, VERTICES_MAX
 from broadsword.data.levels import check_level_sprites
-from broadsword.sim import World, autopilot
+from broadsword.sim import Pilot, World
 
 SPRITES = data_dir("assets") / "sprites"
 LEVEL_PATHS = [resolve_level(name) for name in list_levels()]
@@ -76,8 +76,9 @@ def try_level(path: Path, armatures):
         return None
     assert finite_numbers(level)
     world = World(level, armatures, seed=1)
+    pilot = Pilot()
     for _ in range(FRAMES_PLAYED):
-        world.step(autopilot(world))
+        world.step(pilot(world))
     assert len(world.state_hash()) > 0
     if not level.waves and level.boss is None:
         assert world.complete and world.frame == 1  # nothing to fight: complete at once

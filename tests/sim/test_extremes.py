@@ -14,7 +14,7 @@ import pytest
 
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
-from broadsword.sim import DT, FIELD, IDLE, World, autopilot
+from broadsword.sim import DT, FIELD, IDLE, Pilot, World
 from broadsword.sim.boss import BossState
 from sim_bullets import add_bullets
 
@@ -42,9 +42,9 @@ def assert_sane(w: World) -> None:
 
 def play(w: World, frames: int, pilot=True) -> list:
     """Step at most ``frames`` times (stopping at the game's end), checking the state each time."""
-    events = []
+    events, driver = [], Pilot()
     for _ in range(frames):
-        events.append(w.step(autopilot(w) if pilot else IDLE))
+        events.append(w.step(driver(w) if pilot else IDLE))
         assert_sane(w)
         if w.over or w.complete:
             break
@@ -186,10 +186,11 @@ def test_a_level_with_nothing_in_it():
     empty = dataclasses.replace(BROADSWORD, waves=(), boss=None)
     assert empty.sprites == set()
     w = World(empty, ARMATURES, seed=7)
-    ev = w.step(autopilot(w))
+    driver = Pilot()
+    ev = w.step(driver(w))
     assert ev.level_complete and w.complete and w.frame == 1
     for _ in range(100):
-        ev = w.step(autopilot(w))
+        ev = w.step(driver(w))
         assert not ev.level_complete and not ev.hits
     assert w.frame == 1
     assert_sane(w)

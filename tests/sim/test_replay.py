@@ -6,7 +6,7 @@ import pytest
 
 from broadsword.data import data_dir, load_armatures, load_level, resolve_level
 from broadsword.data.recordings import CHECKPOINT_EVERY
-from broadsword.sim import Carry, Input, Settings, World, autopilot
+from broadsword.sim import Carry, Input, Pilot, Settings, World
 from broadsword.sim.replay import Playback, Recorder
 
 ARMATURES = load_armatures(data_dir("assets") / "sprites")
@@ -17,11 +17,12 @@ FRAMES = 2 * CHECKPOINT_EVERY + 150
 def record(seed=1, toggles_at=(200, 700), carry=None) -> tuple[World, object]:
     """An autopilot run that switches rotation mode at the given frames (as F4 does)."""
     w = World(LEVEL, ARMATURES, seed, carry=carry)
+    pilot = Pilot()
     rec = Recorder(w, "3-broadsword")
     for f in range(FRAMES):
         if f in toggles_at:
             w.set_rotation("exact" if w.rotation == "lut" else "lut")
-        inp = autopilot(w)
+        inp = pilot(w)
         w.step(inp)
         rec.stepped(inp)
         if w.over:
@@ -56,8 +57,9 @@ def test_playback_applies_the_toggles_and_matches_every_checkpoint():
 
 
 def test_toggles_change_the_game():
-    """The toggle matters (3 of 6 autopilot runs diverged when F4 went unrecorded): without
-    it, the playback drifts, and says from which checkpoint."""
+    """The toggle matters (3 of 6 autopilot runs diverged when F4 went unrecorded, and the
+    mode in force is part of the state): without it, the playback drifts, and says from
+    which checkpoint."""
     w, rec = record(seed=1, toggles_at=(100,))
     _, p = play(dataclasses.replace(rec, toggles=()))
     assert p.mismatch is not None and p.final_check() is False
