@@ -75,11 +75,11 @@ def test_short_soak_in_a_fresh_process(tmp_path):
 
 
 def test_soak_restarts_after_game_over_with_derived_seeds(armatures, broadsword_level):
-    """A level the autopilot cannot survive (one life, rings of fast bullets): the soak
+    """A level the autopilot cannot survive (one life, no bomb, rings of fast bullets): the soak
     plays on through every game over, each game with the next seed of the sequence."""
-    ring = FireSpec(pattern="ring", bullet="pellet", speed=400.0, every=0.1, shots=40, delay=0.0)
+    ring = FireSpec(pattern="ring", bullet="pellet", speed=300.0, every=0.05, shots=72, delay=0.0)
     deadly = dataclasses.replace(
-        broadsword_level, player=dataclasses.replace(broadsword_level.player, lives=1), boss=None,
+        broadsword_level, player=dataclasses.replace(broadsword_level.player, lives=1, bombs=0), boss=None,
         waves=(WaveSpec(at=0.0, enemy="gunship", count=3, every=0.0, hp=10**6, score=0, mirror=True, fire=ring,
                         path=PathSpec(kind="hold", x=100.0, speed=300.0, hold_y=200.0, hold_for=600.0)),))
     s = soak_mod.soak(deadly, armatures, frames=400, seed=3, warmup=100, sample_every=50)
