@@ -53,6 +53,7 @@ SUBCOMMANDS = {
     "edit": "broadsword.game.editor",
     "armature": "broadsword.game.authoring",
     "soak": "broadsword.soak",
+    "balance": "broadsword.balance",
 }
 
 

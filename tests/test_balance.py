@@ -1,0 +1,31 @@
+"""``broadsword balance``: runs, the table, the JSON."""
+
+import json
+
+from broadsword import balance
+
+
+def test_balance__one_seed_here_writes_the_table_and_json(tmp_path, capsys):
+    out = tmp_path / "b.json"
+    code = balance.main(["--stages", "1-picket", "--difficulties", "easy", "--seeds", "1", "--workers", "1",
+                         "--still", "--json", str(out)])
+    printed, err = capsys.readouterr()
+    assert code == 0 and "| 1-picket | easy | " in printed and "1/1 runs" in err
+    doc = json.loads(out.read_text())
+    (row,) = doc["rows"]
+    assert row["stage"] == "1-picket" and row["difficulty"] == "easy" and row["seeds"] == 1
+    assert 0 <= row["clears"] <= 1 and row["peak_bullets"] > 0 and row["still_survives_s"] > 0
+    assert {r["still"] for r in doc["runs"]} == {False, True}
+
+
+def test_summarise__counts_and_means():
+    runs = [{"level": "a", "difficulty": "normal", "seed": s, "still": False, "cleared": s < 3, "frames": 600 * (s + 1),
+             "deaths": s, "bombs": 1, "peak_bullets": 10 * s, "score": 0} for s in range(4)]
+    (row,) = balance.summarise(runs)
+    assert row["clears"] == 3 and row["deaths"] == 1.5 and row["bombs"] == 1.0 and row["peak_bullets"] == 30
+    assert row["length_s"] == 25.0 and row["cleared_length_s"] == 30.0
+
+
+def test_bad_arguments_exit_2(capsys):
+    assert balance.main(["--difficulties", "brutal"]) == 2
+    assert balance.main(["--seeds", "0"]) == 2
