@@ -10,7 +10,7 @@ def test_balance__one_seed_here_writes_the_table_and_json(tmp_path, capsys):
     code = balance.main(["--stages", "1-picket", "--difficulties", "easy", "--seeds", "1", "--workers", "1",
                          "--still", "--json", str(out)])
     printed, err = capsys.readouterr()
-    assert code == 0 and "| 1-picket | easy | " in printed and "1/1 runs" in err
+    assert code == 0 and "| 1-picket | easy | " in printed and "2/2 runs" in err  # the autopilot and the still run
     doc = json.loads(out.read_text())
     (row,) = doc["rows"]
     assert row["stage"] == "1-picket" and row["difficulty"] == "easy" and row["seeds"] == 1
