@@ -94,6 +94,8 @@ def main(argv: list[str] | None = None) -> int:
                                               args.rotation, Difficulty(args.difficulty or Difficulty.NORMAL))
             if args.record:
                 save_recording(args.record, recording)
+            for warning in summary["warnings"]:
+                print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
             return 0
         return _play(level if args.level or replay else None, seed, args, replay)

@@ -82,7 +82,7 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
     summary = world.summary()
     summary.update({"seed": seed, "level": world.level.name, "tiers": tiers, "peak_bullets": peak,
                     "collision_median_ms": round(float(np.median(ms)), 4) if ms else 0.0,
-                    "rotation": world.rotation, "difficulty": world.settings.difficulty.value,
+                    "warnings": list(world.warnings), "rotation": world.rotation, "difficulty": world.settings.difficulty.value,
                     "state_hash": world.state_hash()})
     if playback is not None:
         final = playback.final_check()

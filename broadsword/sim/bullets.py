@@ -12,20 +12,20 @@ from .pool import Pool
 CULL_MARGIN = 24.0
 
 
-def bullet_pool(capacity: int) -> Pool:
-    """A pool of bullets: position, last position, velocity (px/s), angle (degrees), armature
-    kind, damage, and whether it has grazed the player already."""
-    return Pool(capacity=capacity, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
-                arm=((), int), damage=((), int), grazed=((), bool))
+def bullet_pool(capacity: int, limit: int) -> Pool:
+    """A pool of at most ``limit`` bullets: position, last position, velocity (px/s), angle
+    (degrees), armature kind, damage, and whether it has grazed the player already."""
+    return Pool(capacity=capacity, limit=limit, pos=((2,), float), prev=((2,), float), vel=((2,), float),
+                angle=((), float), arm=((), int), damage=((), int), grazed=((), bool))
 
 
 def add_bullets(pool: Pool, pos: np.ndarray, vel: np.ndarray, kind: int, damage=1) -> int:
     """Add bullets at ``pos`` (n, 2) moving at ``vel`` (n, 2) px/s, facing their velocity, all
-    of armature kind ``kind``, doing ``damage`` (scalar or (n,)). Returns n."""
+    of armature kind ``kind``, doing ``damage`` (scalar or (n,)). Returns how many were
+    added (fewer than n when the pool is at its limit)."""
     n = len(pos)
-    pool.add(pos=pos, prev=pos, vel=vel, angle=heading(vel[:, 0], vel[:, 1]), arm=np.full(n, kind),
-             damage=np.broadcast_to(np.asarray(damage, dtype=np.int64), (n,)), grazed=np.zeros(n, dtype=bool))
-    return n
+    return pool.add(pos=pos, prev=pos, vel=vel, angle=heading(vel[:, 0], vel[:, 1]), arm=np.full(n, kind),
+                    damage=np.broadcast_to(np.asarray(damage, dtype=np.int64), (n,)), grazed=np.zeros(n, dtype=bool))
 
 
 def move_bullets(pool: Pool) -> None:

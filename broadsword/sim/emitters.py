@@ -56,7 +56,9 @@ def fire(shooters: Pool, idx: np.ndarray, specs: list[FireSpec], player: np.ndar
     fired = 0
     for spec in dict.fromkeys(specs):  # distinct patterns, in a fixed order
         sel = idx[[s == spec for s in specs]]
-        if spec.fires:
+        if bullets.limit is not None and bullets.n >= bullets.limit:  # full: no work for nothing
+            bullets.refused += len(sel) * spec.shots if spec.fires else 0
+        elif spec.fires:
             fired += volley(spec, shooters.pos[sel], shooters.volley[sel], player, bullets, kinds_base[spec.bullet])
         shooters.next_fire[sel] += spec.every
         shooters.volley[sel] += 1

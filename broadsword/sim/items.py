@@ -39,6 +39,8 @@ CULL_MARGIN = 40.0
 POINT_MIN, POINT_MAX = 100, 1000
 #: Every this many grazes add GRAZE_BONUS to a point item's value.
 GRAZES_PER_BONUS, GRAZE_BONUS = 5, 10
+#: At most this many items lie on the field at once; more are not dropped.
+ITEMS_LIMIT = 8192
 #: What a star is worth.
 STAR_SCORE = 10
 
@@ -60,7 +62,7 @@ class Items:
 
     def __init__(self, kinds_base: dict[str, int]):
         self.arm_of = np.array([kinds_base[SPRITES[k]] for k in ItemKind], dtype=np.int64)
-        self.pool = Pool(capacity=256, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
+        self.pool = Pool(capacity=256, limit=ITEMS_LIMIT, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
                          arm=((), int), kind=((), int), homing=((), bool))
 
     def drop(self, at, kinds: list[ItemKind]) -> None:

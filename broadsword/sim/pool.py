@@ -21,10 +21,12 @@ class Pool:
     [[3.0, 4.0]]
     """
 
-    def __init__(self, capacity: int = 64, **fields):
+    def __init__(self, capacity: int = 64, limit: int | None = None, **fields):
         self._spec = {name: (tuple(shape), np.dtype(dtype)) for name, (shape, dtype) in fields.items()}
         self._data = {name: np.zeros((capacity, *shape), dtype) for name, (shape, dtype) in self._spec.items()}
         self.n = 0
+        self.limit = limit  # at most this many live entries (None: no limit)
+        self.refused = 0  # entries not added because the pool was full, so far
 
     def __getattr__(self, name):
         data = self.__dict__.get("_data")
@@ -35,14 +37,21 @@ class Pool:
     def __len__(self) -> int:
         return self.n
 
-    def add(self, **values) -> None:
-        """Append entries; every declared field must be given (arrays of equal length)."""
+    def add(self, **values) -> int:
+        """Append entries; every declared field must be given (arrays of equal length, or
+        scalars). At the pool's ``limit`` the entries past it are refused (counted in
+        ``refused``). Returns how many were added."""
         missing = set(self._spec) - set(values)
         if missing:
             raise ValueError(f"missing fields {sorted(missing)}")
         k = len(np.asarray(values[next(iter(self._spec))]))
+        if self.limit is not None and self.n + k > self.limit:
+            take = max(0, self.limit - self.n)
+            self.refused += k - take
+            k = take
+            values = {name: (v[:take] if np.ndim(v) else v) for name, v in values.items()}
         if k == 0:
-            return
+            return 0
         need = self.n + k
         cap = len(next(iter(self._data.values())))
         if need > cap:
@@ -54,6 +63,7 @@ class Pool:
         for name, arr in self._data.items():
             arr[self.n : need] = values[name]
         self.n = need
+        return k
 
     def keep(self, mask: np.ndarray) -> None:
         """Keep the live entries where ``mask`` (n,) is True, packed, in order."""

@@ -10,6 +10,8 @@ from .field import FIELD
 from .motion import move_wave_ships
 from .pool import Pool
 
+#: At most this many wave ships are alive at once; a wave sent past it loses the rest.
+SHIPS_LIMIT = 4096
 #: Ships enter this far above the field, px.
 ENTRY_Y = -24.0
 #: Each ship's entry x is jittered by up to this many px (from the gameplay RNG).
@@ -49,7 +51,7 @@ class WaveShips:
         self.hp = [difficulty.scale_hp(w.hp) for w in waves]  # under the difficulty
         self.paths = [w.path for w in waves]
         self.kind = [kinds_base[w.enemy] for w in waves]  # each wave's armature kind
-        self.pool = Pool(pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
+        self.pool = Pool(limit=SHIPS_LIMIT, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
                          arm=((), int), hp=((), int), age=((), float), wave=((), int), mirror=((), float),
                          dive=((2,), float), next_fire=((), float), volley=((), int))
 

@@ -44,8 +44,10 @@ from .settings import Carry, Settings, Toggle, ToggleEvent
 from .waves import WaveShips, WaveTimeline
 from .weapons import PlayerGun
 
-#: Initial capacities of the bullet pools (they grow as needed).
+#: Initial capacities of the bullet pools (they grow as needed) and their limits: a level
+#: that would fire more than the limit at once does not stall the game, it fires fewer.
 ENEMY_BULLETS, PLAYER_BULLETS = 1024, 128
+ENEMY_BULLETS_LIMIT, PLAYER_BULLETS_LIMIT = 32_768, 16_384
 
 
 class World:
@@ -122,13 +124,14 @@ class World:
         self.ships = WaveShips(level.waves, self.kinds.base, self.difficulty)
         self.boss = Boss(level.boss, self.difficulty) if level.boss else None
         self.parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
-        self.enemy_bullets = bullet_pool(ENEMY_BULLETS)
-        self.player_bullets = bullet_pool(PLAYER_BULLETS)
+        self.enemy_bullets = bullet_pool(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
+        self.player_bullets = bullet_pool(PLAYER_BULLETS, PLAYER_BULLETS_LIMIT)
         self.items = Items(self.kinds.base)
         self.bomb = Bomb(self.kinds.base[BOMB])
         self.combat = Combat(self)
         self.collision: CollisionRecord | None = None
         self.toggles: list[ToggleEvent] = []
+        self.warnings: list[str] = []  # a limit reached, once each (the game says so)
         self._bomb_held = False
 
     @property
@@ -186,6 +189,7 @@ class World:
             if how is not None:
                 self.progress.phase_ended(how, ev)
         self._cull()
+        self._check_limits()
         self.frame += 1
         self.player.tick()
         self.bomb.tick()
@@ -244,6 +248,13 @@ class World:
         cull_bullets(self.player_bullets)
         self.ships.cull()
         self.items.cull()
+
+    def _check_limits(self) -> None:
+        for pool, what in ((self.enemy_bullets, "enemy bullets"), (self.player_bullets, "player bullets"),
+                           (self.ships.pool, "ships"), (self.items.pool, "items")):
+            message = f"more than {pool.limit:,} {what} at once: the rest were not made"
+            if pool.refused and message not in self.warnings:
+                self.warnings.append(message)
 
     def _finished(self) -> bool:
         boss_done = self.boss is None or self.boss.dead

@@ -201,3 +201,22 @@ def test_a_level_with_only_a_boss():
     w = World(level, ARMATURES, seed=8)
     play(w, int((level.boss.at + 3.0) / DT))
     assert w.boss.state in (BossState.FIGHTING, BossState.DEAD) and w.frame > level.boss.at / DT
+
+
+# ---------------------------------------------------------------------- limits
+def test_a_level_inside_every_documented_range_does_not_stall():
+    """10,000 ships firing 256-bullet rings every 0.02 s (each number within its documented
+    range): the pools stop at their limits, the game says so once, and frames stay cheap
+    (it used to take over 100 s for 30 frames; now the work per frame is bounded)."""
+    from broadsword.sim.waves import SHIPS_LIMIT
+    from broadsword.sim.world import ENEMY_BULLETS_LIMIT
+
+    ring = FireSpec(pattern="ring", bullet="pellet", speed=100.0, every=0.02, shots=256, delay=0.0)
+    waves = tuple(wave("scout", count=1000, fire=ring, hp=10,
+                       path=PathSpec(kind="hold", x=240.0, speed=300.0, hold_y=200.0, hold_for=600.0))
+                  for _ in range(10))
+    w = World(dataclasses.replace(PICKET, waves=waves, boss=None), ARMATURES, seed=1)
+    play(w, 30, pilot=False)
+    assert w.frame == 30 and w.ships.pool.n == SHIPS_LIMIT and w.enemy_bullets.n <= ENEMY_BULLETS_LIMIT
+    assert w.warnings == [f"more than {SHIPS_LIMIT:,} ships at once: the rest were not made",
+                          f"more than {ENEMY_BULLETS_LIMIT:,} enemy bullets at once: the rest were not made"]

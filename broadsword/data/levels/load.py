@@ -203,7 +203,7 @@ def load_level(path: str | Path) -> Level:
     doc = read_toml(path, LEVEL_MAX_BYTES, "a level file")
     top = Table(doc, path, "")
     head = Table(top.raw("level", {}), path, "level")
-    name = head.str("name", path.stem)
+    name = path.stem  # a level's name is its file's stem: never a path
     title = head.str("title", name)
     head.done()
     scene = _scene(top.raw("scene", {}), path)
