@@ -202,4 +202,5 @@ class Level:
         if self.boss:
             names |= {p.sprite for p in self.boss.parts}
             names |= {p.fire.bullet for p in self.boss.parts if p.fire.fires}
+            names |= {f.bullet for phase in self.boss.phases for _, f in phase.fire if f.fires}
         return names
