@@ -118,8 +118,11 @@ def _play(level, seed, args, replay) -> int:
         lab = (e, b)
     import pygame
 
+    from .game.quiet import filtered_stderr
+
     try:
-        app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab)
+        with filtered_stderr():  # pygame.init() probes for audio; no sound card: 8 ALSA lines
+            app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab)
     except pygame.error as exc:  # no display: say so in one line, not a traceback
         print(f"broadsword: cannot open a window ({exc}); --headless runs without one", file=sys.stderr)
         return 1
