@@ -9,6 +9,7 @@
     broadsword edit PATH                         the armature editor (broadsword.game.editor)
     broadsword armature generate|check ...       make and check armatures (broadsword.game.authoring)
     broadsword soak [--frames N]                 long headless play, memory report (broadsword.soak)
+    broadsword pattern check|view FILE...        check or watch BulletML patterns (broadsword.patterntool)
 
 A level or asset file that fails to load ends the run with exit status 2 and one line
 naming the file and the field.
@@ -54,6 +55,7 @@ SUBCOMMANDS = {
     "armature": "broadsword.game.authoring",
     "soak": "broadsword.soak",
     "balance": "broadsword.balance",
+    "pattern": "broadsword.patterntool",
 }
 
 

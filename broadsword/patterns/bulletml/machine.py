@@ -131,7 +131,8 @@ class Thread:
                 self.act_turn += frames
         elif kind is Repeat:
             times = min(int(eng.eval(cmd.times, params)), MAX_REPEAT)
-            self.stack.append(_Rep(cmd.body, max(times, 1), params))  # runs at least once, as libBulletML
+            if times > 0:  # the specification's count; libBulletML would run the body once (docs/PATTERNS.md)
+                self.stack.append(_Rep(cmd.body, times, params))
         elif kind is Action or kind is ActionRef:
             self._enter(eng, cmd, params)
         elif kind is ChangeDirection:
