@@ -12,30 +12,23 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
+from .argtypes import positive, seed
 
-def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="broadsword pattern", description="Check and view BulletML patterns.")
-    sub = ap.add_subparsers(dest="command", required=True)
-    check = sub.add_parser("check", help="validate files and report bullets fired, peak live bullets, duration")
-    check.add_argument("files", nargs="+", metavar="FILE")
-    check.add_argument("--frames", type=int, default=1200, help="frames to run each pattern (default 1200)")
-    check.add_argument("--rank", type=float, default=0.5, help="$rank, 0..1 (default 0.5)")
-    check.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions, e.g. 2.5,3,30,60,0")
-    view = sub.add_parser("view", help="watch a pattern fire (target at the mouse)")
-    view.add_argument("file", metavar="FILE")
-    view.add_argument("--rank", type=float, default=0.5, help="starting $rank, 0..1 (default 0.5)")
-    view.add_argument("--seed", type=int, default=0)
-    view.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions")
-    view.add_argument("--frames", type=int, default=None, help="quit after this many frames (for tests)")
-    view.add_argument("--screenshot", metavar="PNG", help="save the last frame to this PNG file")
-    return ap
+
+def _rank(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text[:40]!r}") from None
+    if not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError(f"must be in 0..1, got {text[:40]}")
+    return value
 
 
 def _params(text: str) -> tuple[float, ...]:
-    import math
-
     try:
         values = tuple(float(v) for v in text.split(",")) if text.strip() else ()
     except ValueError:
@@ -45,11 +38,33 @@ def _params(text: str) -> tuple[float, ...]:
     return values
 
 
-def check(files: list[str], frames: int, rank: float, params: tuple[float, ...] = (), out=sys.stdout,
-          err=sys.stderr) -> int:
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="broadsword pattern", description="Check and view BulletML patterns.",
+                                 epilog="exit status: 0 all good; 1 a file failed to load (each is named); 2 usage")
+    sub = ap.add_subparsers(dest="command", required=True)
+    check = sub.add_parser("check", help="validate files and report bullets fired, peak live bullets, duration")
+    check.add_argument("files", nargs="+", metavar="FILE")
+    check.add_argument("--frames", type=positive, default=1200, help="frames to run each pattern (default 1200)")
+    check.add_argument("--rank", type=_rank, default=0.5, help="$rank, 0..1 (default 0.5)")
+    check.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions, e.g. 2.5,3,30,60,0")
+    view = sub.add_parser("view", help="watch a pattern fire (target at the mouse)")
+    view.add_argument("file", metavar="FILE")
+    view.add_argument("--rank", type=_rank, default=0.5, help="starting $rank, 0..1 (default 0.5)")
+    view.add_argument("--seed", type=seed, default=0, help="the $rand stream's seed (default 0)")
+    view.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions")
+    view.add_argument("--frames", type=positive, default=None, help="quit after this many frames (for tests)")
+    view.add_argument("--screenshot", metavar="PNG", help="save the last frame to this PNG file")
+    return ap
+
+
+def check(files: list[str], frames: int, rank: float, params: tuple[float, ...] = (), out=None, err=None) -> int:
+    """Load and run each file; print one line for each (errors to ``err``). Returns 1 if any
+    file failed to load, else 0."""
     from .patterns import bulletml
     from .patterns.bulletml.check import summarize
 
+    out = out or sys.stdout
+    err = err or sys.stderr
     bad = 0
     for name in files:
         try:
@@ -68,14 +83,12 @@ def check(files: list[str], frames: int, rank: float, params: tuple[float, ...] 
 
 
 def main(argv: list[str]) -> int:
-    args = _parser().parse_args(argv)
-    if not 0.0 <= args.rank <= 1.0:
-        print(f"broadsword: --rank must be in 0..1, got {args.rank}", file=sys.stderr)
-        return 2
+    """``broadsword pattern ...``; returns the exit status."""
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as exc:  # usage errors (2), --help (0)
+        return exc.code if isinstance(exc.code, int) else 2
     if args.command == "check":
-        if args.frames < 1:
-            print("broadsword: --frames must be at least 1", file=sys.stderr)
-            return 2
         return check(args.files, args.frames, args.rank, args.params)
     from .game.patternview import view
 

@@ -195,3 +195,27 @@ def test_rank__scales_values():
 def test_expression__precedence_and_unary_minus():
     p = top(fire('<direction type="absolute">-(10 - 100) * 2 / 2 % 360</direction>', "<speed>2+3*2-4/2</speed>"))
     close(run(p, 2)[1][0], (6, 0))
+
+
+def test_change_speed__an_absolute_change_resets_the_speed_sequence_but_a_turn_does_not_reset_direction():
+    body = (fire(absolute(90), "<speed>1</speed>") + "<changeSpeed><speed>5</speed><term>1</term></changeSpeed>"
+            + "<changeDirection>" + absolute(0) + "<term>1</term></changeDirection>"
+            + fire('<direction type="sequence">0</direction>', '<speed type="sequence">1</speed>'))
+    close(run(top(body), 2)[1], [[1, 0], [6, 0]])  # speed 5 + 1, direction 90 + 0
+
+
+def test_change_direction__exactly_half_a_turn_goes_the_other_way_from_the_raw_difference():
+    # from 90 to 270: raw difference +180, so it turns -180 (through 0); halfway it points up
+    p = child("<changeDirection>" + absolute(270) + "<term>2</term></changeDirection>", direction=absolute(90))
+    frames = run(p, 3)
+    close(frames[2][0] - frames[1][0], (0, -1))
+
+
+def test_vanish__on_the_emitter_ends_its_pattern():
+    frames = run(top(fire() + "<vanish/>" + fire() + "<wait>1</wait>" + fire()), 3)
+    assert [len(f) for f in frames] == [2, 2, 2]
+
+
+def test_expression__modulo_keeps_the_dividends_sign():
+    p = top(fire('<direction type="absolute">-450 % 360</direction>'))  # -90: left
+    close(run(p, 2)[1][0], (-1, 0))
