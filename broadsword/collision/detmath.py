@@ -41,7 +41,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["atan2_deg", "cos_deg", "heading_deg", "norm", "rotation_table", "sin_deg", "sincos_deg", "velocity_deg"]
+__all__ = ["atan2_deg", "ceil_log2", "cos_deg", "floor_log2", "heading_deg", "norm", "rotation_table", "sin_deg", "sincos_deg",
+           "velocity_deg"]
 
 # pi / 180 and 180 / pi as double-doubles (hi + lo, |lo| <= ulp(hi) / 2); checked against
 # an 80-digit oracle in the tests.
@@ -318,6 +319,37 @@ def norm(x, y):
         r = np.ldexp(np.sqrt(b * b + s * s), e)
         r = np.where(np.isinf(ax) | np.isinf(ay), np.inf, r)
     return _out(r, scalar)
+
+
+def _log2_parts(x, caller: str):
+    xs = np.asarray(x, dtype=np.float64)
+    if np.any(~(xs >= 0.0)):
+        raise ValueError(f"{caller}: x must be >= 0 (not nan), got {x!r}")
+    m, e = np.frexp(xs)  # x = m 2**e, m in [0.5, 1): exact
+    return xs, m, e.astype(np.int64)
+
+
+def _log2_out(xs, k, scalar: bool):
+    k = np.where(xs == np.inf, 1024, np.where(xs == 0.0, -1075, k))
+    return int(k) if scalar else k
+
+
+def floor_log2(x):
+    """``floor(log2(x))`` exactly, as int64 (an int for a scalar), for ``x >= 0``.
+
+    ``0`` gives -1075 and ``inf`` 1024 (below and above every finite double's); a negative
+    or nan ``x`` raises ValueError. Unlike ``floor(np.log2(x))`` it is exact for every double.
+    """
+    xs, _, e = _log2_parts(x, "floor_log2")
+    return _log2_out(xs, e - 1, _is_scalar(x))
+
+
+def ceil_log2(x):
+    """``ceil(log2(x))`` exactly, as int64 (an int for a scalar), for ``x >= 0``: the
+    exponent of the smallest power of two ``>= x``. Zeros, infinities, errors as
+    :func:`floor_log2`."""
+    xs, m, e = _log2_parts(x, "ceil_log2")
+    return _log2_out(xs, e - (m == 0.5), _is_scalar(x))
 
 
 def rotation_table(steps: int = 360) -> tuple[np.ndarray, np.ndarray]:
