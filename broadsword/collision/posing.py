@@ -52,6 +52,8 @@ ROTATION_MODES = ("exact", "lut")
 
 #: Vertex count of the shape a rotating swept object is replaced by.
 _OCTAGON = 8
+#: cos(pi / 8): the octagon circumscribing a circle of radius r has vertices at r / this.
+_OCTAGON_COS = detmath.cos_deg(180.0 / _OCTAGON)
 
 
 def _size_class(count: np.ndarray) -> np.ndarray:
@@ -286,7 +288,7 @@ def pose(
         # Bounding circle of a sweep: around the path's midpoint, radius grown by half the path.
         half = 0.5 * (positions - prev_positions)
         centre = np.where(swept[:, None], positions - half, positions)
-        radius = np.where(swept, radius / detmath.cos_deg(180.0 / _OCTAGON) + detmath.norm(half[:, 0], half[:, 1]), radius)
+        radius = np.where(swept, radius / _OCTAGON_COS + detmath.norm(half[:, 0], half[:, 1]), radius)
     radius = radius * (1.0 + BOUND_SLACK) + BOUND_SLACK * (np.abs(centre[:, 0]) + np.abs(centre[:, 1]) + 1.0)
 
     slot = np.zeros(n, dtype=np.int64)
@@ -361,7 +363,7 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
         t = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)  # degrees
         cx, cy = px[obj][turning], py[obj][turning]
         slack = BOUND_SLACK * (np.abs(cx) + np.abs(cy) + 1.0)
-        r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / detmath.cos_deg(180.0 / _OCTAGON)
+        r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
         ts, tc = detmath.sincos_deg(t)
         ox = cx + tc[:, None] * r
         oy = cy + ts[:, None] * r
