@@ -5,6 +5,7 @@
     broadsword --headless --level LEVEL --frames N --seed S --autopilot
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
+    broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
     broadsword --list-levels
     broadsword edit PATH                         the armature editor (broadsword.game.editor)
     broadsword armature generate|check ...       make and check armatures (broadsword.game.authoring)
@@ -36,8 +37,8 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--headless", action="store_true", help="no window: run FRAMES steps and print a JSON summary")
     ap.add_argument("--frames", type=int, default=None, help="steps to run headless (default 600, or the recording's)")
     ap.add_argument("--record", metavar="FILE", help="save the inputs of the run")
-    ap.add_argument("--replay", metavar="FILE", help="play recorded inputs instead of the keyboard or autopilot")
-    ap.add_argument("--list-levels", action="store_true", help="print the shipped levels and exit")
+    ap.add_argument("--replay", metavar="FILE", help="play a recording: on screen (watch it), or with --headless check its hashes")
+    ap.add_argument("--list-levels", action="store_true", help="print the shipped stages in play order (name, then title) and exit")
     ap.add_argument("--mute", action="store_true", help="start with sound off")
     ap.add_argument("--lab", nargs="?", const="100,2000", metavar="E,B",
                     help="show the benchmark's reference scene (E ships, B bullets) live with the overlay")
@@ -72,9 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     retain_heap()  # the application's call: keep the heap between frames (docs/PERFORMANCE.md)
     try:
         if args.list_levels:
-            for name in list_levels():
-                print(name)
-            return 0
+            return _list_levels()
         replay = load_recording(args.replay) if args.replay else None
         if replay and (args.rotation or args.level or args.difficulty):
             print("broadsword: --replay plays the recording's own level and settings; "
@@ -104,8 +103,20 @@ def main(argv: list[str] | None = None) -> int:
         return 2
 
 
+def _list_levels() -> int:
+    """One stage a line, in play order: its name, then its title."""
+    from .data import load_level, resolve_level
+
+    names = list_levels()
+    width = max((len(n) for n in names), default=0)
+    for name in names:
+        print(f"{name:<{width}}  {load_level(resolve_level(name)).title}")
+    return 0
+
+
 def _play(level, seed, args, replay) -> int:
     from .game.app import App
+    from .game.window import NoDisplay
 
     lab = None
     if args.lab:
@@ -119,13 +130,23 @@ def _play(level, seed, args, replay) -> int:
     import pygame
 
     try:
-        app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab)
-    except pygame.error as exc:  # no display: say so in one line, not a traceback
+        app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab,
+                  difficulty=Difficulty(args.difficulty) if args.difficulty else None)
+    except NoDisplay as exc:  # no display: say so and point at --headless, never run invisibly
+        print(f"broadsword: {exc}", file=sys.stderr)
+        return 1
+    except pygame.error as exc:  # a display that will not open: one line, not a traceback
         print(f"broadsword: cannot open a window ({exc}); --headless runs without one", file=sys.stderr)
         return 1
     if args.mute:
         app.audio.toggle_mute()
-    if level is not None and lab is None and app.error is None:
+    if replay is not None:
+        try:
+            app.watch_replay(replay, args.replay)  # watch it: the recorded inputs drive the world
+        except DataError:
+            app.close()
+            raise
+    elif level is not None and lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
     if args.record and app.recorder is not None:

@@ -91,6 +91,11 @@ class Renderer:
             surf.blit(veil, (0, 0))
             self.flash -= 1
 
+    def backdrop(self, surf: pygame.Surface) -> None:
+        """The moving starfield alone, for the screens drawn without a world (title, options)."""
+        self.tick += 1
+        self._background(surf, self.tick)
+
     def _background(self, surf, t: float) -> None:
         surf.fill((6, 7, 16))
         h = FIELD[1]
