@@ -4,4 +4,4 @@ After Phelps & Cloutier, "Methodologies for Quick Approximation of 2D Collision 
 Using Polygon Armatures" (RIT, 2003). ``broadsword.collision`` stands alone (numpy only).
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"  # the one version source: pyproject.toml reads it (tool.setuptools.dynamic)

@@ -1,73 +1,134 @@
 """The ``broadsword`` command (DESIGN.md, "Command line").
 
-    broadsword                                   open the game
+    broadsword                                   open the game (``broadsword play``: the default command)
     broadsword --level 2-gauntlet --autopilot    watch the autopilot play a level
     broadsword --headless --level LEVEL --frames N --seed S --autopilot
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
     broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
     broadsword --list-levels
+    broadsword --version
     broadsword edit PATH                         the armature editor (broadsword.game.editor)
     broadsword armature generate|check ...       make and check armatures (broadsword.game.authoring)
     broadsword soak [--frames N]                 long headless play, memory report (broadsword.soak)
+    broadsword balance [--seeds N]               the autopilot over seeds per stage (broadsword.balance)
 
-A level or asset file that fails to load ends the run with exit status 2 and one line
-naming the file and the field.
+Exit status: 0 success; 1 a check that failed (or no window to open); 2 a usage error
+(an unknown option, ``--frames -1``, a bad ``--lab``...) or a level or asset file that
+fails to load, with one line naming the file and the field.
+
+Adding a subcommand is one entry in :data:`SUBCOMMANDS`: its name, the module that has
+``main(argv: list[str]) -> int`` (with its own :mod:`argparse` parser, ``prog="broadsword
+NAME"``, help on every option, exit 2 for usage errors) and a one-line help. The module is
+imported only when its command runs.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import os
 import sys
+from dataclasses import dataclass
 
+from . import __version__
+from .argtypes import lab_size, natural, seed
 from .data import DataError, list_levels
 from .data.difficulty import Difficulty
 from .data.recordings import load_recording, save_recording
 
-def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(
-        prog="broadsword", description="Broadsword: a polygon-armature shoot-'em-up.",
-        epilog="subcommands: broadsword edit PATH (armature editor); broadsword armature generate|check; "
-               "broadsword soak (long headless run). Each takes --help.")
+
+@dataclass(frozen=True)
+class Subcommand:
+    """``broadsword NAME ...`` runs ``importlib.import_module(module).main([...])``."""
+
+    module: str
+    help: str
+
+
+#: Every subcommand but ``play`` (which is built here). One line each; see the module docstring.
+SUBCOMMANDS: dict[str, Subcommand] = {
+    "edit": Subcommand("broadsword.game.editor", "edit a sprite's armatures over the sprite (a window)"),
+    "armature": Subcommand("broadsword.game.authoring", "generate armatures from sprites, and check armature files"),
+    "soak": Subcommand("broadsword.soak", "long headless play with the autopilot, watching memory and errors"),
+    "balance": Subcommand("broadsword.balance", "the autopilot over seeds per stage and difficulty: a table"),
+}
+
+PLAY = "play"
+
+
+def _add_play_options(ap: argparse.ArgumentParser) -> None:
     ap.add_argument("--level", help="a shipped level's name (see --list-levels) or a path to a level file")
-    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--seed", type=seed, default=0, help="the run's seed, a whole number in [0, 2**63) (default 0)")
     ap.add_argument("--autopilot", action="store_true", help="let the deterministic autopilot play")
-    ap.add_argument("--headless", action="store_true", help="no window: run FRAMES steps and print a JSON summary")
-    ap.add_argument("--frames", type=int, default=None, help="steps to run headless (default 600, or the recording's)")
-    ap.add_argument("--record", metavar="FILE", help="save the inputs of the run")
-    ap.add_argument("--replay", metavar="FILE", help="play a recording: on screen (watch it), or with --headless check its hashes")
-    ap.add_argument("--list-levels", action="store_true", help="print the shipped stages in play order (name, then title) and exit")
+    ap.add_argument("--headless", action="store_true",
+                    help="no window: run FRAMES steps and print a JSON summary as the last line of standard output")
+    ap.add_argument("--frames", type=natural, default=None,
+                    help="--headless: steps to run, >= 0 (default 600, or the recording's)")
+    ap.add_argument("--record", metavar="FILE", help="save the inputs of the run to FILE (a recording)")
+    ap.add_argument("--replay", metavar="FILE",
+                    help="play a recording's inputs and toggles: on screen (watch it, with pause, F2 step and the "
+                         "overlay), or with --headless check its hashes")
+    ap.add_argument("--list-levels", action="store_true", help="print the shipped stages in play order, one a line (name, then title), and exit")
     ap.add_argument("--mute", action="store_true", help="start with sound off")
-    ap.add_argument("--lab", nargs="?", const="100,2000", metavar="E,B",
-                    help="show the benchmark's reference scene (E ships, B bullets) live with the overlay")
+    ap.add_argument("--lab", nargs="?", type=lab_size, const=(100, 2000), metavar="E,B",
+                    help="show the benchmark's reference scene (E >= 1 ships, B >= 0 bullets; default 100,2000) "
+                         "live with the overlay")
     ap.add_argument("--difficulty", choices=[d.value for d in Difficulty], default=None,
                     help="easy, normal (default), hard or lunatic: sets the patterns' rank and the stage's values")
     ap.add_argument("--rotation", choices=("lut", "exact"), default=None,
                     help="--headless only: pose armatures with this rotation mode instead of the level's scene.rotation")
+
+
+def _parser() -> argparse.ArgumentParser:
+    """The whole command line: ``play`` and one entry per :data:`SUBCOMMANDS` item. The other
+    subcommands' own options belong to their modules' parsers (``broadsword NAME --help``)."""
+    ap = argparse.ArgumentParser(
+        prog="broadsword", description="Broadsword: a polygon-armature shoot-'em-up and an exact 2D collision toolkit.",
+        epilog="With no command, or options only, the command is 'play': 'broadsword --headless ...' is "
+               "'broadsword play --headless ...'. 'broadsword COMMAND --help' describes each command.")
+    ap.add_argument("--version", action="version", version=f"%(prog)s {__version__}",
+                    help="print the version and exit")
+    sub = ap.add_subparsers(dest="command", metavar="COMMAND")
+    play = sub.add_parser(PLAY, help="play the game, or run it headless (the default command)",
+                          description="Play the game in a window, or with --headless run it with no window.")
+    _add_play_options(play)
+    for name, command in SUBCOMMANDS.items():
+        # Listed for --help and usage only: main() hands the arguments to the module's own parser.
+        sub.add_parser(name, help=command.help, add_help=False)
     return ap
 
 
-#: ``broadsword NAME ...``: each subcommand is a module with ``main(argv) -> int``, imported on use.
-SUBCOMMANDS = {
-    "edit": "broadsword.game.editor",
-    "armature": "broadsword.game.authoring",
-    "soak": "broadsword.soak",
-    "balance": "broadsword.balance",
-}
-
-
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv and argv[0] in SUBCOMMANDS:
-        import importlib
+        return _exit_status(lambda: importlib.import_module(SUBCOMMANDS[argv[0]].module).main(argv[1:]))
+    if not argv or argv[0] not in (PLAY, "-h", "--help", "--version") and argv[0].startswith("-"):
+        argv = [PLAY, *argv]  # options only: the default command
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as exc:  # usage errors (2), --help and --version (0)
+        return _code(exc)
+    return _exit_status(lambda: _run_play(args))
 
-        return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:])
-    args = _parser().parse_args(argv)
-    if not 0 <= args.seed < 2**63:
-        print(f"broadsword: --seed must be a whole number in [0, 2**63), got {args.seed}", file=sys.stderr)
-        return 2
+
+def _code(exc: SystemExit) -> int:
+    if exc.code is None or isinstance(exc.code, int):
+        return exc.code or 0
+    print(exc.code, file=sys.stderr)
+    return 1
+
+
+def _exit_status(run) -> int:
+    try:
+        return run()
+    except SystemExit as exc:  # a subcommand's argparse: usage errors exit 2
+        return _code(exc)
+
+
+def _run_play(args: argparse.Namespace) -> int:
     from .collision import retain_heap
 
     retain_heap()  # the application's call: keep the heap between frames (docs/PERFORMANCE.md)
@@ -80,16 +141,14 @@ def main(argv: list[str] | None = None) -> int:
                   "drop --level, --rotation and --difficulty", file=sys.stderr)
             return 2
         level = args.level or (replay.level if replay else list_levels()[0])
-        seed = replay.seed if replay and args.seed == 0 else args.seed
+        seed_ = replay.seed if replay and args.seed == 0 else args.seed
         if args.headless:
             os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
             os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
             frames = args.frames if args.frames is not None else (replay.frames if replay else 600)
-            if frames < 0:
-                raise SystemExit("broadsword: --frames must be >= 0")
             from .headless import run_headless
 
-            summary, recording = run_headless(level, frames, seed, args.autopilot, replay, args.replay or "",
+            summary, recording = run_headless(level, frames, seed_, args.autopilot, replay, args.replay or "",
                                               args.rotation, Difficulty(args.difficulty or Difficulty.NORMAL))
             if args.record:
                 save_recording(args.record, recording)
@@ -97,7 +156,7 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
             return 0
-        return _play(level if args.level or replay else None, seed, args, replay)
+        return _play(level if args.level or replay else None, seed_, args, replay)
     except DataError as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 2
@@ -114,23 +173,14 @@ def _list_levels() -> int:
     return 0
 
 
-def _play(level, seed, args, replay) -> int:
+def _play(level, seed_, args, replay) -> int:
+    import pygame
+
     from .game.app import App
     from .game.window import NoDisplay
 
-    lab = None
-    if args.lab:
-        try:
-            e, b = (int(v) for v in args.lab.split(","))
-            if e < 1 or b < 0:
-                raise ValueError
-        except ValueError:
-            raise SystemExit(f"broadsword: --lab wants E,B (ships, bullets), e.g. 200,10000; got {args.lab!r}") from None
-        lab = (e, b)
-    import pygame
-
     try:
-        app = App(start_level=level, seed=seed, demo=args.autopilot, audio=True, lab=lab,
+        app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab,
                   difficulty=Difficulty(args.difficulty) if args.difficulty else None)
     except NoDisplay as exc:  # no display: say so and point at --headless, never run invisibly
         print(f"broadsword: {exc}", file=sys.stderr)
@@ -146,7 +196,7 @@ def _play(level, seed, args, replay) -> int:
         except DataError:
             app.close()
             raise
-    elif level is not None and lab is None and app.error is None:
+    elif level is not None and args.lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
     if args.record and app.recorder is not None:

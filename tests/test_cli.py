@@ -98,3 +98,58 @@ def test_no_display__one_line_not_a_traceback(tmp_path):
     out = subprocess.run([sys.executable, "-m", "broadsword"], capture_output=True, text=True, env=env, timeout=60)
     assert out.returncode == 1
     assert "cannot open a window" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_version__one_source(capsys):
+    import tomllib
+    from pathlib import Path
+
+    import broadsword
+
+    code, out, _ = run(["--version"], capsys)
+    assert code == 0 and out.strip() == f"broadsword {broadsword.__version__}"
+    pyproject = tomllib.loads((Path(__file__).resolve().parents[1] / "pyproject.toml").read_text())
+    assert "version" not in pyproject["project"] and "version" in pyproject["project"]["dynamic"]
+    assert pyproject["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "broadsword.__version__"}
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--headless", "--frames", "-1"], "--frames: must be >= 0"),
+    (["--lab", "3"], "--lab: wants E,B"), (["--lab", "0,5"], "--lab: wants E,B"), (["--lab", "2,x"], "--lab: wants E,B"),
+    (["--seed", "-1"], "--seed: must be a whole number in [0, 2**63)"), (["--seed", str(2**63)], "--seed"),
+    (["--frames", "ten"], "not a whole number"), (["--no-such-option"], "unrecognized arguments"),
+    (["bogus"], "invalid choice: 'bogus'"), (["--difficulty", "brutal"], "invalid choice"),
+    (["armature", "generate", "x.png", "--max-vertices", "2"], "--max-vertices must be at least 3"),
+    (["soak", "--frames", "-5"], "--frames: must be >= 0"),
+])
+def test_usage_errors__exit_2_with_the_reason(args, says, capsys):
+    code, out, err = run(args, capsys)
+    assert code == 2 and out == "" and says in err and "Traceback" not in err
+
+
+def test_help__every_command_and_every_option_described(capsys):
+    code, out, _ = run(["--help"], capsys)
+    assert code == 0
+    from broadsword.cli import SUBCOMMANDS, _parser
+
+    assert all(name in out for name in ["play", *SUBCOMMANDS])
+    for sub in _parser()._subparsers._group_actions[0].choices.values():  # noqa: SLF001 (argparse has no API)
+        for action in sub._actions:
+            assert action.help, f"{sub.prog} {action.option_strings} has no help"
+    code, out, _ = run(["play", "--help"], capsys)
+    assert code == 0 and "--headless" in out and "--lab" in out
+
+
+def test_play_is_the_default_command(capsys):
+    args = ["--headless", "--level", "1-picket", "--frames", "30", "--seed", "5", "--autopilot"]
+    default, play = summary(run(args, capsys)[1]), summary(run(["play", *args], capsys)[1])
+    assert (default["state_hash"], default["frames"], default["score"]) == (play["state_hash"], play["frames"], play["score"])
+
+
+def test_subcommands_are_importable_with_a_main():
+    import importlib
+
+    from broadsword.cli import SUBCOMMANDS
+
+    for name, command in SUBCOMMANDS.items():
+        assert callable(importlib.import_module(command.module).main), name

@@ -151,7 +151,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "generate":
             if args.max_vertices < 3:
-                raise SystemExit("broadsword armature: --max-vertices must be at least 3")
+                print("broadsword armature: --max-vertices must be at least 3", file=sys.stderr)
+                return 2
             path = generate(args.sprite, args.max_vertices, args.inset, args.shape, args.out, args.frames)
             f = load_armature_file(path)
             alphas = sprite_alpha(Path(args.sprite), len(f.frames))

@@ -14,7 +14,7 @@ from enum import Enum
 import numpy as np
 
 from ..data.difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
-from ..data.levels import BossSpec
+from ..data.levels import BossSpec, FireSpec
 from .field import DT, FIELD
 from .pool import Pool
 
@@ -24,6 +24,8 @@ ENTRY_Y, DESCENT = -80.0, 90.0
 SWAY_RATE = 0.6
 #: Parts hold their first volley this much longer than their pattern's delay, s.
 FIRST_VOLLEY_GRACE = 2.0
+#: After a phase ends, parts hold fire this much longer than their new pattern's delay, s.
+PHASE_GRACE = 1.0
 
 
 class BossState(Enum):
@@ -83,7 +85,7 @@ class Boss:
         at = self.pos + self.offsets
         self.parts.add(pos=at, prev=at, vel=np.zeros((k, 2)), angle=np.zeros(k),
                        arm=[kinds_base[p.sprite] for p in self.spec.parts], age=np.zeros(k), part=np.arange(k),
-                       next_fire=[p.fire.delay + FIRST_VOLLEY_GRACE for p in self.spec.parts],
+                       next_fire=[self.spec.fire_of(0, i).delay + FIRST_VOLLEY_GRACE for i in range(k)],
                        volley=np.zeros(k, dtype=int))
         return True
 
@@ -125,6 +127,10 @@ class Boss:
             return self._next_phase(PhaseEnd.TIMED_OUT)
         return None
 
+    def fire_of(self, part: int) -> FireSpec:
+        """What part ``part`` fires in the current phase."""
+        return self.spec.fire_of(self.phase, part)
+
     def _next_phase(self, how: PhaseEnd) -> PhaseEnd:
         if self.phase + 1 >= len(self.spec.phases):
             self.state = BossState.DEAD
@@ -132,7 +138,17 @@ class Boss:
         self.phase += 1
         self.hp = self.phase_hp[self.phase]
         self.phase_frames = 0
+        self._rearm()
         return how
+
+    def _rearm(self) -> None:
+        """A new phase's patterns start afresh: each part's first volley after its
+        pattern's delay plus :data:`PHASE_GRACE`, its volley count from zero."""
+        p = self.parts
+        if p.n:
+            delay = np.array([self.fire_of(i).delay for i in p.part.tolist()], dtype=np.float64)
+            p.next_fire[:] = p.age + delay + PHASE_GRACE
+            p.volley[:] = 0
 
     def wreck(self) -> list[tuple[float, float]]:
         """Remove the parts; returns where they were."""

@@ -233,7 +233,7 @@ class World:
         player = self.player.pos
         if self.parts.n:
             idx = np.flatnonzero(emitters.due(self.parts))
-            specs = [self.boss.spec.parts[p].fire for p in self.parts.part[idx].tolist()]
+            specs = [self.boss.fire_of(p) for p in self.parts.part[idx].tolist()]
             ev.enemy_shots += emitters.fire(self.parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
         ships = self.ships.pool
         if ships.n:

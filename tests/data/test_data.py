@@ -43,6 +43,9 @@ def test_shipped__every_sprite_has_an_armature_and_image():
     assert armatures["player"].armature.area < 0.5 * armatures["player"].graze.area
 
 
+BOSS = '[boss]\n[[boss.part]]\nsprite = "boss_core"\n[[boss.part]]\nsprite = "boss_wing"\n'
+
+
 @pytest.mark.parametrize(
     "text, field",
     [
@@ -58,6 +61,12 @@ def test_shipped__every_sprite_has_an_armature_and_image():
         ('[boss]\nhp = 10\n', "boss.part"),
         ('[[boss.part]]\nsprite = "x"\noffset = [1]\n[boss]\n', "boss"),
         ("colour = 3\n", "colour"),
+        (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 3\nfire = \"ring\"\n", "boss.phase[0].fire[0].part"),
+        (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\n[[boss.phase.fire]]\npart = 1\n",
+         "boss.phase[0].fire[1].part"),
+        (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\nfire = \"ring\"\nshots = 0\n",
+         "boss.phase[0].fire[0].shots"),
+        (BOSS + "[[boss.phase]]\nhp = 5\nfire = 3\n", "boss.phase[0].fire"),
     ],
 )
 def test_level__errors_name_the_field(tmp_path, text, field):
@@ -70,6 +79,16 @@ def test_level__errors_name_the_field(tmp_path, text, field):
 
 
 TRI = "[[0, 0], [4, 0], [0, 4]]"
+
+
+def test_level__each_boss_phase_names_what_its_parts_fire(tmp_path):
+    path = tmp_path / "phases.toml"
+    path.write_text(BOSS + "[[boss.phase]]\nhp = 5\n"
+                    "[[boss.phase]]\nhp = 7\n[[boss.phase.fire]]\npart = 2\nfire = \"ring\"\nshots = 12\n")
+    boss = load_level(path).boss
+    assert [p.hp for p in boss.phases] == [5, 7] and boss.hp == 12
+    assert boss.fire_of(0, 0) == boss.parts[0].fire  # a phase naming nothing: each part's own
+    assert not boss.fire_of(1, 0).fires and boss.fire_of(1, 1).shots == 12
 
 
 @pytest.mark.parametrize(

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from broadsword.data.levels import BossPart, BossPhaseSpec, BossSpec, FireSpec
+from broadsword.data.levels import BossPart, BossPhaseSpec, BossSpec, FireKind, FireSpec
 from broadsword.data.levels.specs import FLAT_PHASE_TIME
 from broadsword.sim import DT, FIELD
-from broadsword.sim.boss import DESCENT, ENTRY_Y, FIRST_VOLLEY_GRACE, SWAY_RATE, Boss, BossState, PhaseEnd
+from broadsword.sim.boss import DESCENT, ENTRY_Y, FIRST_VOLLEY_GRACE, PHASE_GRACE, SWAY_RATE, Boss, BossState, PhaseEnd
 
 
 def spec(phases=(), hp=100):
@@ -68,3 +68,21 @@ def test_damage_before_the_fight_does_nothing():
     b = Boss(spec())
     assert b.damage(1000) is None and b.state is BossState.WAITING
     assert np.all(b.parts.pos.shape == (0, 2))
+
+
+def test_each_phase_fires_its_own_patterns_and_silences_the_rest():
+    ring = FireSpec(pattern=FireKind.RING, shots=8, delay=0.25)
+    aimed = FireSpec(pattern=FireKind.AIMED, delay=0.2)
+    parts = (BossPart("boss_core", (0.0, 0.0), 0.0, aimed), BossPart("boss_wing", (40.0, 0.0), 0.0, aimed))
+    phases = (BossPhaseSpec(10), BossPhaseSpec(10, fire=((1, ring),)))
+    b = Boss(BossSpec(at=0.0, hp=20, score=0, y=150.0, sway=0.0, parts=parts, phases=phases))
+    assert b.arrive(0.0, {"boss_core": 0, "boss_wing": 1})
+    assert [b.fire_of(i) for i in range(2)] == [aimed, aimed]  # no fire of its own: the parts' fire
+    for _ in range(30):
+        b.move()
+    assert b.damage(10) is PhaseEnd.BEATEN and b.phase == 1
+    assert b.fire_of(0) == FireSpec() and not b.fire_of(0).fires  # not named in the phase: silent
+    assert b.fire_of(1) == ring
+    # the new patterns start afresh, after their delay and the grace
+    assert b.parts.volley.tolist() == [0, 0]
+    assert b.parts.next_fire.tolist() == pytest.approx((b.parts.age + np.array([FireSpec().delay, 0.25]) + PHASE_GRACE).tolist())

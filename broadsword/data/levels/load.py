@@ -124,8 +124,26 @@ def _drops(t: Table, default: Drops) -> Drops:
     return out
 
 
-def _phases(t: Table) -> tuple[BossPhaseSpec, ...]:
-    """``[[boss.phase]]``: each phase's hp, time and bonus (none: one phase of ``boss.hp``)."""
+def _phase_fire(p: Table, parts: int) -> tuple[tuple[int, FireSpec], ...]:
+    """A phase's ``[[boss.phase.fire]]`` entries: ``part`` (1-based, into ``[[boss.part]]``)
+    and that part's pattern in this phase, with the keys of a part's own ``fire``."""
+    raw = p.raw("fire", [])
+    if not isinstance(raw, list):
+        raise p.error("fire", f"must be an array of tables ([[boss.phase.fire]]), got {shown(raw)}")
+    out: dict[int, FireSpec] = {}
+    for j, doc in enumerate(raw):
+        f = Table(doc, p.path, f"{p.where}.fire[{j}]")
+        part = f.int("part", MISSING, 1, max(1, parts)) - 1
+        if part in out:
+            raise f.error("part", f"part {part + 1} already has a pattern in this phase")
+        out[part] = _fire(f)
+        f.done(FIRE_KEYS)
+    return tuple(sorted(out.items()))
+
+
+def _phases(t: Table, parts: int) -> tuple[BossPhaseSpec, ...]:
+    """``[[boss.phase]]``: each phase's hp, time, bonus and what its parts fire (none: one
+    phase of ``boss.hp``); ``parts`` is how many ``[[boss.part]]`` there are."""
     raw = t.raw("phase", [])
     if not isinstance(raw, list):
         raise t.error("phase", f"must be an array of tables ([[boss.phase]]), got {shown(raw)}")
@@ -138,7 +156,7 @@ def _phases(t: Table) -> tuple[BossPhaseSpec, ...]:
         p = Table(doc, t.path, f"{t.where}.phase[{i}]")
         d = BossPhaseSpec(1)
         out.append(BossPhaseSpec(p.int("hp", MISSING, 1, 10**7), p.num("time", d.time, 5, 600),
-                                 p.int("bonus", d.bonus, 0, 10**8)))
+                                 p.int("bonus", d.bonus, 0, 10**8), _phase_fire(p, parts)))
         p.done()
     return tuple(out)
 
@@ -248,7 +266,7 @@ def load_level(path: str | Path) -> Level:
             parts.append(BossPart(pt.sprite("sprite", MISSING), _offset(pt), pt.num("spin", 0.0, -3600, 3600),
                                   _fire(pt)))
             pt.done(FIRE_KEYS)
-        phases = _phases(t)
+        phases = _phases(t, len(parts))
         hp = sum(p.hp for p in phases) if phases else t.int("hp", 100, 1, 10**7)
         boss = BossSpec(t.num("at", 0.0, 0, 3600), hp, t.int("score", 10_000, 0, 10**8),
                         t.num("y", 150.0, 0, 2000), t.num("sway", 80.0, 0, 1000), tuple(parts), phases,
@@ -280,3 +298,7 @@ def check_level_sprites(level: Level, armatures) -> None:
         check(f"boss.part[{i}].sprite", part.sprite)
         if part.fire.fires:
             check(f"boss.part[{i}].bullet", part.fire.bullet)
+    for i, phase in enumerate(level.boss.phases if level.boss else ()):
+        for j, (_, spec) in enumerate(phase.fire):
+            if spec.fires:
+                check(f"boss.phase[{i}].fire[{j}].bullet", spec.bullet)

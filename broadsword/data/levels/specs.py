@@ -126,15 +126,24 @@ class BossPart:
     fire: FireSpec
 
 
+#: What a part that does not fire in a phase fires.
+SILENT = FireSpec()
+
+
 @dataclass(frozen=True)
 class BossPhaseSpec:
     """One phase of a boss fight: the damage that ends it, the seconds it lasts at most
-    (running out ends it with no bonus), and the bonus for ending it without a miss or a
-    bomb."""
+    (running out ends it with no bonus), the bonus for ending it without a miss or a
+    bomb, and what its parts fire.
+
+    ``fire`` pairs a part's index (0-based, into :attr:`BossSpec.parts`) with its pattern
+    in this phase; when ``fire`` is empty every part fires its own ``fire``, otherwise only
+    the parts named here fire."""
 
     hp: int
     time: float = 40.0
     bonus: int = 10_000
+    fire: tuple[tuple[int, FireSpec], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -151,6 +160,14 @@ class BossSpec:
     def __post_init__(self):
         if not self.phases:  # the flat form: one phase with all the hit points and no hurry
             object.__setattr__(self, "phases", (BossPhaseSpec(self.hp, time=FLAT_PHASE_TIME, bonus=0),))
+
+    def fire_of(self, phase: int, part: int) -> FireSpec:
+        """What part ``part`` fires in phase ``phase`` (both 0-based); a silent part gets
+        ``FireSpec()`` (pattern ``none``)."""
+        own = self.phases[phase].fire
+        if not own:
+            return self.parts[part].fire
+        return next((spec for i, spec in own if i == part), SILENT)
 
 
 @dataclass(frozen=True)
