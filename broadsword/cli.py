@@ -177,11 +177,13 @@ def _play(level, seed_, args, replay) -> int:
     import pygame
 
     from .game.app import App
+    from .game.quiet import filtered_stderr
     from .game.window import NoDisplay
 
     try:
-        app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab,
-                  difficulty=Difficulty(args.difficulty) if args.difficulty else None)
+        with filtered_stderr():  # pygame.init() probes for audio; no sound card: 8 ALSA lines
+            app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab,
+                      difficulty=Difficulty(args.difficulty) if args.difficulty else None)
     except NoDisplay as exc:  # no display: say so and point at --headless, never run invisibly
         print(f"broadsword: {exc}", file=sys.stderr)
         return 1
