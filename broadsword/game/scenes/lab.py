@@ -55,7 +55,7 @@ class LabScene:
         lab, app, p = self.lab, self.app, self.app.painter
         lab.draw(surf)
         if app.overlay.visible and lab.last is not None:
-            app.overlay.draw(surf, lab, app.fps)
+            app.overlay.draw(surf, lab.last, app.fps)
         sc = lab.scene
         h = surf.get_height()
         state = "   PAUSED (Space)" if self.paused else ""

@@ -195,4 +195,5 @@ class Play:
         hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
         app.renderer.draw(surf, self.world, alpha, show_armature=hitbox)
         if app.overlay.visible:
-            app.overlay.draw(surf, self.world, app.fps)
+            record = self.world.collision
+            app.overlay.draw(surf, record.result if record is not None else None, app.fps)
