@@ -27,7 +27,7 @@ class HighScoresScene:
 
     def draw(self, surf: pygame.Surface) -> None:
         app, p = self.app, self.app.painter
-        app.renderer.backdrop(surf)
+        app.renderer.draw_idle(surf)
         p.veil()
         p.text("HIGH SCORES", 110, ui.BIG, ui.GOLD)
         for i, e in enumerate(app.scores.entries):

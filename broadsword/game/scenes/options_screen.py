@@ -127,7 +127,7 @@ class OptionsScene:
 
     def draw(self, surf: pygame.Surface) -> None:
         app, p = self.app, self.app.painter
-        app.renderer.backdrop(surf)
+        app.renderer.draw_idle(surf)
         p.veil(120)
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)

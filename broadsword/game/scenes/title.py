@@ -87,7 +87,7 @@ class Title:
 
     def draw(self, surf: pygame.Surface) -> None:
         app, p = self.app, self.app.painter
-        app.renderer.backdrop(surf)
+        app.renderer.draw_idle(surf)
         w = surf.get_width()
         p.text("BROADSWORD", 110, ui.BIG, ui.GOLD)
         p.text("polygon-armature shoot-'em-up", 150, colour=(160, 180, 220))
