@@ -25,6 +25,7 @@ from ..data.levels import FireKind, FireSpec
 from ..patterns.bulletml import Engine
 from .field import DT, FIELD
 from .pool import Pool
+from .rank import RankedFire
 
 #: A ship fires only above this many px from the bottom of the field.
 BOTTOM_MARGIN = 40.0
@@ -50,16 +51,21 @@ def program(spec: FireSpec) -> tuple:
 
 class EnemyGuns:
     """The enemies' emitters and the engine that runs them (``engine``; its ``bullets`` are
-    the world's enemy bullets). ``rank`` is ``$rank``; ``seed`` gives ``$rand`` its own
-    stream, apart from the world's gameplay stream."""
+    the world's enemy bullets). ``fires`` (a :class:`~.rank.RankedFire`) gives ``$rank`` and
+    scales the original kinds' rate and speed with it (a pattern file reads ``$rank``
+    itself); ``seed`` gives ``$rand`` its own stream, apart from the world's gameplay stream."""
 
-    def __init__(self, bullets, rank: float, seed: int):
-        self.engine = Engine(rank=rank, seed=np.random.SeedSequence(seed, spawn_key=(0xB011E7,)), bullets=bullets)
+    def __init__(self, bullets, fires: RankedFire, seed: int):
+        self.fires = fires
+        self.engine = Engine(rank=fires.rank, seed=np.random.SeedSequence(seed, spawn_key=(0xB011E7,)),
+                             bullets=bullets)
         self.ship_uid_seen = -1  # ships with a larger uid have no emitter yet
         self.boss_phase = None  # the phase whose patterns the parts run (None: not armed)
 
     def _add(self, spec: FireSpec, pos, owner: int, arm: int, wait: float) -> None:
         """An emitter for ``spec`` whose pattern starts in ``wait`` s."""
+        if spec.pattern is not FireKind.BULLETML:
+            spec = self.fires.of(spec)  # the original kinds, scaled by rank
         pattern, params = program(spec)
         eng = self.engine
         eng.add_emitter(pattern, pos, params, tag=arm, owner=owner, start=eng.frame + round(max(0.0, wait) / DT))

@@ -27,6 +27,7 @@ from ..data.levels import Level
 from . import hashing
 from .bombs import NAME as BOMB, Bomb, bomb_armatures
 from .boss import Boss, parts_pool
+from .rank import RankedFire
 from .bullets import bullet_pool, cull_bullets, enemy_bullets, move_bullets
 from .emitters import EnemyGuns
 from .collide import CollisionRecord, CollisionStep
@@ -119,6 +120,7 @@ class World:
         self.complete = False
         self.difficulty = level.difficulty[self.settings.difficulty]
         self.rank = self.difficulty.rank  # BulletML's $rank
+        self.fires = RankedFire(self.rank)  # the level's patterns as fired at this rank
         self.start_lives = self.difficulty.lives or level.player.lives
         bombs = level.player.bombs if self.difficulty.bombs is None else self.difficulty.bombs
         self.player = Player(level.player, lives=self.carry.lives or self.start_lives, bombs=bombs)
@@ -130,7 +132,7 @@ class World:
         self.boss = Boss(level.boss, self.difficulty) if level.boss else None
         self.parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
         self.enemy_bullets = enemy_bullets(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
-        self.guns = EnemyGuns(self.enemy_bullets, self.rank, self.seed)
+        self.guns = EnemyGuns(self.enemy_bullets, self.fires, self.seed)
         self.player_bullets = bullet_pool(PLAYER_BULLETS, PLAYER_BULLETS_LIMIT)
         self.items = Items(self.kinds.base)
         self.bomb = Bomb(self.kinds.base[BOMB])
