@@ -138,8 +138,9 @@ class Engine:
 
     # -- questions ----------------------------------------------------------------------
     def running(self) -> int:
-        """How many emitters and bullets still have actions to run."""
-        return sum(int(np.count_nonzero(mv.wake != NEVER)) for mv in (self.emitters, self.bullets))
+        """How many emitters and bullets still have actions running: commands to come or a
+        change (direction, speed, accel) under way."""
+        return sum(int(np.count_nonzero((mv.wake != NEVER) | mv.ch_on.any(axis=1))) for mv in (self.emitters, self.bullets))
 
     def emitters_done(self) -> bool:
         """True once no emitter has commands left (its bullets may still be acting)."""
