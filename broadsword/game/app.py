@@ -26,6 +26,8 @@ from ..data.recordings import file_sha256
 from ..sim import DT, FIELD, Carry, Input, Pilot, World
 from ..sim.replay import Recorder
 from .audio import Audio
+from .music import Track
+from .mute_icon import draw_mute_indicator
 from .overlay import Overlay
 from .render import Renderer
 from .scores import Entry, HighScores
@@ -165,6 +167,9 @@ class App:
             dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
+        on_title = self.run_state is None or self.scene in ("title", "scores")
+        self.audio.play_music(Track.TITLE if on_title else Track.stage(self.run_state.level_index + 1))
+        self.audio.update()
         steps = 0
         if self.scene == "lab":
             if not self.lab_paused:
@@ -433,6 +438,8 @@ class App:
             self.renderer.tick += 1
             self.renderer._background(s, self.renderer.tick)
         getattr(self, f"_draw_{self.scene}", lambda: None)()
+        if self.audio.muted:
+            draw_mute_indicator(s, (8, FIELD[1] - 34))
         self._present()
 
     def _present(self) -> None:
