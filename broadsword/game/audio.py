@@ -20,7 +20,6 @@ import sys
 import time
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
-from typing import Literal
 
 import numpy as np
 import pygame
@@ -213,7 +212,7 @@ class Audio:
     Music: ``play_music(Track.stage(2))`` (the same track again is a no-op, so it may be
     called every frame), ``stop_music()``, ``prepare_music(tracks)``, and ``update()``
     once a frame, which starts a track once its background render is done. The first
-    ``play_music`` also warms the disk cache (``music_cache``; None for none) with every
+    ``play_music`` also warms the disk cache (``music_cache``, default the user cache) with every
     other track, in play order, at low priority. ``music_volume`` (default 0.8) and
     ``sound_volume`` (default 1.0) are 0..1; values outside are clamped.
     """
@@ -232,8 +231,7 @@ class Audio:
     })
 
     def __init__(self, enabled: bool = True, *, clock: Callable[[], float] = time.monotonic,
-                 music_cache: MusicCache | None | Literal["default"] = "default",
-                 music_in_background: bool = True):
+                 music_cache: MusicCache | None = None, music_in_background: bool = True):
         self.available: bool = False
         self.problem: str | None = None  # why there is no sound, when a device was wanted
         self._muted = False
@@ -374,7 +372,7 @@ class Audio:
         if not self.available:
             return None
         if self._music is None:
-            cache = MusicCache() if self._music_cache == "default" else self._music_cache
+            cache = self._music_cache if self._music_cache is not None else MusicCache()
             self._music = MusicPlayer(cache, background=self._music_in_background)
             self._apply_music_volume()
         return self._music

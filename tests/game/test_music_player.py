@@ -46,7 +46,7 @@ def music_channels():
 
 
 def audio_with(fake, **kw) -> Audio:
-    a = Audio(music_cache=None, music_in_background=False)
+    a = Audio(music_in_background=False)  # its player is replaced below: no cache is touched
     a._music = player(fake, **kw)  # white-box: the fake renderer, inline
     a._apply_music_volume()
     return a
@@ -204,6 +204,24 @@ def test_cache_home__precedence(monkeypatch, tmp_path):
     assert cache_home() == tmp_path / "xdg" / "broadsword"
     monkeypatch.setenv("BROADSWORD_CACHE_DIR", str(tmp_path / "mine"))
     assert cache_home() == tmp_path / "mine"
+
+
+@pytest.mark.parametrize("platform,expected", [("darwin", ("Library", "Caches", "broadsword")),
+                                               ("linux", (".cache", "broadsword"))])
+def test_cache_home__platform_defaults(monkeypatch, tmp_path, platform, expected):
+    for var in ("BROADSWORD_CACHE_DIR", "XDG_CACHE_HOME", "LOCALAPPDATA"):
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path))
+    monkeypatch.setattr("sys.platform", platform)
+    assert cache_home() == tmp_path.joinpath(*expected)
+
+
+def test_cache_home__windows(monkeypatch, tmp_path):
+    for var in ("BROADSWORD_CACHE_DIR", "XDG_CACHE_HOME"):
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setattr("sys.platform", "win32")
+    monkeypatch.setenv("LOCALAPPDATA", str(tmp_path / "local"))
+    assert cache_home() == tmp_path / "local" / "broadsword" / "cache"
 
 
 def test_mute_and_volumes():

@@ -33,8 +33,8 @@ def cache_home() -> Path:
 
     Precedence: ``$BROADSWORD_CACHE_DIR`` (as given, ``~`` expanded); else
     ``$XDG_CACHE_HOME/broadsword`` (absolute paths only, as the XDG spec requires); else on
-    Windows ``%LOCALAPPDATA%/broadsword/cache``; else ``~/.cache/broadsword``. A variable
-    set but empty counts as unset.
+    Windows ``%LOCALAPPDATA%/broadsword/cache``, on macOS ``~/Library/Caches/broadsword``;
+    else ``~/.cache/broadsword``. A variable set but empty counts as unset.
     """
     override = os.environ.get("BROADSWORD_CACHE_DIR")
     if override:
@@ -46,6 +46,8 @@ def cache_home() -> Path:
         local = os.environ.get("LOCALAPPDATA")
         base = Path(local) if local else Path.home() / "AppData" / "Local"
         return base / "broadsword" / "cache"
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Caches" / "broadsword"
     return Path.home() / ".cache" / "broadsword"
 
 

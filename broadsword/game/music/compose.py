@@ -25,7 +25,7 @@ from .songs import Song
 
 __all__ = ["Note", "Hit", "compose", "LOW", "HIGH"]
 
-LOW, HIGH = -2, 11  # melody range, scale steps around the tonic (a thirteenth)
+LOW, HIGH = 0, 10  # melody range in scale steps from the tonic: above the pad, under a squeal
 BASS_TOP = 52  # bass roots sit below E3 (MIDI)
 PAD_LOW = 53  # pad voicings within [PAD_LOW, PAD_LOW + 12)
 ARP_LOW = 64
@@ -104,6 +104,8 @@ def _melody(song: Song, rng: np.random.Generator) -> list[Note]:
                     step = prev - int(move)  # turn back at the edge of the range instead of jumping
                 if onset % 8 == 0 or length >= 4:
                     step = _fold(_snap(key, step, degree, int(move)))
+                    if step == prev and move:  # the snap undid the move: go on to the next chord tone
+                        step = _fold(_snap(key, prev + 2 * (1 if move > 0 else -1), degree, int(move)))
             last_of_song = section == len(song.form) - 1 and i == len(rhythm) - 1
             if last_of_song:
                 step = _fold(_snap(key, 0 if abs(step) < abs(step - 7) else 7, degree, -1))
