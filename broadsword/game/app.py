@@ -169,7 +169,6 @@ class App:
             self.handle(event)
         on_title = self.run_state is None or self.scene in ("title", "scores")
         self.audio.play_music(Track.TITLE if on_title else Track.stage(self.run_state.level_index + 1))
-        self.audio.update()
         steps = 0
         if self.scene == "lab":
             if not self.lab_paused:

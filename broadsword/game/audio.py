@@ -210,8 +210,9 @@ class Audio:
     60 Hz fire rate does not stack into noise.
 
     Music: ``play_music(Track.stage(2))`` (the same track again is a no-op, so it may be
-    called every frame), ``stop_music()``, ``prepare_music(tracks)``, and ``update()``
-    once a frame, which starts a track once its background render is done. The first
+    called every frame), ``stop_music()``, ``prepare_music(tracks)``. A track is rendered
+    in the background and fades in as soon as it is ready; ``update()`` (optional, cheap)
+    starts it if that has not happened yet. The first
     ``play_music`` also warms the disk cache (``music_cache``, default the user cache) with every
     other track, in play order, at low priority. ``music_volume`` (default 0.8) and
     ``sound_volume`` (default 1.0) are 0..1; values outside are clamped.
@@ -361,7 +362,7 @@ class Audio:
             player.prepare(tracks)
 
     def update(self) -> None:
-        """Once a frame: start music whose render has finished. Cheap; never raises."""
+        """Start music whose render has finished, if the worker has not already. Optional; cheap; never raises."""
         if self._music is not None:
             try:
                 self._music.update()

@@ -120,7 +120,24 @@ def test_background__play_returns_at_once_and_starts_when_ready():
     assert p.playing is None
     gate.set()
     assert p.wait(10)
-    assert p.playing is Track.TITLE and not p.busy
+    assert p.playing is Track.TITLE and not p.busy  # started by the worker: no update() needed
+
+
+def test_background__quitting_pygame_mid_render_is_safe():
+    """pygame.quit() closes the player (a quit hook), so a render finishing afterwards
+    never touches the shut mixer."""
+    gate = threading.Event()
+    p = player(FakeRender(gate), background=True)
+    pygame.init()
+    pygame.mixer.init(frequency=22050, size=-16, channels=2)
+    p.play(Track.STAGE_5)
+    pygame.quit()
+    gate.set()
+    assert p.wait(10)
+    assert p.playing is None and p._sounds == {}
+    p.play(Track.BOSS)  # a closed player stays silent
+    p.update()
+    assert p.playing is None
 
 
 def test_prepare__renders_ahead_so_play_starts_in_the_same_call():
@@ -188,9 +205,12 @@ def test_cache__unwritable_directory_still_plays(tmp_path):
     blocker.write_text("not a directory")
     cache = MusicCache(blocker / "music")
     assert cache.save(Track.BOSS, SONGS[Track.BOSS], 22050, np.zeros((4, 2), np.int16)) is False
-    p = player(FakeRender(), cache)
+    fake = FakeRender()
+    p = player(fake, cache)
     p.play(Track.BOSS)
     assert p.playing is Track.BOSS
+    p.prepare([Track.TITLE, Track.CLEAR], keep=False)  # warming a cache that cannot be written: skipped
+    assert fake.calls == ["Warlord"]
 
 
 def test_cache_home__precedence(monkeypatch, tmp_path):
