@@ -311,8 +311,10 @@ class Audio:
 
     @music_volume.setter
     def music_volume(self, value: float) -> None:
-        self._music_volume = _volume(value, "music_volume")
-        self._apply_music_volume()
+        volume = _volume(value, "music_volume")
+        if volume != self._music_volume:  # cheap to set every frame
+            self._music_volume = volume
+            self._apply_music_volume()
 
     @property
     def sound_volume(self) -> float:
@@ -320,7 +322,10 @@ class Audio:
 
     @sound_volume.setter
     def sound_volume(self, value: float) -> None:
-        self._sound_volume = _volume(value, "sound_volume")
+        volume = _volume(value, "sound_volume")
+        if volume == self._sound_volume:  # cheap to set every frame
+            return
+        self._sound_volume = volume
         for sound in self._sounds.values():
             try:
                 sound.set_volume(self._sound_volume)

@@ -1,10 +1,11 @@
-"""The running game plays the title loop on the title and each stage's loop in play, and
-shows the mute indicator while muted (a fake renderer keeps it fast)."""
+"""The running game plays the title loop on the title and each stage's loop in play, at the
+options' music volume, and shows the mute indicator while muted (a fake renderer keeps it fast)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pygame
+import pytest
 
 from broadsword.game.app import App
 from broadsword.game.music import MusicPlayer, Track
@@ -14,7 +15,7 @@ from music_fakes import FakeRender
 
 def test_app__title_then_stage_music_and_mute_icon(tmp_path):
     pygame.mixer.quit()
-    app = App(seed=1, audio=True, scores=HighScores(tmp_path / "s.json"))
+    app = App(seed=1, audio=True, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
     assert app.audio.available
     fake = FakeRender()
     app.audio._music = MusicPlayer(None, background=False, renderer=fake)  # white-box: fast and inline
@@ -25,6 +26,10 @@ def test_app__title_then_stage_music_and_mute_icon(tmp_path):
     assert app.audio._music.playing is Track.STAGE_2
     app.frame(1 / 60)
     assert fake.calls == ["Broadsword", "Cloud Line"]  # asked every frame, rendered once
+    assert app.audio.music_volume == app.options.volume("music")
+    app.set_options(music=2)
+    app.frame(0.0)
+    assert app.audio.music_volume == pytest.approx(0.2)
 
     corner = pygame.Rect(8, app.screen.get_height() - 34, 26, 26)
     app.audio.muted = True
