@@ -3,7 +3,6 @@ would go), the inside, or nothing. Armature coordinates; radii in the same units
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import StrEnum
@@ -34,13 +33,15 @@ class Hover:
     point: Point | None = None
 
 
-def _segment_distance(p: Point, a: Point, b: Point) -> tuple[float, float]:
-    """Distance from ``p`` to the segment ``a``-``b`` and the parameter (0..1) of the nearest point."""
+def _segment_distance2(p: Point, a: Point, b: Point) -> tuple[float, float]:
+    """Squared distance from ``p`` to the segment ``a``-``b`` and the parameter (0..1) of the
+    nearest point (squares, so no square root or other rounded function is needed)."""
     ax, ay = a
     dx, dy = b[0] - ax, b[1] - ay
     ll = dx * dx + dy * dy
     t = 0.0 if ll == 0 else max(0.0, min(1.0, ((p[0] - ax) * dx + (p[1] - ay) * dy) / ll))
-    return math.hypot(p[0] - ax - t * dx, p[1] - ay - t * dy), t
+    ex, ey = p[0] - ax - t * dx, p[1] - ay - t * dy
+    return ex * ex + ey * ey, t
 
 
 def pick(pts, at: Point, vertex_radius: float, edge_radius: float,
@@ -48,15 +49,15 @@ def pick(pts, at: Point, vertex_radius: float, edge_radius: float,
     """What of the polygon ``pts`` (n, 2) is at ``at``: the nearest vertex within
     ``vertex_radius``, else the nearest edge within ``edge_radius`` (``point``: the nearest
     point on it, through ``place``, e.g. snapping), else the inside, else nothing."""
-    d, i = min((math.hypot(at[0] - x, at[1] - y), i) for i, (x, y) in enumerate(pts))
-    if d <= vertex_radius:
+    d2, i = min(((at[0] - x) ** 2 + (at[1] - y) ** 2, i) for i, (x, y) in enumerate(pts))
+    if d2 <= vertex_radius * vertex_radius:
         return Hover(HoverKind.VERTEX, i)
     n = len(pts)
     best = None
     for i in range(n):
-        d, t = _segment_distance(at, pts[i], pts[(i + 1) % n])
-        if d <= edge_radius and (best is None or d < best[0]):
-            best = (d, i, t)
+        d2, t = _segment_distance2(at, pts[i], pts[(i + 1) % n])
+        if d2 <= edge_radius * edge_radius and (best is None or d2 < best[0]):
+            best = (d2, i, t)
     if best is not None:
         _, i, t = best
         (ax, ay), (bx, by) = pts[i], pts[(i + 1) % n]
