@@ -21,6 +21,8 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
             if m["tiers"][-1] in ("aabb", "circle"):  # bounds alone never miss
                 assert m["false_negatives"] == 0, name
     assert doc["game_frame"]["frame_median_ms"] > 0
+    drawing = doc["bullet_drawing"]
+    assert drawing["bullets"] == 2000 and drawing["batched_draw_us_per_bullet"] > 0
     pat = doc["patterns"]
     assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
     assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
@@ -28,4 +30,4 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity"):
         assert key in doc, key
     text = capsys.readouterr().out
-    assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
+    assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "Drawing 2,000 bullets" in text and "BulletML patterns" in text

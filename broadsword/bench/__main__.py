@@ -8,8 +8,9 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    on the same seeded frames, interleaved frame by frame so a noisy neighbour slows all
    alike: median, min and max ms per frame, ratio to the default, false positives and
    negatives against the exact polygon answer and against pixel truth;
-2. a whole game frame at the bullet-hell level's peak, and the game's levels against
-   their sprites' own masks (how often an armature hit disagrees with what is seen);
+2. a whole game frame at the bullet-hell level's peak, drawing bullets batched against one
+   by one, and the game's levels against their sprites' own masks (how often an armature
+   hit disagrees with what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
    whole game frame's;
 4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
@@ -302,6 +303,7 @@ def main(argv: list[str] | None = None) -> int:
     print(markdown(results), flush=True)
 
     game = None
+    drawing = None
     visual = []
     if not args.no_game:
         from ..data import list_levels
@@ -313,6 +315,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
         print(game_markdown(game, visual), flush=True)
+        from .drawing import markdown as drawing_markdown, run_bullet_drawing
+
+        print("  drawing bullets, batched and one by one ...", file=sys.stderr, flush=True)
+        drawing = run_bullet_drawing(2000 if args.quick else 10_000, frames=5 if args.quick else 30, seed=args.seed)
+        print(drawing_markdown(drawing), flush=True)
 
     from .patterns import markdown as patterns_markdown, run_pattern_frames
 
@@ -336,7 +343,7 @@ def main(argv: list[str] | None = None) -> int:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
                "python": platform.python_version(), "numpy": np.__version__, "allocator": heap,
                "host_canary_before": canary, "host_canary_after": host_canary(), "scales": results,
-               "game_frame": game, "levels_vs_sprites": visual, "patterns": patterns, **sections}
+               "game_frame": game, "bullet_drawing": drawing, "levels_vs_sprites": visual, "patterns": patterns, **sections}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")
