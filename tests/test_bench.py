@@ -20,7 +20,13 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
                 assert m["false_positives"] == 0 and m["false_negatives"] == 0, name
             if m["tiers"][-1] in ("aabb", "circle"):  # bounds alone never miss
                 assert m["false_negatives"] == 0, name
-    assert doc["game_frame"]["frame_median_ms"] > 0
+    frames = doc["game_frame"]  # DESIGN.md's contract: one entry per scene measured
+    assert [e["level"] for e in frames] == ["3-broadsword", "stress-5000"]
+    for e in frames:
+        assert set(e) >= {"bullets", "median_ms", "step_ms", "collision_ms", "render_ms", "present_ms"}
+        assert e["median_ms"] > 0 and e["collision_ms"] > 0 and e["render_ms"] > 0
+        assert min(e["step_ms"], e["present_ms"]) >= 0
+    assert frames[1]["bullets"] >= 4750  # the stress scene really holds its count
     drawing = doc["bullet_drawing"]
     assert drawing["bullets"] == 2000 and drawing["batched_draw_us_per_bullet"] > 0
     pat = doc["patterns"]

@@ -198,13 +198,8 @@ def markdown(results: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def game_markdown(game: dict, visual: list[dict]) -> str:
-    lines = [f"\n### Whole game frame: {game['level']} with the autopilot, {game['bullets_median']} bullets on screen "
-             f"({game['frames']} frames after {game['warmup']})\n",
-             "| frame median ms | frame max ms | collision median ms | render median ms |", "|---:|---:|---:|---:|",
-             f"| {game['frame_median_ms']:.2f} | {game['frame_max_ms']:.2f} | {game['collision_median_ms']:.2f} | "
-             f"{game['render_median_ms']:.2f} |",
-             "\n### The levels against their sprites' own masks (what the player sees)\n",
+def game_markdown(visual: list[dict]) -> str:
+    lines = ["\n### The levels against their sprites' own masks (what the player sees)\n",
              "Per level and layer pair, over the frames played by the autopilot: hits both agree on, armature hits the "
              "sprites do not show, and sprite overlaps the armatures do not count (by design for the player's small "
              "hit shape).\n", "| level | frames | pair | both | armature only | sprite only |", "|---|---:|---|---:|---:|---:|"]
@@ -307,14 +302,15 @@ def main(argv: list[str] | None = None) -> int:
     visual = []
     if not args.no_game:
         from ..data import list_levels
-        from .game_frame import run_game_frames
+        from .game_frame import markdown as frame_markdown, run_all
 
-        print("  whole game frame at the bullet-hell peak ...", file=sys.stderr, flush=True)
-        game = run_game_frames(warmup=120 if args.quick else 660, frames=10 if args.quick else 60, seed=args.seed)
+        print("  whole game frame: the bullet-hell stage's peak and the stress scenes ...", file=sys.stderr, flush=True)
+        game = run_all(args.quick, args.seed)
+        print(frame_markdown(game), flush=True)
         for level in list_levels():
             print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
-        print(game_markdown(game, visual), flush=True)
+        print(game_markdown(visual), flush=True)
         from .drawing import markdown as drawing_markdown, run_bullet_drawing
 
         print("  drawing bullets, batched and one by one ...", file=sys.stderr, flush=True)
@@ -325,7 +321,7 @@ def main(argv: list[str] | None = None) -> int:
 
     print("  BulletML patterns ...", file=sys.stderr, flush=True)
     patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
-    print(patterns_markdown(patterns, game), flush=True)
+    print(patterns_markdown(patterns, game[0] if game else None), flush=True)
 
     sections = {}
     for key, fn in (("scaling", analysis.scaling), ("bin_size", analysis.bin_size_curve),
