@@ -269,6 +269,8 @@ class App:
         if self.scene == "name":
             self._name_key(event)
             return
+        if self.overlay.visible and self.overlay.handle_key(k):  # F5-F7: the overlay's own keys
+            return
         if self.scene == "lab":
             self._lab_key(k)
             return
