@@ -15,6 +15,7 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
         default = methods["default (bins+aabb+armature, lut)"]
         assert default["pose_false_positives"] == 0 and default["pose_false_negatives"] == 0
         assert default["median_ms"] > 0
+        assert scale["default_alone_swept"]["median_ms"] > 0  # the game's sweeps, beside the default alone
         exact = methods["default, exact rotation"]
         assert exact["false_positives"] == 0 and exact["false_negatives"] == 0
         for name, m in methods.items():
@@ -47,4 +48,4 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
         assert key in doc, key
     text = capsys.readouterr().out
     assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
-    assert "Drawing 2,000 bullets" in text and "--quick: early in the level, NOT its bullet-hell peak" in text
+    assert "Drawing 2,000 bullets" in text and "with the game's sweeps" in text and "--quick: early in the level, NOT its bullet-hell peak" in text
