@@ -35,13 +35,13 @@ pose; sweeping is meant for small, fast things (bullets) against slower ones (sh
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 
 from .armature import Armature
+from . import detmath
 from ._indexing import pick, selector
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
@@ -52,18 +52,20 @@ ROTATION_MODES = ("exact", "lut")
 
 #: Vertex count of the shape a rotating swept object is replaced by.
 _OCTAGON = 8
+#: cos(pi / 8): the octagon circumscribing a circle of radius r has vertices at r / this.
+_OCTAGON_COS = detmath.cos_deg(180.0 / _OCTAGON)
 
 
 def _size_class(count: np.ndarray) -> np.ndarray:
     """Smallest power of two >= count, and at least 4, elementwise."""
     count = np.maximum(np.asarray(count), 4)
-    return (1 << np.ceil(np.log2(count)).astype(np.int64)).astype(np.int64)
+    return np.left_shift(1, detmath.ceil_log2(count), dtype=np.int64)
 
 
 def rotation_table() -> tuple[np.ndarray, np.ndarray]:
-    """The paper's Figure 7 table: ``(cos, sin)`` of each integer degree 0..359, (360,) float64."""
-    rad = np.radians(np.arange(360, dtype=np.float64))
-    return np.cos(rad), np.sin(rad)
+    """The paper's Figure 7 table: ``(cos, sin)`` of each integer degree 0..359, (360,) float64,
+    the same bits on every machine (:func:`broadsword.collision.detmath.rotation_table`)."""
+    return detmath.rotation_table(360)
 
 
 def _padded(polys: Sequence[np.ndarray], rows: int) -> tuple[np.ndarray, np.ndarray]:
@@ -132,8 +134,8 @@ class ArmatureSet:
             idx = deg.astype(np.intp)
             return np.take(self._cos, idx), np.take(self._sin, idx)
         if mode == "exact":
-            rad = np.radians(angles)
-            return np.cos(rad), np.sin(rad)
+            s, c = detmath.sincos_deg(angles)
+            return c, s
         raise ValueError(f"rotation mode must be one of {ROTATION_MODES}, got {mode!r}")
 
 
@@ -286,7 +288,7 @@ def pose(
         # Bounding circle of a sweep: around the path's midpoint, radius grown by half the path.
         half = 0.5 * (positions - prev_positions)
         centre = np.where(swept[:, None], positions - half, positions)
-        radius = np.where(swept, radius / math.cos(math.pi / _OCTAGON) + np.hypot(half[:, 0], half[:, 1]), radius)
+        radius = np.where(swept, radius / _OCTAGON_COS + detmath.norm(half[:, 0], half[:, 1]), radius)
     radius = radius * (1.0 + BOUND_SLACK) + BOUND_SLACK * (np.abs(centre[:, 0]) + np.abs(centre[:, 1]) + 1.0)
 
     slot = np.zeros(n, dtype=np.int64)
@@ -358,12 +360,13 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
-        t = np.pi / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)
+        t = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)  # degrees
         cx, cy = px[obj][turning], py[obj][turning]
         slack = BOUND_SLACK * (np.abs(cx) + np.abs(cy) + 1.0)
-        r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / math.cos(math.pi / _OCTAGON)
-        ox = cx + np.cos(t)[:, None] * r
-        oy = cy + np.sin(t)[:, None] * r
+        r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
+        ts, tc = detmath.sincos_deg(t)
+        ox = cx + tc[:, None] * r
+        oy = cy + ts[:, None] * r
         x[:, turning] = _pad_rows(ox, h)
         y[:, turning] = _pad_rows(oy, h)
     return x, y
