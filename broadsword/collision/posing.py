@@ -15,8 +15,8 @@ Rotation
 ``angles`` are in degrees; a pose maps local ``(x, y)`` to
 ``(px + x cos a - y sin a, py + x sin a + y cos a)`` (the paper's Figure 6). Two modes:
 
-* ``"exact"``: ``cos``/``sin`` of the angle.
-* ``"lut"``: the paper's Figure 7 table of 360 integer-degree values; the angle is
+* ``"exact"``: ``cos``/``sin`` of the angle (:mod:`.detmath`: the same bits on every machine).
+* ``"lut"``: the paper's Figure 7 table of 360 integer-degree values (built by :mod:`.detmath`); the angle is
   rounded to the nearest degree (halves round up). The largest vertex displacement this
   causes at distance ``r`` from the centre is ``2 r sin(0.25 deg) ~= 0.00873 r``
   (:func:`broadsword.collision.armature.lut_max_displacement`).
@@ -192,25 +192,40 @@ class Posed:
         return [self.polygon(i) for i in range(self.n)]
 
 
-def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray):
+def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray, ox: np.ndarray | None = None,
+           oy: np.ndarray | None = None, ws: Workspace | None = None):
     """Minkowski sum of convex CCW polygons (H, m) with the segments from 0 to (-dx, -dy).
 
-    Returns (2H, m) arrays: vertex ``k`` of each polygon is emitted twice, shifted back by
-    ``d`` when its incoming (first copy) or outgoing (second copy) edge faces backwards
-    along the path. Edges facing backwards are those with ``e x d > 0``; the outward normal
-    of a CCW edge ``e`` is ``(ey, -ex)``, and ``(ey, -ex) . (-d) = ex dy - ey dx``.
+    Returns (2H, m) arrays (``ox``, ``oy`` when given, filled in place): vertex ``k`` of each
+    polygon is emitted twice, shifted back by ``d`` when its incoming (first copy) or
+    outgoing (second copy) edge faces backwards along the path. Edges facing backwards are
+    those with ``e x d > 0``; the outward normal of a CCW edge ``e`` is ``(ey, -ex)``, and
+    ``(ey, -ex) . (-d) = ex dy - ey dx``. Scratch arrays come from ``ws`` (no fresh
+    allocation per frame: at 10,000 bullets fresh temporaries cost more in page faults than
+    the arithmetic); the arithmetic, and so every bit of the result, is the same either way.
     """
-    ex = np.roll(vx, -1, axis=0) - vx
-    ey = np.roll(vy, -1, axis=0) - vy
-    back_out = (ex * dy - ey * dx) > 0  # edge k -> k+1
-    back_in = np.roll(back_out, 1, axis=0)  # edge k-1 -> k
+    ws = ws or Workspace()
     h, m = vx.shape
-    ox = np.empty((2 * h, m))
-    oy = np.empty((2 * h, m))
-    ox[0::2] = vx - dx * back_in
-    oy[0::2] = vy - dy * back_in
-    ox[1::2] = vx - dx * back_out
-    oy[1::2] = vy - dy * back_out
+    if ox is None:
+        ox, oy = np.empty((2 * h, m)), np.empty((2 * h, m))
+    ex, ey = ws.get("sweep_ex", (h, m)), ws.get("sweep_ey", (h, m))
+    np.subtract(vx[1:], vx[:-1], out=ex[:-1])  # edge k -> k+1 (the last wraps to the first)
+    np.subtract(vx[:1], vx[-1:], out=ex[-1:])
+    np.subtract(vy[1:], vy[:-1], out=ey[:-1])
+    np.subtract(vy[:1], vy[-1:], out=ey[-1:])
+    t, u = ws.get("sweep_t", (h, m)), ws.get("sweep_u", (h, m))
+    np.multiply(ex, dy, out=t)
+    np.multiply(ey, dx, out=u)
+    np.subtract(t, u, out=t)
+    back_out = np.greater(t, 0, out=ws.get("sweep_out", (h, m), bool))  # edge k -> k+1
+    back_in = ws.get("sweep_in", (h, m), bool)  # edge k-1 -> k
+    back_in[1:] = back_out[:-1]
+    back_in[:1] = back_out[-1:]
+    for rows, back in ((slice(0, None, 2), back_in), (slice(1, None, 2), back_out)):
+        np.multiply(dx, back, out=t)
+        np.subtract(vx, t, out=ox[rows])
+        np.multiply(dy, back, out=t)
+        np.subtract(vy, t, out=oy[rows])
     return ox, oy
 
 
@@ -311,8 +326,12 @@ def pose(
             cols = np.flatnonzero(~plain)
             obj = idx[cols]
             # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
-            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2)
-            x[:, cols], y[:, cols] = _sweep(hx, hy, px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1])
+            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2, ws)
+            dx, dy = px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1]
+            if len(cols) == len(idx):  # every object of the class is swept (a bullet pool): in place
+                _sweep(hx, hy, dx, dy, x, y, ws)
+            else:
+                x[:, cols], y[:, cols] = _sweep(hx, hy, dx, dy, ws=ws)
         xs[k], ys[k], members[k] = x, y, idx
     return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
 
@@ -348,15 +367,30 @@ def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=N
     return x, y
 
 
-def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
+def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Workspace | None = None):
     """Current-pose convex shape of each swept object, as (rows, m) arrays: its hull
-    (padded with its last vertex), or the circumscribed octagon if it turned."""
+    (padded with its last vertex), or the circumscribed octagon if it turned. With one
+    armature for all (a bullet pool) the hull is broadcast, not gathered; the arrays come
+    from ``ws`` when given (same arithmetic, same bits)."""
     arm = armature[obj]
-    hx = _pad_rows(shapes._hx[:rows, arm], rows)
-    hy = _pad_rows(shapes._hy[:rows, arm], rows)
+    one = arm.min() == arm.max()
+    cols = arm[:1] if one else arm  # one armature: a single (rows, 1) column, broadcast
+    hx = _pad_rows(shapes._hx[:rows, cols], rows)
+    hy = _pad_rows(shapes._hy[:rows, cols], rows)
     c, s = cos[obj], sin[obj]
-    x = px[obj] + hx * c - hy * s
-    y = py[obj] + hx * s + hy * c
+    m = len(obj)
+    if ws is None:
+        x, y, t = np.empty((len(hx), m)), np.empty((len(hx), m)), np.empty((len(hx), m))
+    else:
+        x, y, t = (ws.get(f"swept_{name}", (len(hx), m)) for name in ("x", "y", "t"))
+    np.multiply(hx, c, out=t)  # x = px + hx c - hy s
+    np.add(px[obj], t, out=x)
+    np.multiply(hy, s, out=t)
+    x -= t
+    np.multiply(hx, s, out=t)  # y = py + hx s + hy c
+    np.add(py[obj], t, out=y)
+    np.multiply(hy, c, out=t)
+    y += t
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)

@@ -185,6 +185,8 @@ class App:
         elif t in SHOW_EVENTS:
             self.hidden = False
             self.focused |= t == pygame.WINDOWFOCUSGAINED
+        if t == pygame.KEYDOWN and self.overlay.visible and self.overlay.handle_key(event.key):
+            return  # F5-F7: the overlay's own keys (swept outlines, panel place, lens)
         if self.stack.top.handle(event):
             return
         actions = self.controls.actions(event)
