@@ -29,6 +29,7 @@ from ..sim import FIELD, World
 from ..sim.replay import Playback
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
+from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
 from .render import Renderer
@@ -39,6 +40,7 @@ from .scenes.play import ReplayInput
 from .scenes.play import MAX_CATCH_UP  # noqa: F401  (the loop's limit, named where the app is)
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
+from .soundtrack import follow
 from .sprites import SpriteBank
 from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
 from .ui import Painter
@@ -171,6 +173,7 @@ class App:
         for event in pygame.event.get():
             self.handle(event)
         steps = self.stack.top.update(dt) if self.running else 0
+        follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
         return steps
 
@@ -211,6 +214,8 @@ class App:
     def render(self) -> None:
         self.painter.drawn.clear()
         self.stack.draw(self.screen)
+        if self.audio.muted:
+            draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
         self.window.present(self.screen)
 
     # ------------------------------------------------------------------ runs and stages
