@@ -138,8 +138,14 @@ class PatternView:
         if overlay is not None and self.overlay_on and self.record is not None:
             overlay.draw(surf, self.record, 60.0, self.paused)
         lines = self.lines()
-        for k, text in enumerate(lines):  # bottom left: the overlay's panel is top right
-            surf.blit(font.render(text, True, (220, 230, 255)), (8, surf.get_height() - 8 - 16 * (len(lines) - k)))
+        # bottom left (the overlay's panel is top right), above the overlay's legend when it is on
+        bottom = surf.get_height() - 8 - (LEGEND_ROOM if overlay is not None and self.overlay_on else 0)
+        for k, text in enumerate(lines):
+            surf.blit(font.render(text, True, (220, 230, 255)), (8, bottom - 16 * (len(lines) - k)))
+
+
+#: Px kept clear at the bottom for the overlay's legend (8 rows of 14 px, 40 px above the edge).
+LEGEND_ROOM = 8 * 14 + 6 + 40
 
 
 def view(path: str, rank: float = 0.5, seed: int = 0, params: tuple[float, ...] = (), frames: int | None = None,
