@@ -32,14 +32,10 @@ import pytest
 
 from broadsword.game import scores as scores_mod
 from broadsword.game.scores import Entry, HighScores, sanitise_name
+from score_rows import DAY, entry
 
-DAY = "2024-05-17"
 CORRUPT_RE = re.compile(r"^highscores\.json\.corrupt-\d{8}T\d{6}Z(-\d+)?$")
 LOCK = "highscores.json.lock"  # the sidecar save() (and a corrupt-file load) locks
-
-
-def entry(name="ACE", score=100, level="1-picket", date=DAY) -> Entry:
-    return Entry(name, score, level, date)
 
 
 def write_doc(path: Path, scores: list, version=1) -> None:

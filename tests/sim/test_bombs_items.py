@@ -13,7 +13,9 @@ from broadsword.sim.player import POWER_LOSS, POWER_MAX, POWER_MIN, POWER_STEP
 from broadsword.sim.weapons import volley
 from sim_bullets import add_bullets
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 PICKET = load_level(resolve_level("1-picket"))
 
 

@@ -19,11 +19,6 @@ from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim.scoring import CLEAR_BONUS, GRAZE_SCORE, NO_BOMB_BONUS, NO_MISS_BONUS
 
 
-@pytest.fixture(scope="module")
-def armatures():
-    return load_armatures(data_dir("assets") / "sprites")
-
-
 LATE = WaveSpec(at=3000.0, enemy="scout", count=1, every=0.0, hp=1, score=0,
                 path=PathSpec(), fire=FireSpec(pattern="aimed", bullet="needle"), mirror=False)
 
