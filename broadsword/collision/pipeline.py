@@ -36,12 +36,12 @@ from typing import Sequence
 
 import numpy as np
 
-from . import bounds
+from . import arguments, bounds
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, LayerTable
 from .narrow import paper_collide_padded, polygons_collide_padded
 from .pixels import MaskCache
-from .posing import ROTATION_MODES, ArmatureSet, Posed, pose
+from .posing import ROTATION_MODES, ArmatureSet, Posed, pose_checked
 from .workspace import Workspace
 
 __all__ = ["Pipeline", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS", "LAST_TIERS", "VERTEX_TIERS"]
@@ -193,18 +193,23 @@ class Pipeline:
             Last frame's poses, for the objects in ``swept``.
         swept : (n,) bool, optional
             Objects to sweep from their previous pose (fast movers: the "quick gun" fix).
+
+        Raises
+        ------
+        ValueError, ArgumentTypeError
+            Naming the argument: a wrong shape or length (nothing is broadcast or reshaped),
+            a non-finite or non-real value, an id that is not an integer or is out of range
+            (:mod:`broadsword.collision.arguments` has the rules).
         """
-        layer = np.asarray(layer, dtype=np.int64).reshape(-1)
-        if len(layer) and (layer.min() < 0 or layer.max() >= len(self.layers.names)):
-            raise ValueError(f"layer ids must lie in 0..{len(self.layers.names) - 1}")
-        n = len(layer)
+        f = arguments.frame(armature, layer, positions, angles, prev_positions, prev_angles, swept,
+                            armatures=len(self.armatures), layers=len(self.layers.names))
+        layer, n = f.layer, len(f.armature)
         stats = [TierStats("layers", n * (n - 1) // 2, self.layers.possible_pairs(layer), 0.0)]
         tier_pairs = {}
         clock = time.perf_counter
 
         t0 = clock()
-        posed = pose(self.armatures, armature, positions, angles, self.rotation, prev_positions, prev_angles,
-                     swept, vertices=self.needs_vertices, workspace=self.workspace)
+        posed = pose_checked(self.armatures, f, self.rotation, vertices=self.needs_vertices, workspace=self.workspace)
         if self.needs_vertices:
             # Posing every object at once and boxing the polygons tightly beats posing only
             # the survivors of cheap tiers: measured, the tighter boxes save the broad phase
@@ -232,8 +237,7 @@ class Pipeline:
             elif tier == "paper":
                 keep = collide_pairs(posed, pairs, narrow=paper_collide_padded)
             elif tier == "pixel":
-                keep = self.masks.collide(np.asarray(armature), np.asarray(positions, dtype=np.float64).reshape(-1, 2),
-                                          np.asarray(angles, dtype=np.float64).reshape(-1), pairs)
+                keep = self.masks.collide(f.armature, f.positions, f.angles, pairs)
             else:  # armature
                 keep = collide_pairs(posed, pairs, self.workspace)
             pairs = pairs[keep]

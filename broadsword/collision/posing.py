@@ -41,12 +41,13 @@ from typing import Sequence
 
 import numpy as np
 
+from . import arguments
 from .armature import Armature
 from ._indexing import pick, selector
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
-__all__ = ["ArmatureSet", "Posed", "pose", "rotation_table", "ROTATION_MODES"]
+__all__ = ["ArmatureSet", "Posed", "pose", "pose_checked", "rotation_table", "ROTATION_MODES"]
 
 ROTATION_MODES = ("exact", "lut")
 
@@ -190,25 +191,38 @@ class Posed:
         return [self.polygon(i) for i in range(self.n)]
 
 
-def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray):
-    """Minkowski sum of convex CCW polygons (H, m) with the segments from 0 to (-dx, -dy).
+def _sweep(ux: np.ndarray, uy: np.ndarray, px: np.ndarray, py: np.ndarray, qx: np.ndarray, qy: np.ndarray):
+    """Minkowski sum of convex CCW polygons posed at ``p`` with the path back to ``q``.
 
-    Returns (2H, m) arrays: vertex ``k`` of each polygon is emitted twice, shifted back by
-    ``d`` when its incoming (first copy) or outgoing (second copy) edge faces backwards
-    along the path. Edges facing backwards are those with ``e x d > 0``; the outward normal
-    of a CCW edge ``e`` is ``(ey, -ex)``, and ``(ey, -ex) . (-d) = ex dy - ey dx``.
+    ``ux, uy`` (H, m) are the polygons' vertices as offsets from the position; ``p`` (this
+    frame's position) and ``q`` (last frame's) are (m,). The sum is the hull of the polygon
+    at ``p`` and at ``q``. Returns (2H, m) arrays: vertex ``k`` is emitted twice, at ``q``
+    instead of ``p`` when its incoming (first copy) or outgoing (second copy) edge faces
+    backwards along the path. Edges facing backwards are those with ``e x d > 0`` for
+    ``d = p - q``; the outward normal of a CCW edge ``e`` is ``(ey, -ex)``, and
+    ``(ey, -ex) . (-d) = ex dy - ey dx``.
+
+    Overflow-safe for every finite pose: the sign test is scale-free, so it uses halved edges
+    and the direction ``p/2 - q/2`` scaled by a power of two below 1 (both exact scalings,
+    neither can overflow), and each vertex is ``p + u`` or ``q + u`` -- a pose -- where
+    ``p - q`` itself may overflow (a bullet from -1.7e308 to +1.7e308).
     """
-    ex = np.roll(vx, -1, axis=0) - vx
-    ey = np.roll(vy, -1, axis=0) - vy
+    ex = 0.5 * np.roll(ux, -1, axis=0) - 0.5 * ux
+    ey = 0.5 * np.roll(uy, -1, axis=0) - 0.5 * uy
+    dx, dy = 0.5 * px - 0.5 * qx, 0.5 * py - 0.5 * qy
+    _, exponent = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
+    dx, dy = np.ldexp(dx, -exponent), np.ldexp(dy, -exponent)  # |d| < 1, same direction
     back_out = (ex * dy - ey * dx) > 0  # edge k -> k+1
     back_in = np.roll(back_out, 1, axis=0)  # edge k-1 -> k
-    h, m = vx.shape
+    vx, vy = px + ux, py + uy  # each vertex at this frame's position
+    bx, by = qx + ux, qy + uy  # ... and at last frame's
+    h, m = ux.shape
     ox = np.empty((2 * h, m))
     oy = np.empty((2 * h, m))
-    ox[0::2] = vx - dx * back_in
-    oy[0::2] = vy - dy * back_in
-    ox[1::2] = vx - dx * back_out
-    oy[1::2] = vy - dy * back_out
+    ox[0::2] = np.where(back_in, bx, vx)
+    oy[0::2] = np.where(back_in, by, vy)
+    ox[1::2] = np.where(back_out, bx, vx)
+    oy[1::2] = np.where(back_out, by, vy)
     return ox, oy
 
 
@@ -255,39 +269,44 @@ def pose(
     -------
     Posed
     """
-    armature = np.asarray(armature, dtype=np.int64)
-    positions = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
-    angles = np.asarray(angles, dtype=np.float64).reshape(-1)
+    if rotation not in ROTATION_MODES:
+        raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
+    f = arguments.frame(armature, None, positions, angles, prev_positions, prev_angles, swept,
+                        armatures=len(shapes), layers=None)
+    return pose_checked(shapes, f, rotation, vertices, workspace)
+
+
+def pose_checked(shapes: ArmatureSet, f: arguments.Frame, rotation: str, vertices: bool = True,
+                 workspace: Workspace | None = None) -> Posed:
+    """:func:`pose` of a frame already checked by :func:`arguments.frame` (what
+    :meth:`Pipeline.step` calls, having checked its arguments once)."""
+    armature, positions, angles = f.armature, f.positions, f.angles
+    prev_positions, prev_angles, swept = f.prev_positions, f.prev_angles, f.swept
     n = len(armature)
-    if positions.shape[0] != n or angles.shape[0] != n:
-        raise ValueError(f"pose: {n} armature ids but {positions.shape[0]} positions and {angles.shape[0]} angles")
-    if n and (armature.min() < 0 or armature.max() >= len(shapes)):
-        raise ValueError(f"pose: armature ids must lie in 0..{len(shapes) - 1}")
-    if not np.isfinite(positions).all() or not np.isfinite(angles).all():
-        raise ValueError("pose: positions and angles must be finite")
     ws = workspace or Workspace()
     cos, sin = shapes.rotations(angles, rotation)
     px, py = positions[:, 0], positions[:, 1]
     radius = np.take(shapes.radius, armature)
     centre = positions
     klass = np.take(shapes.size_class, armature)
-    if swept is None or not np.any(swept):
+    if swept is None:
         swept = np.zeros(n, dtype=bool)
         turning = swept
     else:
-        swept = np.asarray(swept, dtype=bool)
-        if prev_positions is None or prev_angles is None:
-            raise ValueError("pose: swept objects need prev_positions and prev_angles")
-        prev_positions = np.asarray(prev_positions, dtype=np.float64).reshape(-1, 2)
-        pcos, psin = shapes.rotations(np.asarray(prev_angles, dtype=np.float64), rotation)
+        assert prev_positions is not None and prev_angles is not None  # arguments.frame saw to it
+        pcos, psin = shapes.rotations(prev_angles, rotation)
         turning = swept & ((pcos != cos) | (psin != sin))
         klass[swept] = shapes.swept_class[armature[swept]]
         klass[turning] = shapes.rotating_swept_class
         # Bounding circle of a sweep: around the path's midpoint, radius grown by half the path.
-        half = 0.5 * (positions - prev_positions)
+        # Halves first: p - q overflows for p, q near +-1.7e308, p/2 - q/2 never does.
+        half = 0.5 * positions - 0.5 * prev_positions
         centre = np.where(swept[:, None], positions - half, positions)
         radius = np.where(swept, radius / math.cos(math.pi / _OCTAGON) + np.hypot(half[:, 0], half[:, 1]), radius)
-    radius = radius * (1.0 + BOUND_SLACK) + BOUND_SLACK * (np.abs(centre[:, 0]) + np.abs(centre[:, 1]) + 1.0)
+    # Term by term: |cx| + |cy| overflows at 1.7e308 (an infinite radius is still a bound; a nan would not be).
+    with np.errstate(over="ignore"):  # a radius past the doubles is inf: still a bound
+        radius = radius * (1.0 + BOUND_SLACK) + (BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1])
+                                                 + BOUND_SLACK)
 
     slot = np.zeros(n, dtype=np.int64)
     xs, ys, members = {}, {}, {}
@@ -310,7 +329,7 @@ def pose(
             obj = idx[cols]
             # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
             hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2)
-            x[:, cols], y[:, cols] = _sweep(hx, hy, px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1])
+            x[:, cols], y[:, cols] = _sweep(hx, hy, px[obj], py[obj], prev_positions[obj, 0], prev_positions[obj, 1])
         xs[k], ys[k], members[k] = x, y, idx
     return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
 
@@ -347,23 +366,21 @@ def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=N
 
 
 def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
-    """Current-pose convex shape of each swept object, as (rows, m) arrays: its hull
-    (padded with its last vertex), or the circumscribed octagon if it turned."""
+    """Current-pose convex shape of each swept object as offsets from its position, (rows, m)
+    arrays: its hull (padded with its last vertex), or the circumscribed octagon if it turned."""
     arm = armature[obj]
     hx = _pad_rows(shapes._hx[:rows, arm], rows)
     hy = _pad_rows(shapes._hy[:rows, arm], rows)
     c, s = cos[obj], sin[obj]
-    x = px[obj] + hx * c - hy * s
-    y = py[obj] + hx * s + hy * c
+    x = hx * c - hy * s
+    y = hx * s + hy * c
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
         t = np.pi / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)
         cx, cy = px[obj][turning], py[obj][turning]
-        slack = BOUND_SLACK * (np.abs(cx) + np.abs(cy) + 1.0)
+        slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
         r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / math.cos(math.pi / _OCTAGON)
-        ox = cx + np.cos(t)[:, None] * r
-        oy = cy + np.sin(t)[:, None] * r
-        x[:, turning] = _pad_rows(ox, h)
-        y[:, turning] = _pad_rows(oy, h)
+        x[:, turning] = _pad_rows(np.cos(t)[:, None] * r, h)
+        y[:, turning] = _pad_rows(np.sin(t)[:, None] * r, h)
     return x, y
