@@ -166,9 +166,11 @@ def _play(level, seed_, args, replay) -> int:
     import pygame
 
     from .game.app import App
+    from .game.quiet import filtered_stderr
 
     try:
-        app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab)
+        with filtered_stderr():  # pygame.init() probes for audio; no sound card: 8 ALSA lines
+            app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab)
     except pygame.error as exc:  # no display: say so in one line, not a traceback
         print(f"broadsword: cannot open a window ({exc}); --headless runs without one", file=sys.stderr)
         return 1

@@ -5,6 +5,7 @@ the game. Modules, one idea each:
 
 * ``predicates``  exact scalar predicates (and the paper's Figure 8 test)
 * ``tolerance``   every numerical tolerance, with its proof
+* ``detmath``     sine, cosine, atan2 and hypot from correctly rounded operations (same bits everywhere)
 * ``armature``    validated hit polygons in an object's local frame
 * ``posing``      posing (``exact`` or the paper's ``lut`` rotation) and sweeps, vectorised
 * ``bounds``      boxes, circles, object-aligned boxes and their conservative pair tests

@@ -14,6 +14,7 @@ module holds only constants.
 
 from __future__ import annotations
 
+import sys
 import time
 import zlib
 from collections.abc import Callable, Mapping
@@ -21,6 +22,8 @@ from types import MappingProxyType
 
 import numpy as np
 import pygame
+
+from .quiet import filtered_stderr
 
 __all__ = ["Audio", "synth", "NAMES"]
 
@@ -282,6 +285,7 @@ class Audio:
 
     def __init__(self, enabled: bool = True, *, clock: Callable[[], float] = time.monotonic):
         self.available: bool = False
+        self.problem: str | None = None  # why there is no sound, when a device was wanted
         self.muted: bool = False
         self._clock = clock
         self._spec: tuple[int, int, int] | None = None  # mixer (frequency, size, channels)
@@ -293,12 +297,16 @@ class Audio:
             mixer = pygame.mixer
             spec = mixer.get_init()
             if spec is None:
-                mixer.init(frequency=44100, size=-16, channels=2, buffer=512)
+                with filtered_stderr():  # no sound card: libasound prints 8 lines per try
+                    mixer.init(frequency=44100, size=-16, channels=2, buffer=512)
                 spec = mixer.get_init()
                 if spec is not None and mixer.get_num_channels() < 16:
                     mixer.set_num_channels(16)
-        except (pygame.error, NotImplementedError, ImportError):
-            return  # no device, or no SDL_mixer in this pygame build
+        except (pygame.error, NotImplementedError, ImportError) as exc:
+            # no device, or no SDL_mixer in this pygame build: one line of our own, then silence
+            self.problem = f"no audio device ({exc}); sound off"
+            print(f"broadsword: {self.problem}", file=sys.stderr)
+            return
         if spec is not None:
             self.available = self._build(spec)
 
