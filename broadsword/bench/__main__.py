@@ -105,13 +105,13 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=seed)
     methods = _methods(scene)
     truth = {r: Pipeline(scene.shapes, scene.table, tiers=("bins", "armature"), rotation=r) for r in ("lut", "exact")}
-    ms = {name: [] for name in methods}
+    ms: dict[str, list[float]] = {name: [] for name in methods}
     fp = {name: 0 for name in methods}
     fn = {name: 0 for name in methods}
     pfp = {name: 0 for name in methods}
     pfn = {name: 0 for name in methods}
     exact_hits = pixel_hits = 0
-    tier_ms = {name: [] for name in methods}
+    tier_ms: dict[str, list[dict[str, float]]] = {name: [] for name in methods}
     for f in range(warmup + frames):
         pos, ang = scene.advance()
         measured = f >= warmup
@@ -154,10 +154,11 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
                      "min_ms": float(a.min()), "max_ms": float(a.max()),
                      "false_positives": fp[name], "false_negatives": fn[name],
                      "pixel_false_positives": pfp[name], "pixel_false_negatives": pfn[name]}
-    solo = np.array(solo)
+    solo_ms = np.array(solo)
     return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits,
             "pixel_frames": min(pixel_frames, frames), "pixel_hits": pixel_hits, "methods": out,
-            "default_alone": {"median_ms": float(np.median(solo)), "min_ms": float(solo.min()), "max_ms": float(solo.max())}}
+            "default_alone": {"median_ms": float(np.median(solo_ms)), "min_ms": float(solo_ms.min()),
+                              "max_ms": float(solo_ms.max())}}
 
 
 def _progress(label: str):

@@ -32,6 +32,7 @@ def run_game_frames(level: str = "3-broadsword", warmup: int = 660, frames: int 
     total, collide, render = [], [], []
     bullets = []
     world = app.world
+    assert world is not None  # start_run() made it
     for _ in range(frames):
         t0 = time.perf_counter()
         app.frame(DT)  # events, one fixed step, render, present

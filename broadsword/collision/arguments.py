@@ -27,7 +27,6 @@ The rules, everywhere:
 wrong type, still caught by code written when every refusal was a ``ValueError``.
 """
 
-from __future__ import annotations
 
 import math
 import numbers

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import arguments
 from .predicates import orient
@@ -62,7 +63,7 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
     return np.array(lower[:-1] + upper[:-1], dtype=np.float64)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class Armature:
     """A validated hit polygon in its object's local frame.
 
@@ -103,6 +104,11 @@ class Armature:
     hull: np.ndarray = field(init=False)
     convex: bool = field(init=False)
     local_box: np.ndarray = field(init=False)
+
+    def __init__(self, vertices: ArrayLike, name: str = "armature") -> None:
+        object.__setattr__(self, "name", name)
+        object.__setattr__(self, "vertices", vertices)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         label = f"armature {self.name!r}"

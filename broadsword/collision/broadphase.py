@@ -481,7 +481,7 @@ class _Tree(_BroadPhase):
 
     def _leaf_coords(self, boxes):
         """Leaf-level integer coordinates of each box's corners, clipped to the root."""
-        ox, oy, d = *self.origin, self.depth
+        (ox, oy), d = self.origin, self.depth
         return (self._node(boxes[:, 0], ox, d), self._node(boxes[:, 1], oy, d),
                 self._node(boxes[:, 2], ox, d), self._node(boxes[:, 3], oy, d))
 

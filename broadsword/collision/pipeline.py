@@ -203,6 +203,7 @@ class Pipeline:
         """
         f = arguments.frame(armature, layer, positions, angles, prev_positions, prev_angles, swept,
                             armatures=len(self.armatures), layers=len(self.layers.names))
+        assert f.layer is not None  # asked for with layers=
         layer, n = f.layer, len(f.armature)
         stats = [TierStats("layers", n * (n - 1) // 2, self.layers.possible_pairs(layer), 0.0)]
         tier_pairs = {}
@@ -237,6 +238,7 @@ class Pipeline:
             elif tier == "paper":
                 keep = collide_pairs(posed, pairs, narrow=paper_collide_padded)
             elif tier == "pixel":
+                assert self.masks is not None  # built when "pixel" is a tier
                 keep = self.masks.collide(f.armature, f.positions, f.angles, pairs)
             else:  # armature
                 keep = collide_pairs(posed, pairs, self.workspace)

@@ -105,7 +105,7 @@ class ArmatureSet:
         self.count = counts
         self.size_class = _size_class(counts)
         self.swept_class = _size_class(2 * hulls)
-        self.rotating_swept_class = int(_size_class(2 * _OCTAGON))
+        self.rotating_swept_class = int(_size_class(np.array(2 * _OCTAGON)))
         self.radius = np.array([a.radius for a in self.armatures])
         self.local_box = np.array([a.local_box for a in self.armatures])
         self._lx, self._ly = _padded([a.vertices for a in self.armatures], kmax)
@@ -327,6 +327,7 @@ def pose_checked(shapes: ArmatureSet, f: arguments.Frame, rotation: str, vertice
                 x[:, cols], y[:, cols] = _pose_plain(shapes, k, idx[cols], armature, px, py, cos, sin)
             cols = np.flatnonzero(~plain)
             obj = idx[cols]
+            assert prev_positions is not None  # swept objects have them (arguments.frame)
             # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
             hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2)
             x[:, cols], y[:, cols] = _sweep(hx, hy, px[obj], py[obj], prev_positions[obj, 0], prev_positions[obj, 1])

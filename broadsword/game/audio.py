@@ -323,7 +323,7 @@ class Audio:
             # e.g. a mixer sample format we cannot feed
             self._sounds, self._spec = {}, None
             return False
-        self._sounds, self._spec = sounds, tuple(spec)
+        self._sounds, self._spec = sounds, (spec[0], spec[1], spec[2])
         return True
 
     def toggle_mute(self) -> bool:

@@ -63,13 +63,13 @@ def generate(sprite: str | Path, max_vertices: int = 8, inset: int = 0, shape: s
     sprite = Path(sprite)
     out = Path(out) if out else sprite.with_name(sprite.stem + SUFFIX)
     alphas = sprite_alpha(sprite, frames)
-    made = []
+    made: list[tuple[tuple[float, float], ...]] = []
     for i, alpha in enumerate(alphas):
         try:
             arm = generate_armature(opaque_mask(alpha), max_vertices, inset, name=f"{sprite.stem}.{shape}")
         except ValueError as exc:
             raise DataError(sprite, f"frame[{i}]" if frames > 1 else "", str(exc)) from None
-        made.append([tuple(v) for v in arm.vertices.tolist()])  # clockwise on screen, as the shipped files
+        made.append(tuple((x, y) for x, y in arm.vertices.tolist()))  # clockwise on screen, as the shipped files
     if out.exists():
         old = load_armature_file(out)
         if len(old.drawn) != frames:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import pygame
 
 from ..bench.scenes import FIELD, ReferenceScene
-from ..collision import Pipeline
+from ..collision import FrameResult, Pipeline
 from .render import LAYER_COLOURS
 
 SCALES = [(20, 200), (100, 2000), (200, 10_000)]
@@ -34,8 +34,8 @@ class Lab:
     def reset(self, enemies: int, bullets: int) -> None:
         self.scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=self.seed)
         self.pipeline = Pipeline(self.scene.shapes, self.scene.table, tiers=TIER_MIXES[self.mix], rotation=self.rotation)
-        self.last = None
-        self.last_objects = {}
+        self.last: FrameResult | None = None
+        self.last_objects: dict[str, object] = {}
         self.frame = 0
 
     def next_mix(self) -> None:

@@ -263,7 +263,7 @@ class HighScores:
         if isinstance(score, bool) or type(score).__name__ == "bool_":
             raise TypeError(f"score must be an integer, got {type(score).__name__}")
         try:
-            score = operator.index(score)
+            score = operator.index(score)  # type: ignore[arg-type]  # a TypeError here is the check
         except TypeError:
             raise TypeError(f"score must be an integer, got {type(score).__name__}") from None
         if score < 0:

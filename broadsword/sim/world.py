@@ -151,7 +151,7 @@ class World:
     def set_rotation(self, mode: str) -> None:
         """Switch the rotation mode live (F4), before the next step; recorded in ``toggles``."""
         if mode != self.pipeline.rotation:
-            self.pipeline.rotation = Settings(rotation=mode).rotation
+            self.pipeline.rotation = Settings(rotation=mode).rotation or mode  # validated; never None here
             self.toggles.append(ToggleEvent(self.frame, Toggle.ROTATION, mode))
 
     def continue_game(self) -> None:
@@ -209,6 +209,7 @@ class World:
 
     def damage_boss(self, amount: int, ev: Events) -> None:
         """Hurt the boss; a phase that ends goes through :meth:`Progress.phase_ended`."""
+        assert self.boss is not None  # only a level with a boss has boss parts to hit
         how = self.boss.damage(amount)
         if how is not None:
             self.progress.phase_ended(how, ev)
@@ -233,7 +234,9 @@ class World:
         player = self.player.pos
         if self.parts.n:
             idx = np.flatnonzero(emitters.due(self.parts))
-            specs = [self.boss.fire_of(p) for p in self.parts.part[idx].tolist()]
+            boss = self.boss
+            assert boss is not None  # parts exist only with a boss
+            specs = [boss.fire_of(p) for p in self.parts.part[idx].tolist()]
             ev.enemy_shots += emitters.fire(self.parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
         ships = self.ships.pool
         if ships.n:

@@ -69,8 +69,8 @@ def slow_pairs(boxes, layers, table):
     layers = [int(v) for v in layers]
     out = set()
     for a, b in table.entries:
-        ia = [i for i, l in enumerate(layers) if l == a]
-        ib = [i for i, l in enumerate(layers) if l == b]
+        ia = [i for i, k in enumerate(layers) if k == a]
+        ib = [i for i, k in enumerate(layers) if k == b]
         for i in ia:
             for j in ib:
                 if a == b and i >= j:
@@ -337,7 +337,7 @@ def test_find_pairs__empty_layers_and_tiny_inputs():
                 check_contract(pairs, b, np.zeros(n, int), table, exact=name.startswith("brute"), label=f"n={n} {name}")
     # An empty table.
     empty = LayerTable(["a"], [])
-    for name, phase in phases():
+    for _, phase in phases():
         pairs = phase.find_pairs(boxes, np.zeros(80, int), empty)
         assert pairs.shape == (0, 2) and pairs.dtype == np.int64
 
@@ -419,7 +419,7 @@ def test_find_pairs__input_types():
     """Lists and int boxes are accepted; the call does not modify its inputs."""
     boxes = [[0, 0, 2, 2], [1, 1, 3, 3], [5, 5, 6, 6]]
     layers = [0, 0, 0]
-    for name, phase in phases():
+    for _, phase in phases():
         got = phase.find_pairs(boxes, layers, SELF)
         assert set(map(tuple, got.tolist())) >= {(0, 1)}
     arr = np.array(boxes, float)

@@ -90,7 +90,7 @@ def test_items_fall_and_the_graze_shape_collects_them():
     w.items.drop(p + (0.0, -100.0), [ItemKind.POINT, ItemKind.POWER])
     points, power = w.score.points, w.player.power
     for _ in range(120):
-        ev = w.step(IDLE)
+        w.step(IDLE)
         if w.items.pool.n == 0:
             break
     assert w.items.pool.n == 0 and w.score.items == 2

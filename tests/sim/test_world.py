@@ -118,7 +118,7 @@ def test_world__enemy_bullet_costs_a_life_on_the_expected_frame(quiet_level, arm
     expected = first_contact_frame(w, start, vel)
     add_bullet(w, *start, *vel)
     lives = w.player.lives
-    for k in range(1, expected + 5):
+    for k in range(1, expected + 5):  # noqa: B007 (k is read after the loop)
         ev = w.step(IDLE)
         if ev.player_struck:
             break
