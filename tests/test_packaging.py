@@ -58,3 +58,16 @@ def test_shipped_data_found_from_the_package():
 
     assert (data_dir("levels") / f"{list_levels()[0]}.toml").is_file()
     assert (data_dir("assets") / "sprites").is_dir()
+
+
+def test_readme_reads_right_on_a_package_index():
+    """No relative link (it would point nowhere on a package index page); every image it
+    shows exists (and ships in the sdist, docs/ being grafted) and has a caption."""
+    import re
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    links = re.findall(r"(?<!!)\[[^\]]*\]\(([^)]+)\)", text)
+    assert [link for link in links if not link.startswith(("https://", "http://", "#"))] == []
+    images = re.findall(r"!\[([^\]]*)\]\(([^)]+)\)", text)
+    assert images and all(caption.strip() for caption, _ in images)
+    assert all((ROOT / path).is_file() for _, path in images if not path.startswith("https://"))
