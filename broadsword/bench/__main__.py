@@ -31,7 +31,7 @@ import numpy as np
 from ..collision import Pipeline, retain_heap
 from . import analysis
 from .peers import PEERS
-from .scenes import ReferenceScene
+from ..collision.scenarios import ReferenceScene
 from .truth import level_visual_truth, pixel_truth
 
 #: The product's default pipeline: the paper's bins, a cheap bound, the exact armature test.

@@ -41,7 +41,7 @@ from ..collision import (
     segments_intersect,
 )
 from ..collision.bounds import aabbs
-from .scenes import ReferenceScene
+from ..collision.scenarios import ReferenceScene
 
 __all__ = ["bin_size_curve", "fidelity", "markdown", "rotation_table", "scaling", "stability"]
 
@@ -174,7 +174,7 @@ def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
     factor, plus one with the automatic size, all step the same frames, interleaved; each
     row gives the median ms of the whole step, of its ``bins`` tier, and the median number
     of pairs the bins tier passes on. ``auto_factor`` is the automatic size (median over
-    frames of ``broad_phase.size`` after each step) over the reference extent.
+    frames of the grid's bin size in each step's ``broad.layout``) over the reference extent.
     """
     enemies, bullets = (50, 2000) if quick else (200, 10_000)
     frames, warmup = (5, 1) if quick else (30, 5)
@@ -196,7 +196,7 @@ def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
 
     def summary(key, result):
         bins = next(s for s in result.stats if s.name == "bins")
-        return bins.pairs_out, bins.ms, pipes[key].broad_phase.size
+        return bins.pairs_out, bins.ms, result.broad.layout.size
 
     ms, kept = _interleave(frames, warmup, jobs, summary)
     rows: list[dict[str, Any]] = []

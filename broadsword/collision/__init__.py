@@ -9,25 +9,38 @@ the game. Modules, one idea each:
 * ``armature``    validated hit polygons in an object's local frame
 * ``posing``      posing (``exact`` or the paper's ``lut`` rotation) and sweeps, vectorised
 * ``bounds``      boxes, circles, object-aligned boxes and their conservative pair tests
-* ``broadphase``  the bin grid, quadtrees and brute force behind one interface
+* ``kdop``        the paper's K-DOP (1.5.5) as an 8-DOP, a conservative pair test
+* ``layers``      the layer table: which layers test which
+* ``broadphase``  the bin grid, quadtrees and brute force behind one protocol (a package,
+  one module per method; ``base`` holds the protocol and its statistics)
 * ``narrow``      the exact narrow phase over many pairs at once
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
+* ``tiers``       every tier in one registry, and the one rule for their order
+* ``frame``       one frame's typed record: the objects in, the result out
 * ``pipeline``    the tiered pipeline a scene configures
+* ``debugdraw``   the debug-draw protocol (no renderer), and what a frame looks like through it
+* ``scenarios``   seeded reference scenes (tests, the lab and the benchmark)
 * ``workspace``   reused scratch buffers, and retain_heap() for applications
 """
 
 from .armature import Armature, convex_hull, lut_max_displacement
-from .broadphase import AUTO_BIN_FACTOR, BROAD_PHASES, BinGrid, BruteForce, LayerTable, LooseQuadTree, QuadTree, auto_bin_size
-from .narrow import paper_collide_padded, polygons_collide_padded
+from .broadphase import (AUTO_BIN_FACTOR, BROAD_PHASES, BinGrid, BroadPhase, BroadPhaseStats, BruteForce, GridLayout,
+                         LooseQuadTree, QuadTree, TreeLayout, auto_bin_size)
+from .frame import FrameObjects, FrameResult, TierStats
+from .kdop import kdops, kdops_overlap
+from .layers import LayerTable
+from .narrow import collide_pairs, paper_collide_padded, polygons_collide_padded
 from .pixels import MaskCache, rasterise
-from .pipeline import BOUND_TIERS, EXACT_TIERS, LAST_TIERS, FrameResult, Pipeline, TierStats, collide_pairs
+from .pipeline import Pipeline
+from .tiers import BOUND_TIERS, BROAD_TIERS, EXACT_TIERS, LAST_TIERS, TIERS, Tier, TierKind, check_tiers
 from .posing import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
 from .workspace import Workspace, retain_heap
 from .predicates import orient, paper_segments_intersect, point_in_polygon, polygons_collide, segments_intersect
 
 __all__ = [
-    "AUTO_BIN_FACTOR", "Armature", "ArmatureSet", "BinGrid", "BruteForce", "BROAD_PHASES", "BOUND_TIERS", "EXACT_TIERS",
-    "FrameResult", "LAST_TIERS", "LayerTable", "MaskCache", "paper_collide_padded", "rasterise", "LooseQuadTree", "Pipeline", "Posed", "QuadTree", "ROTATION_MODES",
+    "AUTO_BIN_FACTOR", "Armature", "ArmatureSet", "BinGrid", "BroadPhase", "BroadPhaseStats", "BruteForce", "BROAD_PHASES",
+    "BROAD_TIERS", "BOUND_TIERS", "EXACT_TIERS", "FrameObjects", "FrameResult", "GridLayout", "LAST_TIERS", "TIERS", "Tier",
+    "TierKind", "TreeLayout", "check_tiers", "kdops", "kdops_overlap", "LayerTable", "MaskCache", "paper_collide_padded", "rasterise", "LooseQuadTree", "Pipeline", "Posed", "QuadTree", "ROTATION_MODES",
     "TierStats", "auto_bin_size", "collide_pairs", "convex_hull", "lut_max_displacement", "orient",
     "paper_segments_intersect", "point_in_polygon", "polygons_collide", "polygons_collide_padded",
     "pose", "retain_heap", "rotation_table", "segments_intersect", "Workspace",

@@ -134,8 +134,8 @@ def points(value, name: str, n: int | None = None) -> np.ndarray:
     return real_array(value, name, (n, 2), "object")
 
 
-def ids(value, name: str, n: int | None, limit: int, what: str) -> np.ndarray:
-    """``(n,)`` int64 ids in ``0..limit-1``; ``what`` names the range ("2 armatures").
+def ids(value, name: str, n: int | None, limit: int | None = None, what: str = "") -> np.ndarray:
+    """``(n,)`` int64 ids, in ``0..limit-1`` when ``limit`` is given (:func:`in_range`).
 
     Integer arrays or Python ints only: ``0.7`` and ``True`` are refused, not truncated.
     """
@@ -147,11 +147,17 @@ def ids(value, name: str, n: int | None, limit: int, what: str) -> np.ndarray:
             odd = flat[~np.isfinite(flat) | (flat != np.round(flat))]
             got = f"{a.dtype} values such as {odd[0].item()!r}" if odd.size else f"{a.dtype} values (pass integers)"
         raise ArgumentTypeError(f"{name} must hold integer indices, got {got}")
-    a = _shaped(a, name, (n,))
+    a = _shaped(a, name, (n,)).astype(np.int64, copy=False)
+    if limit is not None:
+        in_range(a, name, limit, what)
+    return a
+
+
+def in_range(a: np.ndarray, name: str, limit: int, what: str) -> None:
+    """Every id of the int array ``a`` lies in ``0..limit-1``; ``what`` says why ("the pipeline has 2 armatures")."""
     if a.size and (a.min() < 0 or a.max() >= limit):
         bad = a[(a < 0) | (a >= limit)][0]
         raise ValueError(f"{name} ids must lie in 0..{limit - 1} ({what}), got {bad}")
-    return a.astype(np.int64, copy=False)
 
 
 def flags(value, name: str, n: int | None) -> np.ndarray:

@@ -31,11 +31,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from .posing import Posed
 from .predicates import _orient_exact, _polygons_collide
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
 from .workspace import Workspace
 
-__all__ = ["polygons_collide_padded"]
+__all__ = ["collide_pairs", "paper_collide_padded", "polygons_collide_padded"]
 
 #: Pairs per block: keeps the (K1+1, K2+1, block) temporaries inside a core's L2 cache.
 BLOCK = 4096
@@ -240,3 +241,29 @@ def paper_collide_padded(px, py, qx, qy) -> np.ndarray:
         pos = (f > 0) & (alpha >= 0) & (alpha <= f) & (beta >= 0) & (beta <= f)
         neg = (f < 0) & (alpha <= 0) & (alpha >= f) & (beta <= 0) & (beta >= f)
     return (pos | neg).any(axis=(0, 1))
+
+
+def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None,
+                  narrow=polygons_collide_padded) -> np.ndarray:
+    """(m,) bool: collision of the posed polygons of each pair in ``pairs`` (m, 2).
+
+    Pairs are grouped by the two objects' size classes so each group is one padded batch
+    for ``narrow`` (by default the exact
+    :func:`~broadsword.collision.narrow.polygons_collide_padded`).
+    """
+    out = np.zeros(len(pairs), dtype=bool)
+    if not len(pairs):
+        return out
+    i, j = pairs[:, 0], pairs[:, 1]
+    ki, kj = posed.klass[i], posed.klass[j]
+    group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
+    ws = workspace or Workspace()
+    for g in np.unique(group).tolist():  # a handful of groups
+        sel = np.flatnonzero(group == g)
+        a, b = np.take(i, sel), np.take(j, sel)
+        k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
+        sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
+        batch = (np.take(posed.xs[k1], sa, axis=1), np.take(posed.ys[k1], sa, axis=1),
+                 np.take(posed.xs[k2], sb, axis=1), np.take(posed.ys[k2], sb, axis=1))
+        out[sel] = narrow(*batch, ws) if narrow is polygons_collide_padded else narrow(*batch)
+    return out

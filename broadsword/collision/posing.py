@@ -273,15 +273,16 @@ def pose(
         raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
     f = arguments.frame(armature, None, positions, angles, prev_positions, prev_angles, swept,
                         armatures=len(shapes), layers=None)
-    return pose_checked(shapes, f, rotation, vertices, workspace)
+    return pose_checked(shapes, f.armature, f.positions, f.angles, rotation, f.prev_positions, f.prev_angles,
+                        f.swept, vertices, workspace)
 
 
-def pose_checked(shapes: ArmatureSet, f: arguments.Frame, rotation: str, vertices: bool = True,
-                 workspace: Workspace | None = None) -> Posed:
-    """:func:`pose` of a frame already checked by :func:`arguments.frame` (what
-    :meth:`Pipeline.step` calls, having checked its arguments once)."""
-    armature, positions, angles = f.armature, f.positions, f.angles
-    prev_positions, prev_angles, swept = f.prev_positions, f.prev_angles, f.swept
+def pose_checked(shapes: ArmatureSet, armature: np.ndarray, positions: np.ndarray, angles: np.ndarray,
+                 rotation: str, prev_positions: np.ndarray | None, prev_angles: np.ndarray | None,
+                 swept: np.ndarray | None, vertices: bool = True, workspace: Workspace | None = None) -> Posed:
+    """:func:`pose` of arguments already checked (what :meth:`Pipeline.run` calls: its
+    :class:`FrameObjects` checked them once): int64 ids in range, float64 ``(n, 2)`` and
+    ``(n,)`` finite arrays, ``swept`` a bool array with a True entry, or ``None``."""
     n = len(armature)
     ws = workspace or Workspace()
     cos, sin = shapes.rotations(angles, rotation)

@@ -415,7 +415,7 @@ class App:
         if self.scene == "lab":
             self.lab.draw(s)
             if self.overlay.visible and self.lab.last is not None:
-                self.overlay.draw(s, self.lab, self.fps, paused=self.lab_paused)
+                self.overlay.draw(s, self.lab.last, self.fps, paused=self.lab_paused)
             sc = self.lab.scene
             self._text(f"LAB: {sc.enemies} ships, {sc.bullets} bullets, {'+'.join(self.lab.pipeline.tiers)}",
                        s.get_height() - 34, x=s.get_width() / 2, colour=(255, 230, 170))
@@ -428,7 +428,8 @@ class App:
             slow = (bool(self.keys & SLOW_KEYS) or self.current_input().slow) and not self.demo
             self.renderer.draw(s, self.world, min(alpha, 1.0), show_armature=slow)
             if self.overlay.visible:
-                self.overlay.draw(s, self.world, self.fps, paused=self.scene == "paused")
+                self.overlay.draw(s, self.world.collision and self.world.collision.result, self.fps,
+                                  paused=self.scene == "paused")
         else:
             self.renderer.tick += 1
             self.renderer._background(s, self.renderer.tick)

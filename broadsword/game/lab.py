@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import pygame
 
-from ..bench.scenes import FIELD, ReferenceScene
 from ..collision import FrameResult, Pipeline
+from ..collision.debugdraw import posed_polygons
+from ..collision.scenarios import FIELD, ReferenceScene
+from .drawing import PygameDraw
 from .render import LAYER_COLOURS
 
 SCALES = [(20, 200), (100, 2000), (200, 10_000)]
@@ -21,7 +23,8 @@ TIER_MIXES = [("bins", "aabb", "armature"), ("bins", "circle", "armature"), ("qu
 
 
 class Lab:
-    """A reference scene stepping through a pipeline, with the attributes the overlay reads."""
+    """A reference scene stepping through a pipeline; ``last`` is the last step's result,
+    which the overlay draws."""
 
     size = (int(FIELD[0]), int(FIELD[1]))
 
@@ -35,7 +38,6 @@ class Lab:
         self.scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=self.seed)
         self.pipeline = Pipeline(self.scene.shapes, self.scene.table, tiers=TIER_MIXES[self.mix], rotation=self.rotation)
         self.last: FrameResult | None = None
-        self.last_objects: dict[str, object] = {}
         self.frame = 0
 
     def next_mix(self) -> None:
@@ -47,18 +49,21 @@ class Lab:
 
     def step(self) -> None:
         s = self.scene
-        pos, ang = s.advance()
-        self.last = self.pipeline.step(s.armature, s.layer, pos, ang)
-        self.last_objects = dict(pos=pos.copy(), angle=ang.copy(), arm=s.armature, layer=s.layer,
-                                 swept=[False] * s.n, offsets=())
+        pos, ang = s.advance()  # the scene moves its arrays in place: the record keeps copies
+        self.last = self.pipeline.step(s.armature, s.layer, pos.copy(), ang.copy())
         self.frame += 1
 
     def draw(self, surf: pygame.Surface) -> None:
+        """The scene's armatures, filled in their layers' colours (through the debug-draw adapter)."""
         surf.fill((6, 7, 16))
-        posed = self.last.posed if self.last is not None else None
-        if posed is None:
+        if self.last is None:
             return
+        owners, polys = posed_polygons(self.last)
+        colour = [LAYER_COLOURS[name] for name in self.scene.table.names]
         layer = self.scene.layer
-        for k, members in posed.members.items():
-            for i, px, py in zip(members.tolist(), posed.xs[k].T.tolist(), posed.ys[k].T.tolist()):
-                pygame.draw.polygon(surf, LAYER_COLOURS[self.scene.table.names[layer[i]]], list(zip(px, py)))
+        draw = PygameDraw(surf)
+        start = 0
+        for batch in polys:
+            who = layer[owners[start:start + len(batch)]].tolist()
+            start += len(batch)
+            draw.polygons(batch, [colour[k] for k in who], width=0)

@@ -13,7 +13,7 @@ from enum import Enum
 
 import numpy as np
 
-from ..collision import FrameResult, LayerTable, Pipeline
+from ..collision import FrameObjects, FrameResult, LayerTable, Pipeline
 from .kinds import Kinds
 from .layers import LayerIds
 
@@ -38,21 +38,49 @@ class CollisionRecord:
     Attributes
     ----------
     result : FrameResult
-        Hits, candidates, per-tier statistics, posed polygons.
+        Hits, candidates, per-tier and broad-phase statistics, posed polygons, and the
+        objects the pipeline was given (``result.objects``).
     spans : dict Group -> slice
         Object indices of each group (empty slices for absent groups).
-    layer, positions, prev_positions, angles, armature, swept : arrays (n,) or (n, 2)
-        What the pipeline was given.
     """
 
     result: FrameResult
     spans: dict
-    layer: np.ndarray
-    positions: np.ndarray
-    prev_positions: np.ndarray
-    angles: np.ndarray
-    armature: np.ndarray
-    swept: np.ndarray
+
+    @property
+    def objects(self) -> FrameObjects:
+        """What the pipeline was given: layer, positions, prev_positions, angles, armature, swept."""
+        return self.result.objects
+
+    @property
+    def layer(self) -> np.ndarray:
+        """(n,) int64 layer ids."""
+        return self.result.objects.layer
+
+    @property
+    def positions(self) -> np.ndarray:
+        """(n, 2) float64."""
+        return self.result.objects.positions
+
+    @property
+    def prev_positions(self) -> np.ndarray:
+        """(n, 2) float64: last frame's positions."""
+        return self.result.objects.prev_positions
+
+    @property
+    def angles(self) -> np.ndarray:
+        """(n,) float64 degrees."""
+        return self.result.objects.angles
+
+    @property
+    def armature(self) -> np.ndarray:
+        """(n,) int64 armature ids (the animation frame's)."""
+        return self.result.objects.armature
+
+    @property
+    def swept(self) -> np.ndarray:
+        """(n,) bool: the objects swept from their last pose."""
+        return self.result.objects.swept
 
     def hits_from(self, *groups: Group) -> np.ndarray:
         """(h, 2) hit pairs whose first object belongs to one of ``groups``."""
@@ -123,5 +151,5 @@ class CollisionStep:
         # and a jump (a respawn) must not touch what lies between the two places.
         swept = (layer == ids.enemy_bullet) | (layer == ids.player_bullet)
         swept &= (pos != prev).any(axis=1)
-        result = self.pipeline.step(arm, layer, pos, angle, prev, angle, swept if swept.any() else None)
-        return CollisionRecord(result, spans, layer, pos, prev, angle, arm, swept)
+        result = self.pipeline.run(FrameObjects(arm, layer, pos, angle, prev, angle, swept))
+        return CollisionRecord(result, spans)

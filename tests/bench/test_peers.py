@@ -18,7 +18,7 @@ from broadsword.bench.peers import (
     ShapelyPeer,
     convex_pieces,
 )
-from broadsword.bench.scenes import ReferenceScene, random_armature
+from broadsword.collision.scenarios import ReferenceScene, random_armature
 from broadsword.collision import Pipeline, orient, pose
 
 TOUCH = 1e-6  # px: a disagreement this close to touching is a rounding tie, not an error

@@ -1,7 +1,7 @@
 """Broad phases against a slow reference.
 
-Contract (``broadsword.collision.broadphase``): ``find_pairs(boxes, layers, table)``
-returns an ``(m, 2)`` int64 array; for a table entry ``(a, b)`` the first column holds the
+Contract (``broadsword.collision.broadphase``): ``query(boxes, layers, table)`` returns
+``(pairs, stats)``; ``find_pairs`` the pairs alone, which an ``(m, 2)`` int64 array; for a table entry ``(a, b)`` the first column holds the
 layer-``a`` object, for ``(a, a)`` the smaller index comes first; no pair twice; every
 table pair whose closed boxes overlap is returned (a superset is allowed);
 ``BruteForce`` returns exactly the overlapping table pairs.
@@ -19,8 +19,12 @@ import pytest
 from broadsword.collision import (
     BROAD_PHASES,
     BinGrid,
+    BroadPhase,
+    BroadPhaseStats,
     BruteForce,
+    GridLayout,
     LayerTable,
+    TreeLayout,
     LooseQuadTree,
     QuadTree,
     AUTO_BIN_FACTOR,
@@ -580,3 +584,92 @@ def test_auto_bin_size__not_the_overall_median():
 def test_auto_bin_size__large_group_of_equal_boxes():
     boxes = np.tile([0.0, 0.0, 7.0, 3.0], (5000, 1))
     assert auto_bin_size(boxes, [np.arange(5000)]) == FACTOR * 7.0
+
+
+# --------------------------------------------------------------------------- query: statistics, layout, re-entrancy
+
+
+def test_query__returns_the_pairs_and_their_statistics():
+    rng = np.random.default_rng(21)
+    boxes = random_boxes(rng, 300, 0, 600, 2, 30)
+    layers = rng.integers(0, 4, 300)
+    for name, phase in phases():
+        assert isinstance(phase, BroadPhase), name
+        pairs, stats = phase.query(boxes, layers, SHMUP)
+        assert isinstance(stats, BroadPhaseStats)
+        assert np.array_equal(pairs, phase.find_pairs(boxes, layers, SHMUP)), name
+        assert stats.name == phase.name and stats.pairs == len(pairs)
+        assert stats.objects == int(np.isin(layers, [0, 1, 2, 3]).sum())  # every shmup layer takes part
+
+
+def test_query__grid_layout_and_occupancy_match_a_slow_count():
+    rng = np.random.default_rng(22)
+    boxes = random_boxes(rng, 250, -40, 400, 1, 60)
+    layers = rng.integers(0, 3, 250)  # layer 3 (player bullets) absent; layer 0..2 take part
+    table = LayerTable(["a", "b", "c", "d"], [("a", "b"), ("b", "c")])
+    for grid in (BinGrid(), BinGrid(bin_size=17.0, field=(0, 0, 300, 300)), BinGrid(bin_size=1.0, max_cells=64)):
+        _, stats = grid.query(boxes, layers, table)
+        lay = stats.layout
+        assert isinstance(lay, GridLayout)
+        cols, rows = lay.shape
+        assert lay.occupancy.shape == (rows, cols) and lay.occupancy.dtype == np.int64
+        slow = np.zeros((rows, cols), dtype=np.int64)
+        ox, oy = lay.origin
+        for x0, y0, x1, y1 in boxes[np.isin(layers, [0, 1, 2])]:
+            c0, c1 = (int(np.clip(np.floor((v - ox) / lay.size), 0, cols - 1)) for v in (x0, x1))
+            r0, r1 = (int(np.clip(np.floor((v - oy) / lay.size), 0, rows - 1)) for v in (y0, y1))
+            slow[r0:r1 + 1, c0:c1 + 1] += 1
+        assert np.array_equal(lay.occupancy, slow)
+
+
+def test_query__tree_layout_names_each_objects_node():
+    rng = np.random.default_rng(23)
+    boxes = random_boxes(rng, 200, 0, 500, 1, 40)
+    layers = rng.integers(0, 4, 200)
+    for tree in (QuadTree(), LooseQuadTree(), QuadTree(max_depth=3)):
+        _, stats = tree.query(boxes, layers, SHMUP)
+        lay = stats.layout
+        assert isinstance(lay, TreeLayout) and lay.loose == isinstance(tree, LooseQuadTree)
+        level, nx, ny = lay.levels
+        assert len(level) == 200 and level.min() >= 0 and level.max() <= lay.depth
+        assert lay.nodes[:, 3].sum() == 200
+        nodes = lay.node_boxes()
+        for (lv, x, y, _), (x0, y0, x1, y1) in zip(lay.nodes.tolist(), nodes.tolist()):
+            side = 2 * lay.half / 2**lv
+            assert np.isclose(x1 - x0, side) and np.isclose(x0, lay.origin[0] + x * side)
+        assert sorted(lay.members.tolist()) == list(range(200))
+        if not lay.loose:  # a classic node contains its objects' boxes
+            for k, i in enumerate(lay.members.tolist()):
+                side = 2 * lay.half / 2 ** level[k]
+                x0, y0 = lay.origin[0] + nx[k] * side, lay.origin[1] + ny[k] * side
+                b = boxes[i]
+                assert x0 - 1e-9 <= b[0] and b[2] <= x0 + side + 1e-9 and y0 - 1e-9 <= b[1] and b[3] <= y0 + side + 1e-9
+
+
+def test_query__brute_and_empty_frames_have_no_layout():
+    boxes = random_boxes(np.random.default_rng(24), 20)
+    assert BruteForce().query(boxes, np.zeros(20, int), SELF)[1].layout is None
+    for _, phase in phases():
+        pairs, stats = phase.query(boxes, np.full(20, 3), SHMUP.__class__(["a", "b", "c", "d"], [("a", "b")]))
+        assert len(pairs) == 0 and stats.objects == 0 and stats.layout is None
+
+
+def test_query__keeps_no_state_between_frames():
+    """A phase is configuration: a query leaves the object as it was, and two frames queried
+    in any interleaving give each its own answer (re-entrant)."""
+    rng = np.random.default_rng(25)
+    frames = []
+    for k in range(3):
+        n = 80 + 40 * k
+        frames.append((random_boxes(rng, n, -100 * k, 400, 1, 20 + 20 * k), rng.integers(0, 4, n)))
+    for name, phase in phases():
+        before = {k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in vars(phase).items()}
+        alone = [phase.query(b, l, MIXED) for b, l in frames]
+        again = [phase.query(b, l, MIXED) for b, l in reversed(frames)][::-1]
+        assert vars(phase).keys() == before.keys(), name
+        assert all(vars(phase)[k] == v for k, v in before.items()), name
+        for (p1, s1), (p2, s2) in zip(alone, again):
+            assert np.array_equal(p1, p2) and s1.pairs == s2.pairs, name
+        lays = [s.layout for _, s in alone]
+        if isinstance(lays[0], GridLayout):  # each frame's layout is its own
+            assert lays[0].occupancy.sum() != lays[2].occupancy.sum() or lays[0].shape != lays[2].shape, name

@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from broadsword.bench.scenes import ENEMY, PLAYER_BULLET, ReferenceScene
+from broadsword.collision.scenarios import ENEMY, PLAYER_BULLET, ReferenceScene
 from broadsword.collision import (
     BROAD_PHASES,
     Armature,
@@ -26,6 +26,8 @@ TIER_MIXES = [
     for broad in BROAD_PHASES
     for r in range(len(BOUNDS) + 1)
     for bounds in itertools.combinations(BOUNDS, r)
+] + [(broad, "kdop", "armature") for broad in BROAD_PHASES] + [
+    (broad, "aabb", "kdop", "circle", "obb", "armature") for broad in BROAD_PHASES
 ]
 
 
@@ -88,7 +90,7 @@ def test_pipeline__equals_brute_exact_with_sweeps(scene_frame, oracle, broad):
     scene, pos, ang, prev_pos, prev_ang = scene_frame
     swept = scene.layer >= 2
     for rotation in ("lut", "exact"):
-        p = Pipeline(scene.shapes, scene.table, tiers=(broad, "aabb", "circle", "obb", "armature"),
+        p = Pipeline(scene.shapes, scene.table, tiers=(broad, "aabb", "circle", "obb", "kdop", "armature"),
                      rotation=rotation, keep_tier_pairs=True)
         r = p.step(scene.armature, scene.layer, pos, ang, prev_pos, prev_ang, swept)
         expected = oracle[rotation, True]
@@ -98,7 +100,7 @@ def test_pipeline__equals_brute_exact_with_sweeps(scene_frame, oracle, broad):
             assert expected <= as_set(pairs), tier
 
 
-@pytest.mark.parametrize("tier", ["aabb", "circle", "obb"])
+@pytest.mark.parametrize("tier", ["aabb", "circle", "obb", "kdop"])
 def test_bound_tier__alone_is_conservative(scene_frame, oracle, tier):
     scene, pos, ang, *_ = scene_frame
     r = Pipeline(scene.shapes, scene.table, tiers=("brute", tier), rotation="exact").step(
@@ -230,7 +232,7 @@ def test_sweep__needs_previous_pose():
 def test_collision__imports_without_pygame():
     code = (
         "import sys; sys.modules['pygame'] = None\n"
-        "import broadsword.collision, broadsword.bench.scenes\n"
+        "import broadsword.collision, broadsword.collision.scenarios\n"
         "assert 'pygame' not in [m.split('.')[0] for m in sys.modules if sys.modules[m] is not None]\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from broadsword.bench.scenes import ReferenceScene, random_armature
+from broadsword.collision.scenarios import ReferenceScene, random_armature
 from broadsword.collision import (
     Armature, ArmatureSet, MaskCache, Pipeline, paper_collide_padded, paper_segments_intersect, pose, rasterise,
 )

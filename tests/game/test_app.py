@@ -136,7 +136,7 @@ def test_app__overlay_draws_grid_and_armatures(app):
     key(app, pygame.K_F1)
     frames(app, 1)
     after = pygame.surfarray.array3d(app.screen)
-    grid = w.pipeline.broad_phase
+    grid = w.collision.result.broad.layout
     # A vertical grid line, at a row far from the player and the panel.
     gx = int(round(grid.origin[0] + grid.size))
     assert tuple(after[gx, 300]) == (50, 80, 130) and tuple(before[gx, 300]) != (50, 80, 130)
@@ -212,7 +212,7 @@ def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
     key(app, pygame.K_F4)  # rotation
     frames(app, 1)
     assert app.lab.pipeline.tiers == ("bins", "circle", "armature") and app.lab.pipeline.rotation == "exact"
-    grid = app.lab.pipeline.broad_phase
+    grid = app.lab.last.broad.layout
     img = pygame.surfarray.array3d(app.screen)
     gx = int(round(grid.origin[0] + grid.size))
     assert (img[gx, 300:700] == (50, 80, 130)).all(axis=1).any()  # grid lines drawn

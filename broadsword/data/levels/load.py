@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ...collision import BOUND_TIERS, BROAD_PHASES, LAST_TIERS, ROTATION_MODES
+from ...collision import ROTATION_MODES, Tier, check_tiers
 from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..errors import DataError, shown
 from ..resources import read_toml
@@ -74,25 +74,14 @@ def _path(t: Table) -> PathSpec:
 
 
 def _tiers(value, path: Path) -> tuple[str, ...]:
-    """The scene's tiers, checked as :class:`broadsword.collision.Pipeline` requires: one
-    broad phase first, then bounds tiers, then at most one exact tier, last; none twice."""
-    known = tuple(BROAD_PHASES) + BOUND_TIERS + LAST_TIERS
+    """The scene's tiers, checked by the pipeline's own rule
+    (:func:`broadsword.collision.check_tiers`), the error naming the file and field."""
     if not (isinstance(value, list) and value and all(isinstance(x, str) for x in value)):
-        raise DataError(path, "scene.tiers", f"must be a list of tier names ({', '.join(known)}), got {shown(value)}")
-    for x in value:
-        if x not in known:
-            raise DataError(path, "scene.tiers", f"unknown tier {shown(x)}; tiers are {', '.join(known)}")
-    if value[0] not in BROAD_PHASES:
-        raise DataError(path, "scene.tiers", f"the first tier must be a broad phase ({', '.join(BROAD_PHASES)})")
-    if len(set(value)) != len(value):
-        raise DataError(path, "scene.tiers", "must name each tier once")
-    rest = value[1:]
-    if any(x in BROAD_PHASES for x in rest):
-        raise DataError(path, "scene.tiers", "must name only one broad phase, first")
-    exact = [x for x in rest if x in LAST_TIERS]
-    if len(exact) > 1 or (exact and rest[-1] != exact[0]):
-        raise DataError(path, "scene.tiers", f"may end with one exact tier ({', '.join(LAST_TIERS)}), only last")
-    return tuple(value)
+        raise DataError(path, "scene.tiers", f"must be a list of tier names ({', '.join(Tier)}), got {shown(value)}")
+    try:
+        return tuple(t.value for t in check_tiers(value))
+    except ValueError as err:
+        raise DataError(path, "scene.tiers", str(err)) from None
 
 
 def _scene(doc, path) -> SceneSpec:

@@ -1,4 +1,4 @@
-"""Seeded scenes for tests and the benchmark (numpy only, no pygame).
+"""Seeded scenes for tests, the lab and the benchmark (numpy only, no pygame).
 
 The reference scene (issue 4): a 640x960 field; one player ship with a concave 6-vertex
 armature about 28x24 px; ``E`` enemy ships drawn from 8 seeded concave armatures of 5-8
@@ -13,9 +13,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..collision import Armature, ArmatureSet, LayerTable
+from .armature import Armature
+from .layers import LayerTable
+from .posing import ArmatureSet
 
-__all__ = ["random_armature", "ReferenceScene", "PLAYER", "ENEMY", "ENEMY_BULLET", "PLAYER_BULLET"]
+__all__ = ["FIELD", "random_armature", "player_armature", "ReferenceScene", "PLAYER", "ENEMY", "ENEMY_BULLET", "PLAYER_BULLET"]
 
 PLAYER, ENEMY, ENEMY_BULLET, PLAYER_BULLET = range(4)
 

@@ -1,0 +1,156 @@
+"""One frame's collision, typed: the objects going in and the result coming out.
+
+:class:`FrameObjects` is what a scene hands :meth:`Pipeline.run
+<broadsword.collision.pipeline.Pipeline.run>`; :class:`FrameResult` is what it gets back --
+hits, per-tier statistics, the broad phase's statistics and layout, and the objects it was
+given -- so whoever draws or logs the frame (the debug overlay, the headless summary) reads
+one record and never the pipeline's insides.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import numpy as np
+
+from . import arguments
+from .broadphase.base import BroadPhaseStats
+from .layers import LayerTable
+from .posing import Posed
+
+__all__ = ["FrameObjects", "FrameResult", "TierStats"]
+
+
+@dataclass(frozen=True, eq=False)
+class FrameObjects:
+    """The objects of one frame, after all movement (the paper's update-order rule, 1.4).
+
+    Built from anything array-like; the constructor checks every argument by the rules of
+    :mod:`broadsword.collision.arguments` (exact shapes, real finite numbers, integer ids,
+    boolean flags; a ``ValueError`` or ``ArgumentTypeError`` naming the argument), converts
+    to the dtypes below (no copy when the input already has them, so the arrays are the
+    caller's: they stay valid as long as the caller leaves them alone) and checks that the
+    lengths agree.
+
+    Attributes
+    ----------
+    armature : (n,) int64
+        Index of each object's armature in the pipeline's armature set.
+    layer : (n,) int64
+        Layer id of each object (an index into the layer table's names).
+    positions : (n, 2) float64
+        Model centres.
+    angles : (n,) float64
+        Degrees.
+    prev_positions : (n, 2) float64 or None
+        Last frame's centres, needed for the objects in ``swept``.
+    prev_angles : (n,) float64 or None
+        Last frame's angles, needed for the objects in ``swept``.
+    swept : (n,) bool
+        Objects to sweep from their previous pose (the "quick gun" fix); all ``False``
+        when none is given.
+    """
+
+    armature: np.ndarray
+    layer: np.ndarray
+    positions: np.ndarray
+    angles: np.ndarray
+    prev_positions: np.ndarray | None = None
+    prev_angles: np.ndarray | None = None
+    swept: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        # The library's boundary: types, shapes and finiteness by arguments.py's rules (ids
+        # in range are the pipeline's to check: it knows the armatures and the layers).
+        put = object.__setattr__
+        put(self, "armature", arguments.ids(self.armature, "armature", None))
+        put(self, "layer", arguments.ids(self.layer, "layer", None))
+        put(self, "positions", arguments.points(self.positions, "positions"))
+        put(self, "angles", arguments.reals(self.angles, "angles"))
+        n = len(self.layer)
+        if self.prev_positions is not None:
+            put(self, "prev_positions", arguments.points(self.prev_positions, "prev_positions"))
+        if self.prev_angles is not None:
+            put(self, "prev_angles", arguments.reals(self.prev_angles, "prev_angles"))
+        swept = np.zeros(n, dtype=bool) if self.swept is None else arguments.flags(self.swept, "swept", None)
+        put(self, "swept", swept)
+        for name in ("armature", "positions", "angles", "prev_positions", "prev_angles", "swept"):
+            a = getattr(self, name)
+            if a is not None and len(a) != n:
+                raise ValueError(f"{name}: {n} layer ids but {len(a)} {name} (nothing is broadcast)")
+        if swept.any() and (self.prev_positions is None or self.prev_angles is None):
+            raise ValueError("prev_positions and prev_angles (last frame's poses) are needed for swept objects")
+
+    @property
+    def n(self) -> int:
+        """Number of objects."""
+        return len(self.layer)
+
+
+@dataclass(frozen=True)
+class TierStats:
+    """What one tier did in one frame: pairs in, pairs out, wall-clock milliseconds.
+
+    The ``pose`` row counts objects posed instead of pairs; the ``layers`` row counts all
+    object pairs in and the pairs the layer table allows out (arithmetic only, no work).
+    """
+
+    name: str
+    pairs_in: int
+    pairs_out: int
+    ms: float
+
+
+@dataclass(frozen=True, eq=False)
+class FrameResult:
+    """The outcome of one pipeline step.
+
+    Attributes
+    ----------
+    hits : (h, 2) int64
+        Object index pairs that collide, first column from the first layer of the table
+        entry that allowed the pair.
+    stats : tuple of TierStats
+        ``layers``, ``pose`` (when a tier needs polygons), then each named tier in order.
+    broad : BroadPhaseStats
+        The broad phase's own statistics, its layout (grid or tree nodes) included.
+    objects : FrameObjects
+        What the pipeline was given.
+    candidates : (c, 2) int64
+        The broad phase's pairs.
+    posed : Posed or None
+        The posed polygons, when a tier needs them (``aabb``, ``obb``, ``kdop``,
+        ``armature``, ``paper``); ``None`` otherwise. Its arrays live in the pipeline's
+        workspace: valid until the next step.
+    boxes : (n, 4) float64
+        The boxes the broad phase used: the posed polygons' boxes, or the bounding
+        circles' boxes in a scene without polygon tiers.
+    rotation : str
+        The rotation mode the objects were posed with (``lut`` or ``exact``).
+    layers : LayerTable
+        The table that chose which pairs were tested.
+    tier_pairs : mapping str -> (m, 2) int64
+        Each tier's surviving pairs, when the pipeline keeps them; empty otherwise.
+    """
+
+    hits: np.ndarray
+    stats: tuple[TierStats, ...]
+    broad: BroadPhaseStats
+    objects: FrameObjects
+    candidates: np.ndarray
+    posed: Posed | None
+    boxes: np.ndarray
+    rotation: str
+    layers: LayerTable
+    tier_pairs: Mapping[str, np.ndarray] = field(default_factory=dict)
+
+    @property
+    def ms(self) -> float:
+        """Total milliseconds over all tiers."""
+        return sum(s.ms for s in self.stats)
+
+    @property
+    def tiers(self) -> tuple[str, ...]:
+        """The names of the configured tiers, in order (the ``stats`` rows after ``layers`` and ``pose``)."""
+        return tuple(s.name for s in self.stats if s.name not in ("layers", "pose"))
