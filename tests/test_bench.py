@@ -21,8 +21,11 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
             if m["tiers"][-1] in ("aabb", "circle"):  # bounds alone never miss
                 assert m["false_negatives"] == 0, name
     assert doc["game_frame"]["frame_median_ms"] > 0
+    pat = doc["patterns"]
+    assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
+    assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
     assert len(doc["levels_vs_sprites"]) >= 3
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity"):
         assert key in doc, key
     text = capsys.readouterr().out
-    assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text
+    assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text

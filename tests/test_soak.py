@@ -44,15 +44,15 @@ def broadsword_level():
 def test_short_soak_in_a_fresh_process(tmp_path):
     out_json = tmp_path / "soak.json"
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))}
-    run = subprocess.run([sys.executable, "-m", "broadsword", "soak", "--frames", "3600", "--warmup", "1800",
-                          "--sample-every", "300", "--progress-every", "1200", "--json", str(out_json)],
+    run = subprocess.run([sys.executable, "-m", "broadsword", "soak", "--frames", "5400", "--warmup", "3600",
+                          "--sample-every", "300", "--progress-every", "1800", "--json", str(out_json)],
                          check=False, capture_output=True, text=True, cwd=ROOT, env=env, timeout=600)
     s = json.loads(run.stdout.strip().splitlines()[-1])
     assert run.returncode == 0, run.stderr
     assert s == json.loads(out_json.read_text())
     assert FIELDS <= set(s)
     assert s["error"] is None and s["ok"] is True
-    assert s["level"] == "3-broadsword" and s["frames"] == s["frames_requested"] == 3600 and s["warmup"] == 1800
+    assert s["level"] == "3-broadsword" and s["frames"] == s["frames_requested"] == 5400 and s["warmup"] == 3600
     assert s["restarts"] == s["games"] - 1
     assert s["games_over"] + s["levels_complete"] in (s["games"] - 1, s["games"])
     assert s["max_enemy_bullets"] > 1000  # the bullet-hell level was really played
@@ -60,12 +60,12 @@ def test_short_soak_in_a_fresh_process(tmp_path):
         assert s["rss_source"] == "statm"
     assert 0 < s["rss_start_bytes"] and 0 < s["rss_warmup_bytes"] <= s["rss_peak_bytes"]
     assert s["rss_final_bytes"] <= s["rss_peak_bytes"]
-    assert s["samples"] == 3600 // 300  # every 300 frames; the warm-up's (1800) and the last fall on those
+    assert s["samples"] == 5400 // 300  # every 300 frames; the warm-up's (3600, past the level's densest part) and the last fall on those
     assert s["growth_after_warmup_pct"] is not None and s["growth_after_warmup_pct"] <= s["max_growth_pct"] == 5.0
     assert s["final_growth_pct"] <= s["growth_after_warmup_pct"]
     assert re.fullmatch(r"[0-9a-f]{64}", s["run_hash"])
     progress = [ln for ln in run.stderr.splitlines() if ln.startswith("soak: ")]
-    assert len(progress) == 3 and "3,600/3,600 frames" in progress[-1] and "RSS" in progress[-1]
+    assert len(progress) == 3 and "5,400/5,400 frames" in progress[-1] and "RSS" in progress[-1]
     assert "PASS" in run.stderr and "Traceback" not in run.stderr
 
 

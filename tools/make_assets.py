@@ -538,6 +538,113 @@ def make_boss_wing() -> pygame.Surface:
     return sp.surface()
 
 
+def make_frigate() -> pygame.Surface:
+    """Frigate, 96x48: stage 1's boss, a long steel-blue warship seen from above: a white
+    prow, a raised bridge with blue glass, broad side sponsons carrying cyan gun lights,
+    and three engine glows astern."""
+    sp = Sprite(96, 48)
+    s = sp.s
+    sponson = s.poly([(-14, -8), (-40, -2), (-46, 6), (-40, 14), (-14, 12)])
+    sp.panel(sponson, STEEL, base=2, bevel=2, relief=2.8, vgrad=1.2)
+    for x in (-38, -30, -22):
+        sp.fill(s.rect(x, 3, x + 4, 6, mirror=True), STEEL[0])
+        sp.fill(s.rect(x + 1, 4, x + 3, 5, mirror=True), CYAN[4])
+    hull = s.poly([(0, -23), (-6, -20), (-14, -10), (-16, 8), (-12, 20), (0, 22)])
+    sp.panel(hull, HULL_WHITE, base=2, bevel=3, relief=3.0, vgrad=1.6)
+    deck = s.poly([(0, -16), (-6, -12), (-9, -2), (-8, 12), (0, 14)])
+    sp.panel(deck, STEEL, base=3, bevel=2, relief=2.4, vgrad=1.0)
+    bridge = s.poly([(0, -8), (-4, -6), (-4, 2), (0, 3)])
+    sp.panel(bridge, GLASS, base=3, bevel=1, relief=-1.6)
+    sp.seam(s.line((-9, 6), (9, 6)), STEEL, 1)
+    sp.seam(s.line((-14, -4), (-40, 1), mirror=True), STEEL, 1)
+    sp.fill(s.dots([(-11, -8), (-12, 16), (-44, 6)], mirror=True), HULL_WHITE[5])
+    sp.outline(darkness=0.3, tint=(6, 8, 24))
+    for x in (-8.0, 0.0, 8.0):
+        sp.glow(x, 22.5, 3.0, 2.4, GLOW_CYAN, strength=1.3, falloff=1.1, levels=4, over_solid=0.5)
+    return sp.surface()
+
+
+def make_carrier() -> pygame.Surface:
+    """Carrier, 112x56: stage 2's boss, a broad amber-and-gunmetal hull with two launch
+    bays glowing orange, armoured shoulders and a red command blister."""
+    sp = Sprite(112, 56)
+    s = sp.s
+    hull = s.poly([(0, -26), (-20, -24), (-44, -12), (-54, 4), (-50, 18), (-30, 26), (0, 24)])
+    sp.panel(hull, GUNMETAL, base=2, bevel=3, relief=3.0, vgrad=1.4)
+    armour = s.poly([(0, -22), (-18, -20), (-40, -9), (-48, 4), (-44, 14), (-28, 20), (0, 19)])
+    sp.panel(armour, AMBER, base=2, bevel=2, relief=2.6, vgrad=1.6)
+    for x0 in (-40, -24):
+        bay = s.rect(x0, -2, x0 + 12, 10, mirror=True)
+        sp.panel(bay, GUNMETAL, base=0, bevel=1, relief=-1.5)
+        sp.fill(s.rect(x0 + 2, 6, x0 + 10, 8, mirror=True), ORANGE[4])
+    blister = s.ellipse(-8, -14, 8, 2)
+    sp.panel(blister, RED, base=3, bevel=2, relief=2.4)
+    sp.fill(s.ellipse(-3, -10, 3, -5), RED[5])
+    sp.seam(s.line((-48, 4), (-6, 4), mirror=True), AMBER, 0)
+    sp.fill(s.dots([(-46, 12), (-36, -10), (-20, -19), (-12, 17)], mirror=True), AMBER[5])
+    sp.outline(darkness=0.3, tint=(18, 8, 4))
+    for x in (-30.0, -14.0, 14.0, 30.0):
+        sp.glow(x, 26.0, 3.5, 2.6, GLOW_FIRE, strength=1.3, falloff=1.1, levels=4, over_solid=0.5)
+    return sp.surface()
+
+
+def make_storm_eye() -> pygame.Surface:
+    """Storm eye, 64x64: stage 4's boss core, a round armoured orb in deep blue with a
+    ring of cyan ports around a great glass eye."""
+    sp = Sprite(64, 64)
+    s = sp.s
+    sp.panel(s.ellipse(-29, -29, 29, 29), STEEL, base=2, bevel=3, relief=3.0, vgrad=1.4)
+    sp.panel(s.ellipse(-22, -22, 22, 22), GUNMETAL, base=2, bevel=2, relief=2.4)
+    for k in range(8):
+        a = math.radians(45 * k + 22.5)
+        x, y = 25.5 * math.cos(a), 25.5 * math.sin(a)
+        sp.fill(s.ellipse(x - 2, y - 2, x + 2, y + 2), CYAN[4])
+    sp.panel(s.ellipse(-14, -14, 14, 14), GLASS, base=3, bevel=3, relief=-2.0)
+    sp.fill(s.ellipse(-4, -9, 4, 9), (8, 12, 30))
+    sp.fill(s.dots([(-6, -7)]), (255, 255, 255))
+    sp.outline(darkness=0.3, tint=(4, 8, 20))
+    sp.glow(0.0, 0.0, 16.0, 16.0, GLOW_CYAN, strength=0.6, falloff=1.5, levels=6, over_solid=0.35)
+    return sp.surface()
+
+
+def make_vane() -> pygame.Surface:
+    """Vane, 72x16: a long cyan-edged blade that turns about its centre (stage 4's boss)."""
+    sp = Sprite(72, 16)
+    s = sp.s
+    blade = s.poly([(0, -6), (-30, -4), (-35, 0), (-30, 5), (0, 6)])
+    sp.panel(blade, STEEL, base=2, bevel=2, relief=2.8, vgrad=1.2)
+    sp.fill(s.line((-30, -3), (-4, -4), mirror=True), CYAN[4])
+    sp.panel(s.ellipse(-6, -6, 6, 6), GUNMETAL, base=3, bevel=2, relief=2.4)
+    sp.outline(darkness=0.3, tint=(4, 8, 20))
+    for x in (-33.0, 33.0):
+        sp.glow(x, 0.0, 3.0, 3.0, GLOW_CYAN, strength=1.0, falloff=1.2, levels=4, over_solid=0.5)
+    return sp.surface()
+
+
+def make_citadel() -> pygame.Surface:
+    """Citadel, 128x72: the last boss's keep, a fortress of gunmetal and violet armour
+    with battlements, a great magenta reactor and red lights along the walls."""
+    sp = Sprite(128, 72)
+    s = sp.s
+    wall = s.poly([(0, -34), (-24, -34), (-28, -28), (-58, -20), (-62, -6), (-62, 14), (-54, 28),
+                   (-30, 34), (0, 32)])
+    sp.panel(wall, GUNMETAL, base=2, bevel=3, relief=3.0, vgrad=1.6)
+    for x in (-56, -44, -32):
+        sp.panel(s.rect(x, -24, x + 8, -16, mirror=True), PURPLE, base=3, bevel=1)
+    keep = s.poly([(0, -26), (-18, -24), (-30, -10), (-30, 14), (-20, 26), (0, 28)])
+    sp.panel(keep, PURPLE, base=2, bevel=3, relief=2.8, vgrad=1.4)
+    sp.panel(s.ellipse(-13, -12, 13, 14), GUNMETAL, base=1, bevel=2, relief=-2.0)
+    sp.panel(s.ellipse(-9, -8, 9, 10), MAGENTA, base=4, bevel=2, relief=-1.5)
+    sp.fill(s.ellipse(-3, -3, 3, 5), MAGENTA[5])
+    sp.seam(s.line((-60, 4), (-30, 4), mirror=True), GUNMETAL, 0)
+    sp.fill(s.dots([(-58, 0), (-50, 22), (-38, 28), (-24, -30), (-40, 10)], mirror=True), RED[4])
+    sp.outline(darkness=0.3, tint=(10, 4, 20))
+    sp.glow(0.0, 1.0, 12.0, 12.0, GLOW_MAGENTA, strength=0.8, falloff=1.3, levels=6, over_solid=0.5)
+    for x in (-40.0, -14.0, 14.0, 40.0):
+        sp.glow(x, 34.0, 3.5, 2.4, GLOW_FIRE, strength=1.3, falloff=1.1, levels=4, over_solid=0.5)
+    return sp.surface()
+
+
 # --------------------------------------------------------------------------------------
 # Bullets: hot white cores inside bright rims inside soft halos, to pop on a dark field.
 # --------------------------------------------------------------------------------------
@@ -744,6 +851,11 @@ SPRITES = {
     "boss_core": make_boss_core,
     "boss_turret": make_boss_turret,
     "boss_wing": make_boss_wing,
+    "frigate": make_frigate,
+    "carrier": make_carrier,
+    "storm_eye": make_storm_eye,
+    "vane": make_vane,
+    "citadel": make_citadel,
     "pellet": make_pellet,
     "needle": make_needle,
     "orb": make_orb,

@@ -10,7 +10,9 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    negatives against the exact polygon answer and against pixel truth;
 2. a whole game frame at the bullet-hell level's peak, and the game's levels against
    their sprites' own masks (how often an armature hit disagrees with what is seen);
-3. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
+3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
+   whole game frame's;
+4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
    table's error, the paper test's numerical failures by family, hitbox fidelity.
 
     python -m broadsword.bench                   # everything
@@ -313,6 +315,12 @@ def main(argv: list[str] | None = None) -> int:
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
         print(game_markdown(game, visual), flush=True)
 
+    from .patterns import markdown as patterns_markdown, run_pattern_frames
+
+    print("  BulletML patterns ...", file=sys.stderr, flush=True)
+    patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
+    print(patterns_markdown(patterns, game), flush=True)
+
     sections = {}
     for key, fn in (("scaling", analysis.scaling), ("bin_size", analysis.bin_size_curve),
                     ("rotation_table", analysis.rotation_table), ("stability", analysis.stability),
@@ -329,7 +337,7 @@ def main(argv: list[str] | None = None) -> int:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
                "python": platform.python_version(), "numpy": np.__version__, "allocator": heap,
                "host_canary_before": canary, "host_canary_after": host_canary(), "scales": results,
-               "game_frame": game, "levels_vs_sprites": visual, **sections}
+               "game_frame": game, "levels_vs_sprites": visual, "patterns": patterns, **sections}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")

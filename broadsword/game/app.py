@@ -432,7 +432,7 @@ class App:
                                   paused=self.scene == "paused")
         else:
             self.renderer.tick += 1
-            self.renderer._background(s, self.renderer.tick)
+            self.renderer.background(s, self.renderer.tick)
         getattr(self, f"_draw_{self.scene}", lambda: None)()
         self._present()
 

@@ -16,6 +16,8 @@ import pygame
 
 from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
+from ..data.levels import Theme
+from .backdrop import Backdrop
 from .sprites import SpriteBank
 
 ROUND_BULLETS = ("pellet", "orb")  # rotation-invariant sprites: never rotated
@@ -42,11 +44,8 @@ class Renderer:
 
     def __init__(self, bank: SpriteBank, seed: int = 0):
         self.bank = bank
-        rng = np.random.default_rng(seed)
-        w, h = FIELD
-        # Three parallax layers of stars: (x, y, speed, brightness).
-        self.stars = [(rng.uniform(0, w, n), rng.uniform(0, h, n), v, b)
-                      for n, v, b in ((90, 12.0, 90), (50, 28.0, 150), (24, 60.0, 230))]
+        self.seed = seed
+        self.backdrop: Backdrop | None = None  # built for the first level drawn, rebuilt when the theme changes
         self.effects: list[Effect] = []
         self.tick = 0
         self.font = pygame.font.Font(None, 22)
@@ -76,7 +75,7 @@ class Renderer:
     # ------------------------------------------------------------- drawing
     def draw(self, surf: pygame.Surface, world: World, alpha: float, show_armature: bool = False) -> None:
         self.tick += 1
-        self._background(surf, world.frame + alpha)
+        self.background(surf, world.frame + alpha, world.level.theme)
         self._enemies(surf, world, alpha)
         self._bullets(surf, world.items.pool, world, alpha)
         self._bullets(surf, world.player_bullets, world, alpha)
@@ -91,14 +90,11 @@ class Renderer:
             surf.blit(veil, (0, 0))
             self.flash -= 1
 
-    def _background(self, surf, t: float) -> None:
-        surf.fill((6, 7, 16))
-        h = FIELD[1]
-        for xs, ys, speed, b in self.stars:
-            y = (ys + speed * t / 60.0) % h
-            colour = (b, b, min(255, b + 25))
-            for x, yy in zip(xs.tolist(), y.tolist()):
-                surf.fill(colour, (x, yy, 1 if b < 200 else 2, 1 if b < 200 else 2))
+    def background(self, surf, t: float, theme: Theme = Theme.DEEP_SPACE) -> None:
+        """The stage's backdrop at time ``t`` (steps): its theme's clouds, features and stars."""
+        if self.backdrop is None or self.backdrop.theme is not theme:
+            self.backdrop = Backdrop(theme, (int(FIELD[0]), int(FIELD[1])), self.seed)
+        self.backdrop.draw(surf, t)
 
     def _lerp(self, pos, prev, alpha):
         return prev + (pos - prev) * alpha

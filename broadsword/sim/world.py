@@ -27,6 +27,7 @@ from ..data.levels import Level
 from . import emitters, hashing
 from .bombs import NAME as BOMB, Bomb, bomb_armatures
 from .boss import Boss, parts_pool
+from .rank import RankedFire
 from .bullets import bullet_pool, cull_bullets, move_bullets
 from .collide import CollisionRecord, CollisionStep
 from .combat import Combat
@@ -114,6 +115,7 @@ class World:
         self.complete = False
         self.difficulty = level.difficulty[self.settings.difficulty]
         self.rank = self.difficulty.rank  # BulletML's $rank
+        self.fires = RankedFire(self.rank)  # the level's patterns as fired at this rank
         self.start_lives = self.difficulty.lives or level.player.lives
         bombs = level.player.bombs if self.difficulty.bombs is None else self.difficulty.bombs
         self.player = Player(level.player, lives=self.carry.lives or self.start_lives, bombs=bombs)
@@ -236,14 +238,14 @@ class World:
             idx = np.flatnonzero(emitters.due(self.parts))
             boss = self.boss
             assert boss is not None  # parts exist only with a boss
-            specs = [boss.fire_of(p) for p in self.parts.part[idx].tolist()]
+            specs = [self.fires.of(boss.fire_of(p)) for p in self.parts.part[idx].tolist()]
             ev.enemy_shots += emitters.fire(self.parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
         ships = self.ships.pool
         if ships.n:
             due = emitters.due(ships)
             for w in np.unique(ships.wave[due]).tolist():
                 idx = np.flatnonzero(due & (ships.wave == w))
-                specs = [self.level.waves[w].fire] * len(idx)
+                specs = [self.fires.of(self.level.waves[w].fire)] * len(idx)
                 ev.enemy_shots += emitters.fire(ships, idx, specs, player, self.enemy_bullets, self.kinds.base)
 
     def _cull(self) -> None:

@@ -61,6 +61,7 @@ BOSS = '[boss]\n[[boss.part]]\nsprite = "boss_core"\n[[boss.part]]\nsprite = "bo
         ('[boss]\nhp = 10\n', "boss.part"),
         ('[[boss.part]]\nsprite = "x"\noffset = [1]\n[boss]\n', "boss"),
         ("colour = 3\n", "colour"),
+        ('[level]\ntheme = "jungle"\n', "level.theme"),
         (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 3\nfire = \"ring\"\n", "boss.phase[0].fire[0].part"),
         (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\n[[boss.phase.fire]]\npart = 1\n",
          "boss.phase[0].fire[1].part"),

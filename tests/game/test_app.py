@@ -166,8 +166,8 @@ def test_app__window_resize_keeps_aspect(app):
     # Scaled to 375 x 500 (the 3:4 playfield), centred: black bars left and right.
     left, right = (900 - 375) // 2, (900 - 375) // 2 + 375
     assert (win[: left - 1] == 0).all() and (win[right + 1 :] == 0).all()
-    column = win[left + 5, 60:]  # inside the field, below the HUD: the night sky
-    assert (column == (6, 7, 16)).all(axis=1).mean() > 0.9
+    column = win[left + 5, 60:].astype(int)  # inside the field, below the HUD: the stage's dark sky
+    assert (column.sum(axis=1) > 0).mean() > 0.9 and column.mean() < 60  # drawn (not a bar), and dark
 
 
 def test_app__catch_up_is_capped(app):

@@ -36,13 +36,15 @@ def test_player_bullets_on_boss_parts_damage_the_boss_once_each():
 
 def test_the_last_hit_kills_the_boss_and_scores_it():
     w = boss_world()
+    w.boss.phase = len(w.boss.spec.phases) - 1  # its last phase, one hit point left
     w.boss.hp = 1
     points = w.score.points
     add_bullets(w.player_bullets, w.kinds.base["shot"], w.boss.parts.pos[:1], np.zeros((1, 2)))
     ev = Events()
     w.combat.apply(w.detect(), ev)
     assert ev.boss_killed and w.boss.dead and w.boss.parts.n == 0
-    assert w.score.points == points + BROADSWORD.boss.score
+    # the boss's score, and the last phase's bonus (it ended with no miss and no bomb)
+    assert w.score.points == points + BROADSWORD.boss.score + BROADSWORD.boss.phases[-1].bonus
     assert sum(1 for k in ev.kills if k[2] == "boss") == len(BROADSWORD.boss.parts)
 
 

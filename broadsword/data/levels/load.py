@@ -21,7 +21,7 @@ from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..errors import DataError, shown
 from ..resources import read_toml
 from ..table import MISSING, Table
-from .specs import (BOSS_DROPS, PATHS, PATTERNS, BossPart, BossPhaseSpec, BossSpec, Drops, FireKind, FireSpec, Level, PathKind,
+from .specs import (BOSS_DROPS, PATHS, PATTERNS, THEMES, Theme, BossPart, BossPhaseSpec, BossSpec, Drops, FireKind, FireSpec, Level, PathKind,
                     PathSpec, PlayerSpec, SceneSpec, WaveSpec)
 
 #: A level file is at most this big; a larger one is refused by its size, unparsed.
@@ -212,6 +212,7 @@ def load_level(path: str | Path) -> Level:
     head = Table(top.raw("level", {}), path, "level")
     name = path.stem  # a level's name is its file's stem: never a path
     title = head.str("title", name)
+    theme = Theme(head.str("theme", Theme.DEEP_SPACE.value, THEMES))
     head.done()
     scene = _scene(top.raw("scene", {}), path)
     p = Table(top.raw("player", {}), path, "player")
@@ -265,7 +266,7 @@ def load_level(path: str | Path) -> Level:
     top.done(("boss",))
     if not doc:  # nothing at all is a broken file; a level that *declares* nothing to fight is fine
         raise DataError(path, "wave", "the file is empty: a level needs at least one [[wave]] or a [boss]")
-    return Level(name, title, path, scene, player, tuple(waves), boss, difficulty)
+    return Level(name, title, path, scene, player, tuple(waves), boss, difficulty, theme)
 
 
 def check_level_sprites(level: Level, armatures) -> None:

@@ -20,6 +20,19 @@ class PathKind(str, Enum):
     HOLD = "hold"
 
 
+class Theme(str, Enum):
+    """A stage's look: its backdrop and palette (drawn by :mod:`broadsword.game.backdrop`)."""
+
+    DEEP_SPACE = "deep_space"
+    DUST_BELT = "dust_belt"
+    CRIMSON_NEBULA = "crimson_nebula"
+    ION_STORM = "ion_storm"
+    CITADEL = "citadel"
+
+
+THEMES = tuple(t.value for t in Theme)
+
+
 class FireKind(str, Enum):
     """What a ship fires (``fire`` in a level file)."""
 
@@ -180,6 +193,7 @@ class Level:
     waves: tuple[WaveSpec, ...]
     boss: BossSpec | None
     difficulty: dict[Difficulty, DifficultySpec] = field(default_factory=lambda: dict(DEFAULT_SPECS))
+    theme: Theme = Theme.DEEP_SPACE
 
     @property
     def sprites(self) -> set[str]:
@@ -188,4 +202,5 @@ class Level:
         if self.boss:
             names |= {p.sprite for p in self.boss.parts}
             names |= {p.fire.bullet for p in self.boss.parts if p.fire.fires}
+            names |= {f.bullet for phase in self.boss.phases for _, f in phase.fire if f.fires}
         return names

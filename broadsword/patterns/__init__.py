@@ -1,0 +1,1 @@
+"""Bullet patterns: the BulletML reader and runner (numpy + standard library only)."""

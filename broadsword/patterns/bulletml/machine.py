@@ -1,0 +1,226 @@
+"""The BulletML machine: runs one mover's actions, command by command, frame by frame.
+
+A :class:`Runner` belongs to one row of a :class:`~.store.Movers` (an emitter or a bullet)
+and holds one :class:`Thread` per action list: an emitter has one per top action (they run
+together, in file order); a bullet has one whose actions run one after another. A thread
+follows libBulletML's timing (docs/PATTERNS.md, "Semantics"): ``act_turn`` is the frame its
+next command may run; ``wait N`` adds ``int(N)`` when positive; a change started at
+``act_turn`` runs to ``act_turn + int(term)``; an action list's next action starts on the
+frame after the previous one ends.
+"""
+
+from __future__ import annotations
+
+from .limits import MAX_REPEAT, MAX_STEPS_PER_FRAME
+from .model import (Accel, Action, ActionRef, BulletRef, ChangeDirection, ChangeSpeed, DirKind, Direction, Fire, FireRef,
+                    Orientation, Repeat, Speed, SpeedKind, Vanish, Wait)
+from .store import AX, AY, DIR, NEVER, SPD, Movers
+
+
+class _Seq:
+    """A command list being run: ``commands[i]`` is next; ``params`` are its ``$1``..."""
+
+    __slots__ = ("commands", "i", "params")
+
+    def __init__(self, commands, params):
+        self.commands, self.i, self.params = commands, 0, params
+
+
+class _Rep:
+    """A repeat: ``left`` more runs of ``body`` (an Action or an ActionRef, re-entered each
+    time, so an actionRef's params are evaluated afresh)."""
+
+    __slots__ = ("body", "left", "params")
+
+    def __init__(self, body, left, params):
+        self.body, self.left, self.params = body, left, params
+
+
+class Thread:
+    """One libBulletML runner: its action list, stack, clock and ``sequence`` memory."""
+
+    __slots__ = ("pattern", "nodes", "next_node", "stack", "act_turn", "prev_dir", "prev_spd", "params")
+
+    def __init__(self, pattern, nodes, params: tuple[float, ...]):
+        self.pattern, self.nodes, self.next_node, self.params = pattern, nodes, 0, params
+        self.stack: list = []
+        self.act_turn: int | None = None
+        self.prev_dir: float | None = None  # sequence direction: the last fire's, or unset
+        self.prev_spd: float | None = None
+
+    def run(self, eng, movers: Movers, row: int, now: int) -> int:
+        """Run this frame's commands; returns the frame at which it must run next."""
+        if self.act_turn is None:
+            self.act_turn = now
+        if not self.stack:
+            if self.next_node >= len(self.nodes):
+                return NEVER
+            self._enter(eng, self.nodes[self.next_node], self.params)
+            self.next_node += 1
+        steps = 0
+        stack = self.stack
+        while stack and self.act_turn <= now:
+            steps += 1
+            if steps > MAX_STEPS_PER_FRAME:
+                return now + 1  # a hostile loop: resume next frame, never hang
+            top = stack[-1]
+            if type(top) is _Rep:
+                if top.left > 0:
+                    top.left -= 1
+                    self._enter(eng, top.body, top.params)
+                else:
+                    stack.pop()
+                continue
+            if top.i >= len(top.commands):
+                stack.pop()
+                continue
+            cmd = top.commands[top.i]
+            top.i += 1
+            self._do(eng, movers, row, cmd, top.params)
+        if stack or self.next_node < len(self.nodes):
+            return max(self.act_turn, now + 1)
+        return NEVER
+
+    # -- helpers ------------------------------------------------------------------------
+    def _enter(self, eng, node, params) -> None:
+        if type(node) is ActionRef:
+            params = eng.eval_params(node.params, params)
+            node = self.pattern.actions[node.label]
+        self.stack.append(_Seq(node.commands, params))
+
+    def _speed(self, eng, spd: Speed, params, movers: Movers, row: int) -> float:
+        v = eng.eval(spd.expr, params)
+        if spd.kind is SpeedKind.RELATIVE:
+            v += float(movers.state[row, SPD])
+        elif spd.kind is SpeedKind.SEQUENCE:
+            v = 1.0 if self.prev_spd is None else v + self.prev_spd
+        self.prev_spd = v
+        return v
+
+    def _direction(self, eng, d: Direction, params, movers: Movers, row: int, remember: bool) -> float:
+        v = eng.eval(d.expr, params)
+        aim = d.kind is DirKind.AIM
+        if d.kind is DirKind.ABSOLUTE:
+            if self.pattern.orientation is Orientation.HORIZONTAL:
+                v -= 90.0
+        elif d.kind is DirKind.RELATIVE:
+            v += float(movers.state[row, DIR]) % 360.0
+        elif d.kind is DirKind.SEQUENCE:
+            if self.prev_dir is None:
+                v, aim = 0.0, True  # the first fire of a sequence aims (libBulletML)
+            else:
+                v += self.prev_dir
+        if aim:
+            v += eng.aim(movers, row)
+        v %= 360.0
+        if remember:
+            self.prev_dir = v
+        return v
+
+    def _term(self, eng, expr, params) -> int:
+        return int(eng.eval(expr, params))
+
+    # -- commands -----------------------------------------------------------------------
+    def _do(self, eng, movers: Movers, row: int, cmd, params) -> None:
+        kind = type(cmd)
+        if kind is Fire or kind is FireRef:
+            self._fire(eng, movers, row, cmd, params)
+        elif kind is Wait:
+            frames = int(eng.eval(cmd.frames, params))
+            if frames > 0:
+                self.act_turn += frames
+        elif kind is Repeat:
+            times = min(int(eng.eval(cmd.times, params)), MAX_REPEAT)
+            if times > 0:  # the specification's count; libBulletML would run the body once (docs/PATTERNS.md)
+                self.stack.append(_Rep(cmd.body, times, params))
+        elif kind is Action or kind is ActionRef:
+            self._enter(eng, cmd, params)
+        elif kind is ChangeDirection:
+            term = self._term(eng, cmd.term, params)
+            first = float(movers.state[row, DIR]) % 360.0
+            if cmd.direction.kind is DirKind.SEQUENCE:
+                final = first + eng.eval(cmd.direction.expr, params) * term
+            else:
+                target = self._direction(eng, cmd.direction, params, movers, row, remember=False)
+                space = target - first
+                other = space - 360.0 if space > 0 else space + 360.0
+                final = first + (space if abs(space) < abs(other) else other)  # the shorter way round
+            movers.set_channel(row, DIR, self.act_turn, self.act_turn + term, first, final)
+        elif kind is ChangeSpeed:
+            term = self._term(eng, cmd.term, params)
+            first = float(movers.state[row, SPD])
+            if cmd.speed.kind is SpeedKind.SEQUENCE:
+                final = eng.eval(cmd.speed.expr, params) * term + first
+            else:
+                final = self._speed(eng, cmd.speed, params, movers, row)
+            movers.set_channel(row, SPD, self.act_turn, self.act_turn + term, first, final)
+        elif kind is Accel:
+            self._accel(eng, movers, row, cmd, params)
+        elif kind is Vanish:
+            eng.vanish(movers, row)
+
+    def _accel(self, eng, movers: Movers, row: int, cmd: Accel, params) -> None:
+        term = self._term(eng, cmd.term, params)
+        if self.pattern.orientation is Orientation.HORIZONTAL:
+            axes = ((cmd.vertical, AX, 1.0), (cmd.horizontal, AY, -1.0))
+        else:
+            axes = ((cmd.horizontal, AX, 1.0), (cmd.vertical, AY, 1.0))
+        for spd, ch, sign in axes:
+            if spd is None:
+                continue
+            v = sign * eng.eval(spd.expr, params)
+            first = float(movers.state[row, ch])
+            if spd.kind is SpeedKind.SEQUENCE:
+                final = first + v * term
+            elif spd.kind is SpeedKind.RELATIVE:
+                final = first + v
+            else:
+                final = v
+            movers.set_channel(row, ch, self.act_turn, self.act_turn + term, first, final)
+
+    def _fire(self, eng, movers: Movers, row: int, cmd, params) -> None:
+        pattern = self.pattern
+        if type(cmd) is FireRef:
+            params = eng.eval_params(cmd.params, params)
+            cmd = pattern.fires[cmd.label]
+        speed = direction = None
+        # The fire's speed and direction first, then the bullet's, which win (libBulletML);
+        # each evaluation updates the sequence memory.
+        if cmd.speed is not None:
+            speed = self._speed(eng, cmd.speed, params, movers, row)
+        if cmd.direction is not None:
+            direction = self._direction(eng, cmd.direction, params, movers, row, remember=True)
+        bullet = cmd.bullet
+        if type(bullet) is BulletRef:
+            params = eng.eval_params(bullet.params, params)
+            bullet = pattern.bullets[bullet.label]
+        if bullet.speed is not None:
+            speed = self._speed(eng, bullet.speed, params, movers, row)
+        if bullet.direction is not None:
+            direction = self._direction(eng, bullet.direction, params, movers, row, remember=True)
+        if speed is None:
+            speed = self.prev_spd = 1.0
+        if direction is None:
+            direction = self.prev_dir = eng.aim(movers, row) % 360.0
+        eng.spawn(movers, row, direction, speed, self.pattern, bullet.actions, params)
+
+
+class Runner:
+    """All the threads of one row. ``gone`` is set when the row vanished (an emitter that
+    vanishes stops its pattern)."""
+
+    __slots__ = ("threads", "gone")
+
+    def __init__(self, threads: list[Thread]):
+        self.threads, self.gone = threads, False
+
+    def run(self, eng, movers: Movers, row: int, now: int) -> int:
+        wake = NEVER
+        for t in self.threads:
+            if self.gone:
+                break
+            wake = min(wake, t.run(eng, movers, row, now))
+        return NEVER if self.gone else wake
+
+    def pending(self) -> bool:
+        return not self.gone and any(t.stack or t.next_node < len(t.nodes) for t in self.threads)

@@ -1,0 +1,30 @@
+"""Difficulty in the guns: patterns fire as written at Normal, more often and faster above."""
+
+import pytest
+
+from broadsword.data.levels import FireKind, FireSpec
+from broadsword.sim.rank import RankedFire, rate_factor, speed_factor
+
+RING = FireSpec(pattern=FireKind.RING, speed=100.0, every=1.0, shots=12)
+
+
+def test_normal_fires_the_level_as_written():
+    assert RankedFire(0.5).of(RING) is RING
+
+
+@pytest.mark.parametrize("rank", [0.0, 0.2, 0.75, 1.0])
+def test_each_rank_scales_rate_and_speed(rank):
+    out = RankedFire(rank).of(RING)
+    assert out.every == pytest.approx(1.0 / rate_factor(rank)) and out.speed == pytest.approx(100.0 * speed_factor(rank))
+    assert (out.shots, out.pattern) == (RING.shots, RING.pattern)
+
+
+def test_higher_ranks_are_harder_and_silence_stays_silent():
+    easy, lunatic = RankedFire(0.2).of(RING), RankedFire(1.0).of(RING)
+    assert easy.every > RING.every > lunatic.every and easy.speed < RING.speed < lunatic.speed
+    assert RankedFire(1.0).of(FireSpec()) == FireSpec()
+
+
+def test_a_rank_outside_0_to_1_is_refused():
+    with pytest.raises(ValueError, match="rank"):
+        RankedFire(1.5)
