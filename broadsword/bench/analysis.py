@@ -449,13 +449,13 @@ def fidelity(quick: bool = False) -> dict:
     For every shape of every shipped ``*.armature.toml`` (frame 0; the player's graze shape
     is its own row), the sprite PNG is read with pygame; a pixel is opaque when its alpha is
     at least 128. The shape is rasterised on the same pixel grid
-    (:func:`broadsword.collision.outline.shape_fit`: pixel centres, around the sprite centre
+    (:func:`broadsword.authoring.shape_fit`: pixel centres, around the sprite centre
     at (width/2, height/2), +y down, even-odd rule; overhang counts as shape). Per row:
     ``area_ratio`` = armature pixels / opaque pixels, ``iou`` = intersection over union,
     ``on_opaque`` = the fraction of armature pixels that are opaque, and ``coverage`` = the
     fraction of opaque pixels inside the armature. ``quick`` changes nothing (it is cheap).
     """
-    from ..collision.outline import ALPHA_THRESHOLD, opaque_mask, shape_fit
+    from ..authoring import ALPHA_THRESHOLD, opaque_mask, shape_fit
     from ..data import data_dir, load_armatures
     from ..game.authoring import sprite_alpha
 

@@ -8,14 +8,14 @@
 ``PATH`` is an armature file (its sprite is the PNG it names, beside it), or a sprite PNG:
 then the editor opens ``<stem>.armature.toml`` beside it, or, if there is none, starts a new
 one whose ``hit`` shape (one per frame of a strip of ``--frames N``) is traced from the
-sprite's alpha (:func:`broadsword.collision.outline.generate_armature`, at most 8 vertices,
+sprite's alpha (:func:`broadsword.authoring.generate_armature`, at most 8 vertices,
 no inset; an 8 px box around the centre for a sprite with no opaque pixel). Nothing is written
 until Ctrl+S.
 
 The window shows the sprite zoomed (integer zoom) with every shape of the current frame drawn
 over it, the active one bright with vertex handles, and a panel with the active shape's
 vertex count, area, the share of it over opaque pixels, the share of the sprite's opaque
-pixels it covers, and its IoU (:func:`broadsword.game.authoring.fit_of`).
+pixels it covers, and its IoU (:func:`broadsword.authoring.fit_of`).
 
 Mouse: left-drag a vertex to move it; left-click an edge to insert a vertex there (and drag
 it); left-drag inside the shape, or Shift+left-drag anywhere, to move the whole shape;
@@ -61,10 +61,12 @@ import numpy as np
 import pygame
 
 from ..collision import Armature, ArmatureSet, LayerTable, Pipeline, point_in_polygon
-from ..collision.outline import ShapeFit, generate_armature, opaque_mask
+from ..authoring import ShapeFit, generate_armature, opaque_mask
 from ..data import DataError, data_dir, load_armature_file
 from ..data.armatures import COORD_MAX, FRAMES_MAX, SUFFIX, VERTICES_MAX, save_armature_file
-from .authoring import fit_of, sprite_alpha
+from ..authoring.fit import fit_of
+from ..authoring.frames import split_frames
+from .images import image_alpha, load_image
 from .text import wrap_text
 
 Point = tuple[float, float]
@@ -79,6 +81,7 @@ PANEL_W = 300
 MARGIN = 28  # screen px kept free around the fitted drawing
 ZOOM_MAX = 64
 SCALED_MAX = 4096  # the zoomed sprite is at most this many screen px on a side
+FRAME_SIDE_MAX = SCALED_MAX  # a larger frame is refused with a one-line error (it could not be drawn at 1x)
 GRID_ZOOM = 6  # draw the pixel grid from this zoom up
 HANDLE = 5  # a vertex handle is a (2 * HANDLE + 1) px square
 PICK_VERTEX = 9.0  # screen px: a press this close to a vertex takes the vertex
@@ -161,11 +164,14 @@ class Document:
     new: bool = False
 
 
-def _load_image(png: Path) -> pygame.Surface:
-    try:
-        return pygame.image.load(str(png))
-    except (pygame.error, OSError, FileNotFoundError) as exc:
-        raise DataError(png, "", f"cannot load image: {exc}") from None
+def _load_image(png: Path, frames: int) -> pygame.Surface:
+    """The sprite strip ``png`` of ``frames`` frames; :class:`DataError` if it cannot be read
+    or a frame is larger than the editor shows (``FRAME_SIDE_MAX`` px a side)."""
+    image = load_image(png)
+    w, h = image.get_width() // frames, image.get_height()
+    if max(w, h) > FRAME_SIDE_MAX:
+        raise DataError(png, "", f"a {w} x {h} px frame is too large for the editor (at most {FRAME_SIDE_MAX} px a side)")
+    return image
 
 
 def load_document(path: str | Path) -> Document:
@@ -176,9 +182,10 @@ def load_document(path: str | Path) -> Document:
     png = path.parent / f.sprite
     if not png.is_file():
         raise DataError(path, "sprite", f"no image {f.sprite} beside it")
-    alphas = sprite_alpha(png, len(f.frames))
+    image = _load_image(png, len(f.frames))
+    alphas = split_frames(image_alpha(image), len(f.frames), png)
     frames = tuple(dict(d) for d in f.drawn)
-    return Document(path, f.name, f.sprite, frames, f.frame_time, f.header, _load_image(png), alphas)
+    return Document(path, f.name, f.sprite, frames, f.frame_time, f.header, image, alphas)
 
 
 def _file_name(stem: str) -> str:
@@ -198,7 +205,8 @@ def new_document(png: str | Path, frames: int = 1) -> Document:
         raise DataError(png, "frames", f"must be a whole number from 1 to {FRAMES_MAX}")
     if not png.is_file():
         raise DataError(png, "", "no such file")
-    alphas = sprite_alpha(png, frames)
+    image = _load_image(png, frames)
+    alphas = split_frames(image_alpha(image), frames, png)
     name = _file_name(png.stem)
     sets = []
     for alpha in alphas:
@@ -210,7 +218,7 @@ def new_document(png: str | Path, frames: int = 1) -> Document:
             pts = ((-h, -h), (h, -h), (h, h), (-h, h))
         sets.append({"hit": pts})
     return Document(png.with_name(png.stem + SUFFIX), name, png.name, tuple(sets), 0.1, "",
-                    _load_image(png), alphas, new=True)
+                    image, alphas, new=True)
 
 
 def open_document(path: str | Path, frames: int = 1) -> Document:
@@ -918,10 +926,8 @@ class Editor:
         img = self._checker.get(self.zoom)
         if img is None:
             w, h = self.frame_size
-            small = pygame.Surface((w, h))
-            for y in range(h):
-                for x in range(w):
-                    small.set_at((x, y), CHECKER[(x // 2 + y // 2) % 2])
+            odd = ((np.arange(w)[:, None] // 2 + np.arange(h)[None, :] // 2) % 2).astype(bool)  # (W, H)
+            small = pygame.surfarray.make_surface(np.where(odd[..., None], CHECKER[1], CHECKER[0]).astype(np.uint8))
             self._checker = {self.zoom: pygame.transform.scale(small, (w * self.zoom, h * self.zoom))}
             img = self._checker[self.zoom]
         return img

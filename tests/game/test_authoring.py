@@ -120,3 +120,54 @@ def test_generate__shipped_sprites_fit_well(tmp_path, name, capsys):
     fit = fit_of(f.armature.vertices, sprite_alpha(png)[0])
     assert fit.iou > 0.8, fit
     assert np.isfinite(f.armature.area)
+
+
+def test_generate__a_strip_without_frames_warns_and_check_flags_the_file(tmp_path, capsys):
+    """The shipped wasp is a strip of 2 frames: traced as one, the tool says so, and check fails."""
+    png = copy_sprite(tmp_path, "wasp")
+    assert main(["armature", "generate", str(png)]) == 0
+    out, err = capsys.readouterr()
+    assert err.count("\n") == 1 and err.startswith("broadsword: warning: ") and "wasp.png" in err
+    assert "strip of 2 frames" in err and "--frames 2" in err
+    assert len(load_armature_file(tmp_path / "wasp.armature.toml").frames) == 1
+    assert main(["armature", "check", str(tmp_path)]) == 1
+    out, err = capsys.readouterr()
+    assert "wasp.armature.toml: frames: one frame, but wasp.png looks like a strip of 2 frames" in out
+    assert "1 invalid file(s)" in err
+    # With --frames 2 (the file is replaced), no warning and check passes.
+    (tmp_path / "wasp.armature.toml").unlink()
+    assert main(["armature", "generate", str(png), "--frames", "2"]) == 0
+    assert capsys.readouterr().err == ""
+    assert main(["armature", "check", str(tmp_path)]) == 0
+
+
+def write_png_bytes(path, data: bytes):
+    path.write_bytes(data)
+    return path
+
+
+def zero_png(path):
+    import struct
+    import zlib
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+
+    return write_png_bytes(path, b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 0, 0, 8, 6, 0, 0, 0))
+                           + chunk(b"IDAT", zlib.compress(b"")) + chunk(b"IEND", b""))
+
+
+@pytest.mark.parametrize("kind", ["zero", "garbage", "truncated"])
+def test_generate__a_broken_png_prints_only_our_line(tmp_path, capfd, kind):
+    """Checked at the file descriptor: libpng's own lines never reach standard error."""
+    path = tmp_path / "bad.png"
+    if kind == "zero":
+        zero_png(path)
+    elif kind == "garbage":
+        write_png_bytes(path, b"\x89PNG\r\n\x1a\n" + b"garbage" * 10)
+    else:  # a real sprite cut short: the header is fine, the image data is not
+        write_png_bytes(path, (SPRITES / "scout.png").read_bytes()[:80])
+    assert main(["armature", "generate", str(path)]) == 2
+    out, err = capfd.readouterr()
+    assert err.count("\n") == 1 and err.startswith(f"broadsword: {path}: cannot load image: "), err
+    assert "libpng" not in err.split("cannot load image")[0]

@@ -528,3 +528,52 @@ def test_render_to_png(open_editor, tmp_path):
     # The picture holds the probe in its state's colour and the selected handle filled.
     assert tuple(shot.get_at(at(ed, *ed.probe_pos)))[:3] == (PROBE_HIT if ed.probe_hit else PROBE_CLEAR)
     assert tuple(shot.get_at(at(ed, *ed.points[2])))[:3] == ed.colours["hit"]
+
+
+# ---------------------------------------------------------------------- degenerate sprites
+def solid_png(path, w, h):
+    surf = pygame.Surface((w, h), pygame.SRCALPHA)
+    surf.fill((200, 180, 60, 255))
+    pygame.image.save(surf, str(path))
+    return path
+
+
+@pytest.mark.parametrize(("size", "why"), [
+    ((1, 100000), "a 1 x 100000 px image is too large for a sprite"),
+    ((100000, 1), "a 100000 x 1 px image is too large for a sprite"),
+    ((1, 5000), "a 1 x 5000 px frame is too large for the editor (at most 4096 px a side)"),
+])
+def test_main__a_huge_sprite_is_a_one_line_error(tmp_path, capfd, size, why):
+    png = solid_png(tmp_path / "long.png", *size)
+    assert cli_main(["edit", str(png)]) == 2
+    err = capfd.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"broadsword: {png}: ") and why in err, err
+
+
+def test_a_long_thin_sprite_within_the_limit_opens_and_draws(open_editor, tmp_path):
+    png = solid_png(tmp_path / "thin.png", 1, 4000)
+    ed = open_editor(path=png)
+    assert ed.zoom == 1 and ed.frame_size == (1, 4000)
+    assert ed.points == ((0.5, -2000.0), (0.5, 2000.0), (-0.5, 2000.0), (-0.5, -2000.0))
+    ed.frame()  # drawn again: nothing raises
+
+
+@pytest.mark.parametrize("kind", ["zero", "garbage", "truncated"])
+def test_main__a_corrupt_or_empty_png_prints_only_our_line(tmp_path, capfd, kind):
+    import struct
+    import zlib
+
+    def chunk(k, body):
+        return struct.pack(">I", len(body)) + k + body + struct.pack(">I", zlib.crc32(k + body))
+
+    png = tmp_path / "bad.png"
+    if kind == "zero":
+        png.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 0, 0, 8, 6, 0, 0, 0))
+                        + chunk(b"IDAT", zlib.compress(b"")) + chunk(b"IEND", b""))
+    elif kind == "garbage":
+        png.write_bytes(b"\x89PNG\r\n\x1a\n" + b"garbage" * 10)
+    else:
+        png.write_bytes((SPRITES / "scout.png").read_bytes()[:80])
+    assert cli_main(["edit", str(png)]) == 2
+    err = capfd.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"broadsword: {png}: cannot load image: "), err

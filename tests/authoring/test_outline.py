@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from broadsword.collision import Armature
-from broadsword.collision.outline import (
+from broadsword.authoring import (
     dilate,
     erode,
     generate_armature,
@@ -18,7 +18,7 @@ from broadsword.collision.outline import (
     simplify_polygon,
     trace_outline,
 )
-from broadsword.collision.pixels import rasterise
+from broadsword.collision import rasterise
 
 
 def ring_u(h=24, w=24) -> np.ndarray:
