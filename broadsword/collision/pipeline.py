@@ -134,7 +134,7 @@ class Pipeline:
         clock = time.perf_counter
 
         t0 = clock()
-        swept = objects.swept if objects.swept.any() else None
+        swept = objects.swept if objects.swept is not None and objects.swept.any() else None
         posed = pose_checked(self.armatures, objects.armature, objects.positions, objects.angles, self.rotation,
                              objects.prev_positions, objects.prev_angles, swept, vertices=self.needs_vertices,
                              workspace=self.workspace)
@@ -157,7 +157,9 @@ class Pipeline:
         for tier in self.tiers[1:]:
             t0 = clock()
             n_in = len(pairs)
-            pairs = pairs[TIERS[tier].keep(inp, pairs)]
+            keep = TIERS[tier].keep
+            assert keep is not None  # check_tiers: only the first tier is a broad phase
+            pairs = pairs[keep(inp, pairs)]
             stats.append(TierStats(tier.value, n_in, len(pairs), (clock() - t0) * 1e3))
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs

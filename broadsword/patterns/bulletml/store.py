@@ -33,6 +33,19 @@ class Movers:
     frame); ``tag`` (n,) int64 (the owner's tag, copied to every bullet it fires).
     """
 
+    # The columns, bound by _bind() (declared for type checkers; shapes in the docstring).
+    pos: np.ndarray
+    state: np.ndarray
+    wake: np.ndarray
+    ch_on: np.ndarray
+    ch_x0: np.ndarray
+    ch_x1: np.ndarray
+    ch_y0: np.ndarray
+    ch_y1: np.ndarray
+    runner: np.ndarray
+    dead: np.ndarray
+    tag: np.ndarray
+
     _COLUMNS = {"pos": ((2,), np.float64), "state": ((4,), np.float64), "wake": ((), np.int64),
                 "ch_on": ((4,), bool), "ch_x0": ((4,), np.int64), "ch_x1": ((4,), np.int64),
                 "ch_y0": ((4,), np.float64), "ch_y1": ((4,), np.float64), "runner": ((), object),
