@@ -28,14 +28,12 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "dev"))
 
 #: Test modules (paths under tests/) marked ``quick``: fast and covering each layer.
 QUICK = (
-    "collision/test_predicates.py",
     "collision/test_armature.py",
     "collision/test_posing.py",
     "collision/test_arguments.py",
     "data/test_data.py",
     "sim/test_player.py",
     "sim/test_waves.py",
-    "test_cli.py",
     "test_packaging.py",
     "test_userdata.py",
     "game/test_scores.py",
@@ -47,7 +45,7 @@ _HERE = os.path.dirname(os.path.abspath(__file__))
 def pytest_collection_modifyitems(config, items):
     quick = {os.path.join(_HERE, *m.split("/")) for m in QUICK}
     for item in items:
-        if str(item.path) in quick and "every_level" not in item.name:
+        if str(item.path) in quick:
             item.add_marker(pytest.mark.quick)
 
 
