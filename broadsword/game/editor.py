@@ -339,7 +339,7 @@ class Editor:
         self.probe_hit: bool | None = None  # None while the probe is hidden
         self.probe = self._probe_armature()
         self._probe_table = LayerTable(("shape", "probe"), [("shape", "probe")])
-        self._probe_key = None
+        self._probe_key: tuple[Points, Point] | None = None
         self._pipeline_key: Points | None = None
         self._pipeline: Pipeline | None = None
         self._armatures: dict[tuple[str, Points], Armature] = {}
@@ -662,6 +662,7 @@ class Editor:
             self.selected = hover.index
             self.drag = Drag("vertex", here, pos, self.points, self.frames, hover.index)
         elif hover.kind == "edge":
+            assert hover.point is not None  # an edge hover always says where the vertex would go
             self.insert_vertex(hover.index, hover.point, pos)
         else:
             other = self._other_shape_at(pos, inside=hover.kind != "inside")
@@ -707,6 +708,7 @@ class Editor:
 
     def _try_drag(self, cand: Points) -> None:
         d = self.drag
+        assert d is not None  # called while dragging
         if cand == self.points:
             d.rejected = None
             return
@@ -879,6 +881,7 @@ class Editor:
         if self._pipeline_key != pts:  # the shape changed: a new armature set (cheap)
             self._pipeline = Pipeline(ArmatureSet([self.armature(pts), self.probe]), self._probe_table)
             self._pipeline_key = pts
+        assert self._pipeline is not None  # built above for this shape
         result = self._pipeline.step(np.array([0, 1]), np.array([0, 1]),
                                      np.array([[0.0, 0.0], self.probe_pos], dtype=np.float64), np.zeros(2))
         self.probe_hit = bool(len(result.hits))
@@ -983,7 +986,7 @@ class Editor:
         d = self.drag
         if d is not None and d.rejected is not None:
             pygame.draw.lines(win, REJECTED, True, self._screen_points(d.rejected), 1)
-        if self.hover.kind == "edge" and d is None:
+        if self.hover.kind == "edge" and d is None and self.hover.point is not None:
             px, py = self.to_screen(*self.hover.point)
             pygame.draw.circle(win, SELECTED, (round(px), round(py)), HANDLE, 1)
             pygame.draw.line(win, SELECTED, (px - 3, py), (px + 3, py))
@@ -1000,7 +1003,7 @@ class Editor:
             else:
                 pygame.draw.rect(win, HANDLE_FILL, r)
                 pygame.draw.rect(win, colour, r, 2)
-        for i in {self.selected, hovered} - {None}:
+        for i in {j for j in (self.selected, hovered) if j is not None}:
             if i < len(screen):
                 label = self.small.render(str(i), True, SELECTED)
                 win.blit(label, (round(screen[i][0]) + HANDLE + 3, round(screen[i][1]) - HANDLE - 12))
