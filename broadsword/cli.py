@@ -5,6 +5,7 @@
     broadsword --headless --level LEVEL --frames N --seed S --autopilot
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
+    broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
     broadsword --list-levels
     broadsword --version
     broadsword edit PATH                         the armature editor (broadsword.game.editor)
@@ -69,8 +70,9 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
                     help="--headless: steps to run, >= 0 (default 600, or the recording's)")
     ap.add_argument("--record", metavar="FILE", help="save the inputs of the run to FILE (a recording)")
     ap.add_argument("--replay", metavar="FILE",
-                    help="play a recording's inputs instead of the keyboard or autopilot (--headless: check its hash)")
-    ap.add_argument("--list-levels", action="store_true", help="print the shipped levels, one a line, and exit")
+                    help="play a recording's inputs and toggles: on screen (watch it, with pause, F2 step and the "
+                         "overlay), or with --headless check its hashes")
+    ap.add_argument("--list-levels", action="store_true", help="print the shipped stages in play order, one a line (name, then title), and exit")
     ap.add_argument("--mute", action="store_true", help="start with sound off")
     ap.add_argument("--lab", nargs="?", type=lab_size, const=(100, 2000), metavar="E,B",
                     help="show the benchmark's reference scene (E >= 1 ships, B >= 0 bullets; default 100,2000) "
@@ -134,9 +136,7 @@ def _run_play(args: argparse.Namespace) -> int:
     retain_heap()  # the application's call: keep the heap between frames (docs/PERFORMANCE.md)
     try:
         if args.list_levels:
-            for name in list_levels():
-                print(name)
-            return 0
+            return _list_levels()
         replay = load_recording(args.replay) if args.replay else None
         if replay and (args.rotation or args.level or args.difficulty):
             print("broadsword: --replay plays the recording's own level and settings; "
@@ -164,21 +164,43 @@ def _run_play(args: argparse.Namespace) -> int:
         return 2
 
 
+def _list_levels() -> int:
+    """One stage a line, in play order: its name, then its title."""
+    from .data import load_level, resolve_level
+
+    names = list_levels()
+    width = max((len(n) for n in names), default=0)
+    for name in names:
+        print(f"{name:<{width}}  {load_level(resolve_level(name)).title}")
+    return 0
+
+
 def _play(level, seed_, args, replay) -> int:
     import pygame
 
     from .game.app import App
     from .game.quiet import filtered_stderr
+    from .game.window import NoDisplay
 
     try:
         with filtered_stderr():  # pygame.init() probes for audio; no sound card: 8 ALSA lines
-            app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab)
-    except pygame.error as exc:  # no display: say so in one line, not a traceback
+            app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab,
+                      difficulty=Difficulty(args.difficulty) if args.difficulty else None)
+    except NoDisplay as exc:  # no display: say so and point at --headless, never run invisibly
+        print(f"broadsword: {exc}", file=sys.stderr)
+        return 1
+    except pygame.error as exc:  # a display that will not open: one line, not a traceback
         print(f"broadsword: cannot open a window ({exc}); --headless runs without one", file=sys.stderr)
         return 1
     if args.mute:
         app.audio.toggle_mute()
-    if level is not None and args.lab is None and app.error is None:
+    if replay is not None:
+        try:
+            app.watch_replay(replay, args.replay)  # watch it: the recorded inputs drive the world
+        except DataError:
+            app.close()
+            raise
+    elif level is not None and args.lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
     if args.record and app.recorder is not None:

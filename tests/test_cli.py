@@ -9,7 +9,7 @@ import sys
 import pytest
 
 from broadsword.cli import main
-from broadsword.data import list_levels
+from broadsword.data import list_levels, load_level, resolve_level
 
 
 def run(args, capsys):
@@ -62,7 +62,10 @@ def test_record_and_replay__same_hash(tmp_path, capsys):
 
 def test_list_levels(capsys):
     code, out, _ = run(["--list-levels"], capsys)
-    assert code == 0 and out.split() == list_levels()
+    lines = out.splitlines()
+    assert code == 0 and [line.split()[0] for line in lines] == list_levels()  # play order, the name first
+    for line, name in zip(lines, list_levels()):  # then the title, as the level file gives it
+        assert line[len(name):].strip() == load_level(resolve_level(name)).title
 
 
 def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):

@@ -90,6 +90,11 @@ class Renderer:
             surf.blit(veil, (0, 0))
             self.flash -= 1
 
+    def draw_idle(self, surf: pygame.Surface, theme: Theme = Theme.DEEP_SPACE) -> None:
+        """The backdrop alone, moving, for the screens drawn without a world (title, options)."""
+        self.tick += 1
+        self.background(surf, self.tick, theme)
+
     def background(self, surf, t: float, theme: Theme = Theme.DEEP_SPACE) -> None:
         """The stage's backdrop at time ``t`` (steps): its theme's clouds, features and stars."""
         if self.backdrop is None or self.backdrop.theme is not theme:

@@ -12,6 +12,9 @@ from broadsword.collision import polygons_collide, pose
 from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.game.app import App
+from broadsword.game.run import Run, Stage
+from broadsword.game.scenes import Pause, Play, Title
+from broadsword.game.scenes.lab import LabScene
 from broadsword.game.scores import HighScores
 from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim import DT, World
@@ -30,10 +33,10 @@ def app(tmp_path):
 def quiet(app: App, waves=(LATE,)) -> World:
     """Start play in an emptied first level (plus ``waves``), past the spawn grace period."""
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)
-    app.start_run()
-    app.world = World(level, app.bank.armatures, seed=1)
-    app.world.player.invulnerable = 0.0
-    return app.world
+    world = World(level, app.bank.armatures, seed=1)
+    app.play_stage(Stage(world, "1-picket", ""), Run(0))
+    world.player.invulnerable = 0.0
+    return world
 
 
 def key(app, k, down=True):
@@ -46,10 +49,10 @@ def frames(app, n):
 
 
 def test_app__title_then_play(app):
-    assert app.scene == "title"
+    assert isinstance(app.scene, Title)
     key(app, pygame.K_RETURN)
     frames(app, 1)
-    assert app.scene == "play" and app.world is not None
+    assert isinstance(app.scene, Play) and app.world is not None
 
 
 def test_app__player_moves_and_fires(app):
@@ -117,16 +120,16 @@ def test_app__pause_stops_the_world_and_f2_steps(app):
     frames(app, 5)
     key(app, pygame.K_ESCAPE)
     frames(app, 1)
-    assert app.scene == "paused"
+    assert isinstance(app.scene, Pause)
     frame, x = w.frame, w.player.pos[0]
     frames(app, 20)
     assert (w.frame, w.player.pos[0]) == (frame, x)
     key(app, pygame.K_F2)
     frames(app, 1)
-    assert w.frame == frame + 1 and app.scene == "paused"
+    assert w.frame == frame + 1 and isinstance(app.scene, Pause)
     key(app, pygame.K_p)
     frames(app, 3)
-    assert app.scene == "play" and w.frame > frame + 1
+    assert isinstance(app.scene, Play) and w.frame > frame + 1
 
 
 def test_app__overlay_draws_grid_and_armatures(app):
@@ -197,7 +200,7 @@ class StubPad:
 
 def test_app__gamepad_moves_and_fires(app):
     w = quiet(app)
-    app.pad = StubPad()
+    app.controls.pad = StubPad()
     x0, y0 = w.player.pos
     frames(app, 20)
     assert w.player.pos[0] < x0 and w.player.pos[1] < y0 and w.player_bullets.n > 0
@@ -206,13 +209,14 @@ def test_app__gamepad_moves_and_fires(app):
 def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
     app = App(audio=False, scores=HighScores(tmp_path / "s.json"), lab=(20, 200))
     frames(app, 3)
-    assert app.scene == "lab" and app.lab.frame == 3 and app.overlay.visible
-    assert [s.name for s in app.lab.last.stats][:3] == ["layers", "pose", "bins"]
+    assert isinstance(app.scene, LabScene) and app.scene.lab.frame == 3 and app.overlay.visible
+    lab = app.scene.lab
+    assert [s.name for s in lab.last.stats][:3] == ["layers", "pose", "bins"]
     key(app, pygame.K_t)  # next tier mix
     key(app, pygame.K_F4)  # rotation
     frames(app, 1)
-    assert app.lab.pipeline.tiers == ("bins", "circle", "armature") and app.lab.pipeline.rotation == "exact"
-    grid = app.lab.last.broad.layout
+    assert lab.pipeline.tiers == ("bins", "circle", "armature") and lab.pipeline.rotation == "exact"
+    grid = lab.last.broad.layout
     img = pygame.surfarray.array3d(app.screen)
     gx = int(round(grid.origin[0] + grid.size))
     assert (img[gx, 300:700] == (50, 80, 130)).all(axis=1).any()  # grid lines drawn

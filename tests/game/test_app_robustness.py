@@ -20,6 +20,7 @@ from broadsword.game.app import (
     App,
     wrap_text,
 )
+from broadsword.game.scenes import Pause, Play, Results, Title
 from broadsword.game.scores import Entry, HighScores
 from broadsword.sim import DT
 
@@ -118,7 +119,7 @@ def test_broken_custom_level__title_shows_the_error_and_play_goes_on(tmp_path, s
     app = App(start_level=str(path), seed=1, audio=False, scores=scores)
     key(pygame.K_RETURN)
     frames(app)
-    assert app.scene == "title" and app.world is None
+    assert isinstance(app.scene, Title) and app.world is None
     assert app.error == expected_error(path) and "player.speed" in app.error
     assert capsys.readouterr().err.strip() == f"broadsword: {app.error}"
     assert error_bands(app)  # drawn
@@ -127,7 +128,7 @@ def test_broken_custom_level__title_shows_the_error_and_play_goes_on(tmp_path, s
     path.write_text(picket.replace("[player]\n", "[player]\nspeed = 300\n"))
     key(pygame.K_RETURN)
     frames(app)
-    assert app.scene == "play" and app.world.level.player.speed == 300 and app.error is None
+    assert isinstance(app.scene, Play) and app.world.level.player.speed == 300 and app.error is None
     assert not error_bands(app)
     pygame.quit()
 
@@ -136,11 +137,11 @@ def test_broken_custom_level__left_right_goes_back_to_the_shipped_levels(tmp_pat
     app = App(start_level=str(broken_level(tmp_path)), seed=1, audio=False, scores=scores)
     key(pygame.K_RETURN)
     frames(app)
-    assert app.scene == "title" and app.error
+    assert isinstance(app.scene, Title) and app.error
     key(pygame.K_RIGHT)
     key(pygame.K_RETURN)
     frames(app)
-    assert app.custom_level is None and app.scene == "play"
+    assert app.custom_level is None and isinstance(app.scene, Play)
     assert app.world.level.name == app.levels[0] and app.error is None
     pygame.quit()
 
@@ -148,13 +149,13 @@ def test_broken_custom_level__left_right_goes_back_to_the_shipped_levels(tmp_pat
 def test_missing_level_file__no_exception_at_start_and_the_title_says_why(tmp_path, scores, capsys):
     missing = tmp_path / "nope" / "missing.toml"
     app = App(start_level=str(missing), seed=1, audio=False, scores=scores)
-    assert app.scene == "title" and app.error is not None
+    assert isinstance(app.scene, Title) and app.error is not None
     assert str(missing) in app.error and "no such level file" in app.error
     frames(app)
     assert error_bands(app)
     key(pygame.K_RETURN)  # trying again fails the same way, and stays on the title
     frames(app)
-    assert app.scene == "title" and str(missing) in app.error
+    assert isinstance(app.scene, Title) and str(missing) in app.error
     assert len(capsys.readouterr().err.strip().splitlines()) == 2  # one line per attempt
     pygame.quit()
 
@@ -166,7 +167,7 @@ def test_level_needing_an_unloaded_armature__error_names_the_file(tmp_path, scor
     app = App(start_level=str(path), seed=1, audio=False, scores=scores)
     assert app.start_run() is False
     frames(app)
-    assert app.scene == "title" and app.world is None
+    assert isinstance(app.scene, Title) and app.world is None
     assert app.error.startswith(f"{path}: ") and "nosuch" in app.error
     assert error_bands(app)
     pygame.quit()
@@ -177,10 +178,10 @@ def test_next_level_broken_mid_run__back_to_the_title_with_the_error(tmp_path, a
     app.levels = [app.levels[0], str(bad)]  # a level list entry may be a path, as resolve_level allows
     assert app.start_run() is True
     frames(app, 3)
-    app.scene = "complete"  # as World reports when the last wave and boss are done
+    app.stack.push(Results(app, app.play))  # as play does when the last wave and boss are done
     key(pygame.K_RETURN)
     frames(app)
-    assert app.scene == "title" and app.world is None and app.run_state is None
+    assert isinstance(app.scene, Title) and app.world is None and app.play is None
     assert app.error == expected_error(bad)
     assert error_bands(app)
 
@@ -196,7 +197,7 @@ def test_error_panel__draws_the_message_wrapped_and_nothing_without_one(tmp_path
     app.error = f"{long_path}: wave[3].fire.bullet_speed: must lie in [10, 2000], got 5000"
     frames(app)
     long = error_bands(app)
-    assert len(long) == len(wrap_text(app.error, app.font, ERROR_WRAP)) >= 3
+    assert len(long) == len(wrap_text(app.error, app.painter.font(), ERROR_WRAP)) >= 3
     # Different text, different pixels: the message itself is drawn, not a fixed picture.
     before = pygame.surfarray.array3d(app.screen)[:, long[0][0] : long[0][1] + 1].copy()
     app.error = app.error.replace("wave[3]", "wave[4]").replace("deep", "DEEP")
@@ -223,9 +224,9 @@ def test_play__broken_level_opens_the_game_on_the_title(tmp_path, monkeypatch, c
     bad = broken_level(tmp_path)
     monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
     seen = []
-    monkeypatch.setattr(App, "run", lambda self: seen.append((self.scene, self.error, self.world)))
+    monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.error, self.world)))
     assert cli.main(["--level", str(bad), "--mute"]) == 0
-    assert seen == [("title", expected_error(bad), None)]
+    assert seen == [(Title, expected_error(bad), None)]
     assert capsys.readouterr().err.strip() == f"broadsword: {expected_error(bad)}"
     pygame.quit()
     # The headless command still ends with status 2 and one line.
@@ -237,10 +238,10 @@ def test_play__broken_level_opens_the_game_on_the_title(tmp_path, monkeypatch, c
 def test_play__missing_level_opens_the_game_on_the_title(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
     seen = []
-    monkeypatch.setattr(App, "run", lambda self: seen.append((self.scene, self.error)))
+    monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.error)))
     missing = tmp_path / "missing.toml"
     assert cli.main(["--level", str(missing), "--mute"]) == 0
-    assert seen == [("title", f"{missing}: no such level file")]
+    assert seen == [(Title, f"{missing}: no such level file")]
     assert len(capsys.readouterr().err.strip().splitlines()) == 1  # said once, not once per attempt
     pygame.quit()
 
@@ -253,12 +254,13 @@ def post(kind):
 @pytest.mark.parametrize("kind", [pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN, pygame.WINDOWFOCUSLOST])
 def test_window_away__pauses_play_and_forgets_held_keys(app, kind):
     app.start_run()
+    post(pygame.WINDOWFOCUSGAINED)  # the player's window had the focus
     key(pygame.K_LEFT)
     frames(app, 3)
-    assert pygame.K_LEFT in app.keys
+    assert pygame.K_LEFT in app.controls.held
     post(kind)
     frames(app)
-    assert app.scene == "paused" and not app.keys
+    assert isinstance(app.scene, Pause) and not app.controls.held
     assert app.hidden == (kind != pygame.WINDOWFOCUSLOST)
     frame = app.world.frame
     assert app.frame(30.0) == 0 and app.world.frame == frame  # a long stall while away: nothing moves
@@ -272,34 +274,34 @@ def test_window_back__after_a_long_stall_at_most_max_catch_up_steps(app, kind):
     frames(app)
     post(kind)
     frames(app)
-    assert app.scene == "paused" and not app.hidden  # back, still paused: the player resumes
+    assert isinstance(app.scene, Pause) and not app.hidden  # back, still paused: the player resumes
     key(pygame.K_ESCAPE)
     frames(app)
-    assert app.scene == "play"
+    assert isinstance(app.scene, Play)
     renders = []
     real_render = app.render
     app.render = lambda: (renders.append(app.world.frame), real_render())
     frame = app.world.frame
     assert app.frame(30.0) == MAX_CATCH_UP  # the stall the clock reports once the window is back
     assert app.world.frame == frame + MAX_CATCH_UP and renders == [frame + MAX_CATCH_UP]
-    assert 0.0 <= app.accumulator <= DT  # the backlog is dropped, not carried into the next frames
+    assert 0.0 <= app.play.accumulator <= DT  # the backlog is dropped, not carried into the next frames
     assert app.frame(DT) in (1, 2)
 
 
 def test_window_away__pauses_nothing_outside_play(app):
     post(pygame.WINDOWMINIMIZED)
     frames(app)
-    assert app.scene == "title" and app.hidden
+    assert isinstance(app.scene, Title) and app.hidden
     post(pygame.WINDOWEXPOSED)
     frames(app)
-    assert app.scene == "title" and not app.hidden
+    assert isinstance(app.scene, Title) and not app.hidden
 
 
 @pytest.mark.parametrize("dt", [float("nan"), -1.0])
 def test_frame__nonsense_dt_counts_as_zero(app, dt):
     app.start_run()
     frame = app.world.frame
-    assert app.frame(dt) == 0 and app.world.frame == frame and app.accumulator == 0.0
+    assert app.frame(dt) == 0 and app.world.frame == frame and app.play.accumulator == 0.0
 
 
 def test_render__a_1x1_window_gets_the_field_scaled_to_one_pixel(app):

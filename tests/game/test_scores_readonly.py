@@ -261,9 +261,13 @@ def test_app__read_only_save_shows_a_message_and_the_game_goes_on(tmp_path, read
     app = app_factory(scores=HighScores(path))
     assert app.message is None and app.scores.entries == [entry("OLD", 50)]
 
-    app.final = (5000, False)
-    app._save_score("ME")  # what Enter on the name screen does
-    assert app.scene == "scores"
+    from broadsword.game.scenes import HighScoresScene, NameEntry, Play, Title
+
+    entry_screen = NameEntry(app, 5000, "1-picket")
+    app.stack.push(entry_screen)
+    entry_screen.name = "ME"
+    entry_screen.save()  # what Enter on the name screen does
+    assert isinstance(app.scene, HighScoresScene)
     assert app.message.startswith("could not save high scores: ")
     assert "Read-only file system" in app.message and str(path) in app.message
     assert [(e.name, e.score) for e in app.scores.entries] == [("ME", 5000), ("OLD", 50)]
@@ -273,11 +277,11 @@ def test_app__read_only_save_shows_a_message_and_the_game_goes_on(tmp_path, read
     pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_RETURN, mod=0, unicode="\r",
                                          scancode=0))
     app.frame(0.0)
-    assert app.scene == "title"  # the title shows the message
+    assert isinstance(app.scene, Title)  # the title shows the message
     app.start_run()
-    assert app.scene == "play"
+    assert isinstance(app.scene, Play)
     app.frame(1 / 60)
-    assert app.scene == "play" and app.running
+    assert isinstance(app.scene, Play) and app.running
 
 
 def test_app__corrupt_table_on_read_only_disk_is_reported_on_the_title(
@@ -289,5 +293,7 @@ def test_app__corrupt_table_on_read_only_disk_is_reported_on_the_title(
     assert app.message is not None and str(path) in app.message
     assert app.scores.entries == []
     app.frame(0.0)
-    assert app.scene == "title"
+    from broadsword.game.scenes import Title
+
+    assert isinstance(app.scene, Title)
     assert path.read_bytes() == b"\xff\xfe garbage"

@@ -1,0 +1,308 @@
+"""Keys and gamepad -> actions and the sim's :class:`~broadsword.sim.Input`, through one binding table.
+
+:class:`Bindings` is that table: for each rebindable :class:`Action` (movement, fire, slow,
+bomb, pause), the keys and gamepad buttons that press it. The fixed keys (F1-F4, F11, M,
+Return, Esc) sit in :data:`FIXED_KEYS`, so a rebinding can never lose the way out of a menu.
+:class:`Controls` keeps what is held (keys, the pad) and answers two questions: which
+actions an event presses (menus and toggles), and what the ship is told this frame
+(:meth:`Controls.input`).
+
+Bindings are saved as JSON in the user's data directory (``controls.json`` beside the high
+scores), written atomically; a file that cannot be read or makes no sense falls back to the
+defaults with a one-line ``warning`` the title shows, never a crash.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from enum import Enum, IntEnum
+from pathlib import Path
+
+import pygame
+
+from ..fileio import write_atomic
+from ..sim import Input
+from .scores import data_home
+
+#: The file's format, and its largest sensible size (anything bigger is not a bindings file).
+FORMAT_VERSION = 1
+FILE_MAX_BYTES = 64 << 10
+#: A stick pushed further than this (of 1.0) counts as a direction.
+STICK_DEAD_ZONE = 0.35
+
+
+class Action(Enum):
+    """What a key or button can mean. The first eight are rebindable (:class:`Bindings`)."""
+
+    LEFT = "left"
+    RIGHT = "right"
+    UP = "up"
+    DOWN = "down"
+    FIRE = "fire"
+    SLOW = "slow"
+    BOMB = "bomb"
+    PAUSE = "pause"
+    # fixed (FIXED_KEYS, FIXED_BUTTONS)
+    CONFIRM = "confirm"
+    BACK = "back"
+    OVERLAY = "overlay"
+    STEP = "step"
+    SLOW_MOTION = "slow motion"
+    ROTATION = "rotation"
+    FULLSCREEN = "fullscreen"
+    MUTE = "mute"
+
+    @property
+    def title(self) -> str:
+        return self.value.capitalize()
+
+
+REBINDABLE = (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN, Action.FIRE, Action.SLOW, Action.BOMB,
+              Action.PAUSE)
+
+
+class PadButton(IntEnum):
+    """Gamepad buttons by their SDL joystick index (the XInput layout most pads report)."""
+
+    A = 0
+    B = 1
+    X = 2
+    Y = 3
+    LB = 4
+    RB = 5
+    BACK = 6
+    START = 7
+
+
+#: Keys that always mean the same thing, whatever the bindings say.
+FIXED_KEYS: dict[int, Action] = {
+    pygame.K_RETURN: Action.CONFIRM, pygame.K_KP_ENTER: Action.CONFIRM, pygame.K_ESCAPE: Action.BACK,
+    pygame.K_F1: Action.OVERLAY, pygame.K_F2: Action.STEP, pygame.K_F3: Action.SLOW_MOTION,
+    pygame.K_F4: Action.ROTATION, pygame.K_F11: Action.FULLSCREEN, pygame.K_m: Action.MUTE,
+}
+FIXED_BUTTONS: dict[int, Action] = {PadButton.START: Action.CONFIRM, PadButton.BACK: Action.BACK}
+#: The arrow keys always move through menus, whatever movement is bound to.
+MENU_KEYS: dict[int, Action] = {pygame.K_LEFT: Action.LEFT, pygame.K_RIGHT: Action.RIGHT, pygame.K_UP: Action.UP,
+                                pygame.K_DOWN: Action.DOWN}
+
+DEFAULT_KEYS: dict[Action, tuple[int, ...]] = {
+    Action.LEFT: (pygame.K_LEFT, pygame.K_a), Action.RIGHT: (pygame.K_RIGHT, pygame.K_d),
+    Action.UP: (pygame.K_UP, pygame.K_w), Action.DOWN: (pygame.K_DOWN, pygame.K_s),
+    Action.FIRE: (pygame.K_z, pygame.K_SPACE), Action.SLOW: (pygame.K_LSHIFT, pygame.K_RSHIFT),
+    Action.BOMB: (pygame.K_x,), Action.PAUSE: (pygame.K_ESCAPE, pygame.K_p),
+}
+DEFAULT_BUTTONS: dict[Action, tuple[int, ...]] = {
+    Action.FIRE: (PadButton.A,), Action.SLOW: (PadButton.B,), Action.BOMB: (PadButton.X,),
+    Action.PAUSE: (PadButton.START,),
+}
+
+
+def key_label(key: int) -> str:
+    """A key's name as a player reads it ("Left", "Z", "Left Shift")."""
+    name = pygame.key.name(key)
+    return name.title() if name else f"key {key}"
+
+
+@dataclass
+class Bindings:
+    """For each rebindable action, its keys and pad buttons (pygame key codes, PadButton values)."""
+
+    keys: dict[Action, tuple[int, ...]] = field(default_factory=lambda: dict(DEFAULT_KEYS))
+    buttons: dict[Action, tuple[int, ...]] = field(default_factory=lambda: dict(DEFAULT_BUTTONS))
+
+    def bind_key(self, action: Action, key: int) -> None:
+        """``key`` alone now presses ``action``; no other rebindable action keeps it."""
+        self._check(action)
+        for a in REBINDABLE:
+            self.keys[a] = tuple(k for k in self.keys.get(a, ()) if k != key)
+        self.keys[action] = (key,)
+
+    def bind_button(self, action: Action, button: int) -> None:
+        """``button`` alone now presses ``action``; no other rebindable action keeps it."""
+        self._check(action)
+        for a in REBINDABLE:
+            self.buttons[a] = tuple(b for b in self.buttons.get(a, ()) if b != button)
+        self.buttons[action] = (int(button),)
+
+    @staticmethod
+    def _check(action: Action) -> None:
+        if action not in REBINDABLE:
+            raise ValueError(f"{action.title} cannot be rebound")
+
+    def key_actions(self, key: int) -> set[Action]:
+        out = {a for a in REBINDABLE if key in self.keys.get(a, ())}
+        if key in FIXED_KEYS:
+            out.add(FIXED_KEYS[key])
+        return out
+
+    def button_actions(self, button: int) -> set[Action]:
+        out = {a for a in REBINDABLE if button in self.buttons.get(a, ())}
+        if button in FIXED_BUTTONS:
+            out.add(FIXED_BUTTONS[button])
+        if Action.FIRE in out:
+            out.add(Action.CONFIRM)  # the fire button also picks in menus
+        return out
+
+    def describe(self, action: Action) -> str:
+        """What presses ``action``, for the options screen ("Z, Space / pad A")."""
+        keys = ", ".join(key_label(k) for k in self.keys.get(action, ())) or "no key"
+        pads = ", ".join(PadButton(b).name if b in PadButton._value2member_map_ else str(b)
+                         for b in self.buttons.get(action, ()))
+        return f"{keys} / pad {pads}" if pads else keys
+
+    # ------------------------------------------------------------------ the file
+    def to_json(self) -> dict:
+        return {"version": FORMAT_VERSION,
+                "keys": {a.value: [pygame.key.name(k) for k in self.keys.get(a, ())] for a in REBINDABLE},
+                "buttons": {a.value: [_button_name(b) for b in self.buttons.get(a, ())] for a in REBINDABLE}}
+
+    @classmethod
+    def from_json(cls, doc) -> "Bindings":
+        """The bindings ``doc`` describes; ``ValueError`` naming the field for anything else.
+        An action the file leaves out keeps its default."""
+        if not isinstance(doc, dict) or doc.get("version") != FORMAT_VERSION:
+            raise ValueError(f"version: must be {FORMAT_VERSION}")
+        b = cls()
+        for part, parse, table in (("keys", _key_code, b.keys), ("buttons", _button_code, b.buttons)):
+            given = doc.get(part, {})
+            if not isinstance(given, dict):
+                raise ValueError(f"{part}: must be a table of action -> list of names")
+            for name, values in given.items():
+                try:
+                    action = Action(name)
+                except ValueError:
+                    raise ValueError(f"{part}.{name}: not an action") from None
+                if action not in REBINDABLE or not isinstance(values, list) or len(values) > 8:
+                    raise ValueError(f"{part}.{name}: must be a list of at most 8 names of a rebindable action")
+                table[action] = tuple(parse(f"{part}.{name}", v) for v in values)
+        return b
+
+
+def _button_name(b: int) -> str:
+    return PadButton(b).name if b in PadButton._value2member_map_ else str(b)
+
+
+def _key_code(where: str, name) -> int:
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"{where}: key names must be non-empty strings, got {name!r}")
+    try:
+        return pygame.key.key_code(name)
+    except (ValueError, pygame.error):
+        raise ValueError(f"{where}: unknown key {name!r}") from None
+
+
+def _button_code(where: str, name) -> int:
+    if isinstance(name, str) and name in PadButton.__members__:
+        return int(PadButton[name])
+    if isinstance(name, str) and name.isdigit() and int(name) < 32:
+        return int(name)
+    raise ValueError(f"{where}: unknown pad button {name!r} (A, B, X, Y, LB, RB, BACK, START or 0-31)")
+
+
+def bindings_path() -> Path:
+    return data_home() / "controls.json"
+
+
+def load_bindings(path: Path | None = None) -> tuple[Bindings, str | None]:
+    """The saved bindings, or the defaults and a one-line warning saying why not.
+    A missing file is the defaults, silently."""
+    path = Path(path) if path is not None else bindings_path()
+    try:
+        if path.stat().st_size > FILE_MAX_BYTES:
+            raise ValueError(f"larger than {FILE_MAX_BYTES:,} bytes")
+        return Bindings.from_json(json.loads(path.read_text(encoding="utf-8"))), None
+    except FileNotFoundError:
+        return Bindings(), None
+    except (OSError, ValueError, UnicodeDecodeError, RecursionError) as exc:
+        return Bindings(), f"controls file {path} not used ({_one_line(exc)}): default keys"
+
+
+def save_bindings(bindings: Bindings, path: Path | None = None) -> None:
+    """Write atomically (temp file + os.replace); OSError propagates."""
+    path = Path(path) if path is not None else bindings_path()
+    write_atomic(path, (json.dumps(bindings.to_json(), indent=1) + "\n").encode())
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())[:160] or type(exc).__name__
+
+
+class Controls:
+    """What is held now -- keys and the first gamepad -- read through :class:`Bindings`."""
+
+    def __init__(self, bindings: Bindings | None = None):
+        self.bindings = bindings or Bindings()
+        self.held: set[int] = set()
+        self.pad = None
+        self.connect_pad()
+
+    def connect_pad(self) -> None:
+        """Use the first gamepad, if any (called at start and when one is plugged in)."""
+        try:
+            pygame.joystick.init()
+            self.pad = pygame.joystick.Joystick(0) if pygame.joystick.get_count() else None
+        except pygame.error:
+            self.pad = None
+
+    def track(self, event: pygame.event.Event) -> None:
+        """Keep ``held`` up to date (call for every event, before any scene sees it)."""
+        if event.type == pygame.KEYDOWN:
+            self.held.add(event.key)
+        elif event.type == pygame.KEYUP:
+            self.held.discard(event.key)
+        elif event.type == pygame.JOYDEVICEADDED:
+            self.connect_pad()
+
+    def release_all(self) -> None:
+        """Forget held keys (the window lost focus: their KEYUPs will never come to us)."""
+        self.held.clear()
+
+    def actions(self, event: pygame.event.Event) -> set[Action]:
+        """The actions ``event`` presses: a key or button going down, or the d-pad pushed."""
+        if event.type == pygame.KEYDOWN:
+            actions = self.bindings.key_actions(event.key)
+            if event.key in MENU_KEYS:
+                actions.add(MENU_KEYS[event.key])
+            return actions
+        if event.type == pygame.JOYBUTTONDOWN:
+            return self.bindings.button_actions(event.button)
+        if event.type == pygame.JOYHATMOTION:
+            x, y = event.value
+            return {a for a, on in ((Action.LEFT, x < 0), (Action.RIGHT, x > 0), (Action.UP, y > 0),
+                                    (Action.DOWN, y < 0)) if on}
+        return set()
+
+    def holding(self, action: Action) -> bool:
+        """Whether a key or pad button bound to ``action`` is down now."""
+        if self.held & set(self.bindings.keys.get(action, ())):
+            return True
+        pad = self.pad
+        if pad is None:
+            return False
+        try:
+            n = pad.get_numbuttons()
+            return any(b < n and pad.get_button(b) for b in self.bindings.buttons.get(action, ()))
+        except pygame.error:
+            self.pad = None
+            return False
+
+    def input(self) -> Input:
+        """This frame's :class:`Input` from everything held."""
+        h = self.holding
+        dx = h(Action.RIGHT) - h(Action.LEFT)
+        dy = h(Action.DOWN) - h(Action.UP)
+        pad = self.pad
+        if pad is not None:
+            try:
+                ax, ay = pad.get_axis(0), pad.get_axis(1)
+                hx, hy = pad.get_hat(0) if pad.get_numhats() else (0, 0)
+                dx += (ax > STICK_DEAD_ZONE) - (ax < -STICK_DEAD_ZONE) + hx
+                dy += (ay > STICK_DEAD_ZONE) - (ay < -STICK_DEAD_ZONE) - hy
+            except pygame.error:
+                self.pad = None
+        return Input(_clamp(dx), _clamp(dy), h(Action.FIRE), h(Action.SLOW), h(Action.BOMB))
+
+
+def _clamp(v: int) -> int:
+    return max(-1, min(1, int(v)))

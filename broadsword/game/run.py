@@ -1,0 +1,73 @@
+"""A play-through: which stage is in play, on which difficulty, and what carries to the next.
+
+Loading a stage (level file -> checked sprites -> :class:`~broadsword.sim.World`) lives here
+too, so the title, the results screen and the replay viewer start stages the same way.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..data import check_level_sprites, load_level, resolve_level
+from ..data.difficulty import Difficulty
+from ..data.recordings import Recording, check_level_digest, file_sha256
+from ..sim import Carry, Settings, World
+
+
+@dataclass
+class Run:
+    """``level_index`` indexes the shipped levels, unless ``custom`` names a level file
+    (a custom level is a run of one stage)."""
+
+    level_index: int
+    difficulty: Difficulty = Difficulty.NORMAL
+    custom: str | None = None
+    score: int = 0
+    lives: int | None = None
+    continues: int = 0
+
+    def level_ref(self, levels: list[str]) -> str:
+        return self.custom or levels[self.level_index]
+
+    def has_next(self, levels: list[str]) -> bool:
+        return self.custom is None and self.level_index + 1 < len(levels)
+
+    def carry_from(self, world: World) -> None:
+        """Take what ``world`` ends the stage with to the next one."""
+        self.score = world.score.points
+        self.lives = world.player.lives
+        self.continues = world.progress.continues_used
+
+
+@dataclass
+class Stage:
+    """A loaded stage: the world and what a recording needs to name it."""
+
+    world: World
+    level_ref: str
+    digest: str
+
+
+def load_stage(run: Run, levels: list[str], armatures, seed: int) -> Stage:
+    """Load the run's current stage into a new world (the seed moves on with each stage).
+    :class:`~broadsword.data.DataError` naming the file and field if it cannot load."""
+    ref = run.level_ref(levels)
+    path = resolve_level(ref)
+    level = load_level(path)
+    check_level_sprites(level, armatures)  # names the field of an unknown sprite
+    world = World(level, armatures, seed=seed + run.level_index, settings=Settings(difficulty=run.difficulty),
+                  carry=Carry(run.score, run.lives, run.continues))
+    return Stage(world, ref, file_sha256(path))
+
+
+def replay_stage(rec: Recording, rec_path: str, armatures) -> Stage:
+    """The world a recording was played in: its level (checked against the digest it kept),
+    seed, settings and carry. :class:`~broadsword.data.DataError` if the level cannot load
+    or has changed since."""
+    path = resolve_level(rec.level)
+    check_level_digest(rec, rec_path, path)
+    level = load_level(path)
+    check_level_sprites(level, armatures)
+    settings = Settings(rotation=rec.settings["rotation"], difficulty=rec.settings["difficulty"])
+    carry = Carry(rec.carry["score"], rec.carry["lives"], rec.carry["continues"])
+    return Stage(World(level, armatures, rec.seed, settings, carry), rec.level, file_sha256(path))

@@ -1,0 +1,145 @@
+"""The options: difficulty, music and sound volumes, fullscreen, always showing the hit
+shape, and rebinding every gameplay action to a key and a pad button.
+
+Up/Down choose a row, Left/Right change it, Enter rebinds (then press the key or pad button;
+Esc cancels); Esc leaves. Each change is saved at once, atomically (options.json and
+controls.json in the data directory); a save that fails is said on screen.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import pygame
+
+from ...data.difficulty import Difficulty
+from .. import ui
+from ..controls import FIXED_KEYS, REBINDABLE, Action, Bindings, key_label
+from ..options import VOLUME_STEPS
+
+DIFFICULTIES = list(Difficulty)
+
+
+@dataclass(frozen=True)
+class Row:
+    label: str
+    option: str = ""  # an Options field, or
+    action: Action | None = None  # an action to rebind, or
+    command: str = ""  # "reset" or "back"
+
+
+ROWS = ([Row("Difficulty", "difficulty"), Row("Music volume", "music"), Row("Sound volume", "sound"),
+         Row("Fullscreen (F11)", "fullscreen"), Row("Always show hit shape", "always_hitbox")]
+        + [Row(a.title, action=a) for a in REBINDABLE]
+        + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")])
+
+
+class OptionsScene:
+    opaque = True
+
+    def __init__(self, app):
+        self.app = app
+        self.row = 0
+        self.waiting: Action | None = None  # rebinding this action: the next key or button
+        self.note = ""
+
+    # ------------------------------------------------------------------ events
+    def handle(self, event: pygame.event.Event) -> bool:
+        if self.waiting is not None:
+            return self._rebind(event)
+        actions = self.app.controls.actions(event)
+        row = ROWS[self.row]
+        if Action.BACK in actions:
+            self.app.stack.pop()
+        elif actions & {Action.UP, Action.DOWN}:
+            self.row = (self.row + (1 if Action.DOWN in actions else -1)) % len(ROWS)
+            self.note = ""
+        elif actions & {Action.LEFT, Action.RIGHT} and row.option:
+            self.change(row.option, 1 if Action.RIGHT in actions else -1)
+        elif actions & {Action.CONFIRM, Action.FIRE}:
+            self.choose(row)
+        else:
+            return False
+        return True
+
+    def change(self, option: str, step: int) -> None:
+        o = self.app.options
+        if option == "difficulty":
+            value = DIFFICULTIES[(DIFFICULTIES.index(o.difficulty) + step) % len(DIFFICULTIES)]
+        elif option in ("music", "sound"):
+            value = max(0, min(VOLUME_STEPS, getattr(o, option) + step))
+        else:
+            value = not getattr(o, option)
+        if option == "fullscreen":
+            self.app.window.set_fullscreen(value)
+        self.app.set_options(**{option: value})
+
+    def choose(self, row: Row) -> None:
+        if row.option:
+            self.change(row.option, 1)
+        elif row.action is not None:
+            self.waiting = row.action
+            self.note = f"press a key or pad button for {row.action.title} (Esc: cancel)"
+        elif row.command == "reset":
+            self.app.controls.bindings = Bindings()
+            self.app.save_bindings()
+            self.note = "controls reset to the defaults"
+        else:
+            self.app.stack.pop()
+
+    def _rebind(self, event: pygame.event.Event) -> bool:
+        action, b = self.waiting, self.app.controls.bindings
+        if event.type == pygame.KEYDOWN:
+            if event.key == pygame.K_ESCAPE:
+                self.note = "not changed"
+            elif event.key in FIXED_KEYS:
+                self.note = f"{key_label(event.key)} is fixed ({FIXED_KEYS[event.key].title}); try another key"
+                return True
+            else:
+                b.bind_key(action, event.key)
+                self.note = f"{action.title}: {key_label(event.key)}"
+                self.app.save_bindings()
+        elif event.type == pygame.JOYBUTTONDOWN:
+            b.bind_button(action, event.button)
+            self.note = f"{action.title}: {b.describe(action)}"
+            self.app.save_bindings()
+        else:
+            return event.type in (pygame.KEYUP, pygame.JOYBUTTONUP)
+        self.waiting = None
+        return True
+
+    def update(self, dt: float) -> int:
+        return 0
+
+    # ------------------------------------------------------------------ drawing
+    def value(self, row: Row) -> str:
+        o = self.app.options
+        if row.option == "difficulty":
+            return f"< {o.difficulty.title} >"
+        if row.option in ("music", "sound"):
+            v = getattr(o, row.option)
+            return f"< {'#' * v}{'.' * (VOLUME_STEPS - v)} {v * 100 // VOLUME_STEPS}% >"
+        if row.option:
+            return "on" if getattr(o, row.option) else "off"
+        if row.action is not None:
+            return "press..." if self.waiting is row.action else self.app.controls.bindings.describe(row.action)
+        return ""
+
+    def draw(self, surf: pygame.Surface) -> None:
+        app, p = self.app, self.app.painter
+        app.renderer.draw_idle(surf)
+        p.veil(120)
+        w = surf.get_width()
+        p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
+        for i, row in enumerate(ROWS):
+            y = 118 + 26 * i + (10 if i >= 5 else 0) + (10 if i >= 5 + len(REBINDABLE) else 0)
+            chosen = i == self.row
+            if chosen:
+                pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))
+            colour = ui.GOLD if chosen else ui.WHITE
+            p.text(row.label, y, colour=colour, x=w * 0.45, anchor="midright")
+            p.text(self.value(row), y, colour=ui.CREAM if chosen else ui.DIM, x=w * 0.45 + 14, anchor="midleft")
+        p.text(self.note or "Up/Down choose   Left/Right change   Enter rebind   Esc back", 580,
+               colour=ui.WARN if "fixed" in self.note else ui.DIM)
+        if app.message:
+            p.text(app.message, 606, 20, ui.WARN)

@@ -1,0 +1,44 @@
+"""The pause screen, over the frozen stage: resume, step one frame (F2), or quit to the title."""
+
+from __future__ import annotations
+
+import pygame
+
+from .. import ui
+from ..controls import Action
+
+
+class Pause:
+    opaque = False
+
+    def __init__(self, app, play):
+        self.app, self.play = app, play
+        self.step_once = False
+
+    def handle(self, event: pygame.event.Event) -> bool:
+        actions = self.app.controls.actions(event)
+        if actions & {Action.PAUSE, Action.BACK}:
+            self.app.stack.pop()
+            self.play.accumulator = 0.0
+        elif Action.STEP in actions:
+            self.step_once = True
+        elif Action.OVERLAY in actions:
+            self.app.overlay.visible = not self.app.overlay.visible
+        elif event.type == pygame.KEYDOWN and event.key == pygame.K_q:
+            self.app.to_title()
+        else:
+            return False
+        return True
+
+    def update(self, dt: float) -> int:
+        if not self.step_once or self.play.ended:
+            return 0
+        self.step_once = False
+        self.play.step()
+        return 1
+
+    def draw(self, surf: pygame.Surface) -> None:
+        p = self.app.painter
+        p.veil(110)
+        p.text("PAUSED", 280, ui.BIG)
+        p.text("Esc / P resume   F2 step a frame   Q quit to title", 330)

@@ -1,0 +1,199 @@
+"""A stage in play: the world stepping at a fixed rate, driven by the player, the autopilot
+or a recording, drawn with interpolation, the overlay on top when toggled.
+
+Where its input comes from is an :class:`InputSource`: :class:`PlayerInput` (keys and pad
+through the bindings), :class:`Pilot` (the autopilot) or :class:`ReplayInput` (a recording's
+inputs and live toggles, with its checkpoints checked as it goes). What a stage's end or a
+game over leads to (results, continue, game over) is pushed over this scene.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import pygame
+
+from ...sim import DT, Input, Pilot, World
+from ...sim.replay import Playback, Recorder
+from ..controls import Action, Controls
+
+#: Slow motion (F3) runs the world at this share of real time.
+SLOW_MOTION = 0.25
+#: At most this many steps a frame, whatever the elapsed time (App.MAX_CATCH_UP).
+MAX_CATCH_UP = 5
+
+
+class InputSource(Protocol):
+    #: Someone is watching rather than playing: the game never pauses itself, and the run
+    #: never enters the high-score table.
+    watched: bool
+
+    def next(self, world: World) -> Input | None:
+        """This step's input (None: the source has run out)."""
+
+    def stepped(self, world: World) -> None:
+        """Called after each step."""
+
+
+class PlayerInput:
+    watched = False
+
+    def __init__(self, controls: Controls):
+        self.controls = controls
+
+    def next(self, world: World) -> Input:
+        return self.controls.input()
+
+    def stepped(self, world: World) -> None:
+        pass
+
+
+class AutopilotInput:
+    watched = True
+
+    def __init__(self):
+        self.pilot = Pilot()
+
+    def next(self, world: World) -> Input:
+        return self.pilot(world)
+
+    def stepped(self, world: World) -> None:
+        pass
+
+
+class ReplayInput:
+    """A recording's inputs; ``playback`` says where it first differed, if it did."""
+
+    watched = True
+
+    def __init__(self, playback: Playback):
+        self.playback = playback
+
+    def next(self, world: World) -> Input | None:
+        return self.playback.next_input()
+
+    def stepped(self, world: World) -> None:
+        self.playback.stepped()
+
+
+class Play:
+    """A stage in play. ``world`` steps in :meth:`update`; ``step_once`` runs one step
+    whatever the pause state (F2)."""
+
+    opaque = True
+
+    def __init__(self, app, stage, run, source: InputSource | None = None):
+        self.app, self.run, self.world = app, run, stage.world
+        self.level_ref = stage.level_ref
+        if source is None:
+            source = AutopilotInput() if app.demo else PlayerInput(app.controls)
+        self.source = source
+        self.recorder = Recorder(self.world, stage.level_ref, stage.digest)
+        self.accumulator = 0.0
+        self.slow_motion = False
+        self.ended = False  # the stage is over (results, continue, game over or replay end on top)
+
+    @property
+    def watched(self) -> bool:
+        return self.source.watched
+
+    # ------------------------------------------------------------------ events
+    def handle(self, event: pygame.event.Event) -> bool:
+        actions = self.app.controls.actions(event)
+        if Action.OVERLAY in actions:
+            self.app.overlay.visible = not self.app.overlay.visible
+        elif Action.SLOW_MOTION in actions:
+            self.slow_motion = not self.slow_motion
+        elif Action.ROTATION in actions and not isinstance(self.source, ReplayInput):
+            self.world.set_rotation("exact" if self.world.rotation == "lut" else "lut")
+        elif actions & {Action.PAUSE, Action.BACK}:
+            from .pause import Pause
+
+            self.app.audio.play("pause")
+            self.app.stack.push(Pause(self.app, self))
+        else:
+            return False
+        return True
+
+    # ------------------------------------------------------------------ stepping
+    def update(self, dt: float) -> int:
+        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0)
+        steps = 0
+        while self.accumulator >= DT and steps < MAX_CATCH_UP and not self.ended:
+            self.step()
+            steps += 1
+            self.accumulator -= DT
+            if self.app.stack.top is not self:
+                break
+        if steps == MAX_CATCH_UP:
+            self.accumulator = min(self.accumulator, DT)  # drop the backlog: slow down, don't spiral
+        return steps
+
+    def step(self) -> None:
+        """One fixed step: input, world, sounds and effects, then what its end leads to."""
+        world = self.world
+        inp = self.source.next(world)
+        if inp is None:  # a recording ran out
+            self._end_replay()
+            return
+        ev = world.step(inp)
+        self.recorder.stepped(inp)
+        self.source.stepped(world)
+        self.app.renderer.on_events(ev)
+        audio = self.app.audio
+        for happened, sound in ((ev.shots, "shot"), (ev.grazes, "graze"), (ev.damaged, "hit"),
+                                (ev.player_hit, "player_hit")):
+            if happened:
+                audio.play(sound)
+        if ev.kills:
+            audio.play("big_explosion" if ev.boss_killed else "explosion")
+        if isinstance(self.source, ReplayInput):
+            playback = self.source.playback
+            if playback.mismatch is not None or playback.done or world.complete or (
+                    world.over and not self._continue_pending(playback)):
+                self._end_replay()
+        elif ev.game_over:
+            self._game_over()
+        elif ev.level_complete:
+            self._cleared()
+
+    @staticmethod
+    def _continue_pending(playback: Playback) -> bool:
+        return any(t[1] == "continue" and t[0] >= playback.world.frame for t in playback.rec.toggles)
+
+    def _game_over(self) -> None:
+        from .continue_screen import Continue
+        from .game_over import GameOver
+
+        self.ended = True
+        if not self.watched and self.world.progress.can_continue:
+            self.app.stack.push(Continue(self.app, self))
+        else:
+            self.app.stack.push(GameOver(self.app, self, victory=False))
+
+    def _cleared(self) -> None:
+        from .results import Results
+
+        self.ended = True
+        self.app.stack.push(Results(self.app, self))
+
+    def _end_replay(self) -> None:
+        from .replay_end import ReplayEnd
+
+        self.ended = True
+        self.app.stack.push(ReplayEnd(self.app, self))
+
+    def resume(self) -> None:
+        """Back from a continue: play on."""
+        self.ended = False
+        self.accumulator = 0.0
+
+    # ------------------------------------------------------------------ drawing
+    def draw(self, surf: pygame.Surface) -> None:
+        app = self.app
+        alpha = min(self.accumulator / DT, 1.0) if app.stack.top is self else 1.0
+        hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
+        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox)
+        if app.overlay.visible:
+            record = self.world.collision
+            app.overlay.draw(surf, record.result if record is not None else None, app.fps)

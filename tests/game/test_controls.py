@@ -1,0 +1,163 @@
+"""Controls: one binding table from keys and pad buttons to actions and the sim's Input;
+rebinding; the bindings file (atomic, and a broken one falls back to the defaults)."""
+
+from __future__ import annotations
+
+import json
+
+import pygame
+import pytest
+
+from broadsword.game.controls import (
+    DEFAULT_KEYS,
+    FIXED_KEYS,
+    Action,
+    Bindings,
+    Controls,
+    PadButton,
+    load_bindings,
+    save_bindings,
+)
+from broadsword.sim import Input
+
+
+@pytest.fixture(autouse=True)
+def _pygame():
+    pygame.init()
+    yield
+
+
+class StubPad:
+    """A gamepad as pygame's joystick API presents it, with ``pressed`` buttons held."""
+
+    def __init__(self, *pressed: int, axis=(0.0, 0.0), hat=(0, 0)):
+        self.pressed, self.axis, self.hat = set(pressed), axis, hat
+
+    def get_axis(self, i):
+        return self.axis[i]
+
+    def get_numhats(self):
+        return 1
+
+    def get_hat(self, i):
+        return self.hat
+
+    def get_numbuttons(self):
+        return 12
+
+    def get_button(self, i):
+        return i in self.pressed
+
+
+def held(*keys: int) -> Controls:
+    c = Controls()
+    c.pad = None
+    c.held = set(keys)
+    return c
+
+
+def keydown(k: int, unicode: str = "") -> pygame.event.Event:
+    return pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0)
+
+
+def test_input__default_keys_move_fire_slow_and_bomb():
+    assert held().input() == Input()
+    assert held(pygame.K_LEFT, pygame.K_z).input() == Input(-1, 0, True, False, False)
+    assert held(pygame.K_d, pygame.K_s, pygame.K_LSHIFT).input() == Input(1, 1, False, True, False)
+    assert held(pygame.K_x).input() == Input(bomb=True)  # X bombs
+    assert held(pygame.K_LEFT, pygame.K_RIGHT).input().dx == 0  # both ways: still
+
+
+def test_input__pad_buttons_are_named_and_bombs_on_x():
+    c = held()
+    c.pad = StubPad(PadButton.X)
+    assert c.input() == Input(bomb=True)
+    c.pad = StubPad(PadButton.A, PadButton.B, axis=(-0.9, 0.0), hat=(0, 1))
+    assert c.input() == Input(-1, -1, True, True, False)
+    c.pad = StubPad(axis=(0.2, -0.3))  # inside the dead zone
+    assert c.input() == Input()
+
+
+def test_actions__one_table_for_menus_and_toggles():
+    c = held()
+    assert c.actions(keydown(pygame.K_ESCAPE)) == {Action.PAUSE, Action.BACK}
+    assert c.actions(keydown(pygame.K_RETURN)) == {Action.CONFIRM}
+    assert c.actions(keydown(pygame.K_F11)) == {Action.FULLSCREEN}
+    assert c.actions(keydown(pygame.K_x)) == {Action.BOMB}
+    start = pygame.event.Event(pygame.JOYBUTTONDOWN, button=PadButton.START, joy=0, instance_id=0)
+    assert Action.PAUSE in c.actions(start) and Action.CONFIRM in c.actions(start)
+    hat = pygame.event.Event(pygame.JOYHATMOTION, value=(-1, 1), hat=0, joy=0, instance_id=0)
+    assert c.actions(hat) == {Action.LEFT, Action.UP}
+
+
+def test_rebind__the_new_key_alone_presses_the_action_and_leaves_the_others():
+    b = Bindings()
+    b.bind_key(Action.FIRE, pygame.K_c)
+    b.bind_key(Action.BOMB, pygame.K_LEFT)  # taken from LEFT
+    c = Controls(b)
+    c.pad = None
+    c.held = {pygame.K_c, pygame.K_LEFT}
+    assert c.input() == Input(0, 0, True, False, True)
+    c.held = {pygame.K_z, pygame.K_a}
+    assert c.input() == Input(-1, 0, False, False, False)
+    assert b.keys[Action.LEFT] == (pygame.K_a,)
+    # arrows still move through menus, whatever movement is bound to
+    assert Action.LEFT in c.actions(keydown(pygame.K_LEFT))
+    b.bind_button(Action.BOMB, PadButton.Y)
+    c.held, c.pad = set(), StubPad(PadButton.Y, PadButton.X)
+    assert c.input() == Input(bomb=True)
+    c.pad = StubPad(PadButton.X)
+    assert c.input() == Input()
+    with pytest.raises(ValueError):
+        b.bind_key(Action.MUTE, pygame.K_q)
+
+
+def test_bindings_file__round_trip_is_atomic_and_readable(tmp_path):
+    path = tmp_path / "d" / "controls.json"
+    b = Bindings()
+    b.bind_key(Action.BOMB, pygame.K_v)
+    b.bind_button(Action.SLOW, PadButton.RB)
+    save_bindings(b, path)
+    assert sorted(p.name for p in path.parent.iterdir()) == ["controls.json"]  # no temporaries left
+    doc = json.loads(path.read_text())
+    assert doc["keys"]["bomb"] == ["v"] and doc["buttons"]["slow"] == ["RB"]
+    loaded, warning = load_bindings(path)
+    assert warning is None and loaded == b
+
+
+def test_bindings_file__missing_is_the_defaults_silently(tmp_path):
+    b, warning = load_bindings(tmp_path / "none.json")
+    assert warning is None and b == Bindings() and b.keys == DEFAULT_KEYS
+
+
+@pytest.mark.parametrize("content, field", [
+    (b"\xff\xfe not json", "controls.json"),
+    (b"[1, 2]", "version"),
+    (b'{"version": 2}', "version"),
+    (b'{"version": 1, "keys": {"fire": ["no such key"]}}', "keys.fire"),
+    (b'{"version": 1, "keys": {"mute": ["q"]}}', "keys.mute"),
+    (b'{"version": 1, "keys": {"jump": ["q"]}}', "keys.jump"),
+    (b'{"version": 1, "buttons": {"bomb": ["Z9"]}}', "buttons.bomb"),
+    (b'{"version": 1, "keys": []}', "keys"),
+    (b"[" * 100_000, "controls.json"),
+])
+def test_bindings_file__broken_falls_back_to_defaults_with_a_message(tmp_path, content, field):
+    path = tmp_path / "controls.json"
+    path.write_bytes(content)
+    b, warning = load_bindings(path)
+    assert b == Bindings()
+    assert warning is not None and str(path) in warning and field in warning and "\n" not in warning
+
+
+def test_bindings_file__a_directory_in_its_place_is_not_a_crash(tmp_path):
+    (tmp_path / "controls.json").mkdir()
+    b, warning = load_bindings(tmp_path / "controls.json")
+    assert b == Bindings() and "default keys" in warning
+
+
+def test_fixed_keys_cannot_be_lost_by_rebinding():
+    b = Bindings()
+    for action in (Action.PAUSE, Action.FIRE):
+        b.bind_key(action, pygame.K_q)
+    assert Action.BACK in b.key_actions(pygame.K_ESCAPE) and Action.CONFIRM in b.key_actions(pygame.K_RETURN)
+    assert all(a not in Bindings().keys for a in FIXED_KEYS.values())

@@ -1,0 +1,114 @@
+"""``broadsword --replay FILE`` with a window: the recording drives the world on screen, with
+pause, single-step and the overlay; at its end or first difference, a message says which."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pygame
+import pytest
+
+from broadsword import cli
+from broadsword.data.recordings import save_recording
+from broadsword.game.app import App
+from broadsword.game.scenes import Pause, Play
+from broadsword.game.scenes.replay_end import ReplayEnd
+from broadsword.game.scores import HighScores
+from broadsword.headless import run_headless
+from broadsword.sim import DT
+
+FRAMES = 150
+
+
+@pytest.fixture(scope="module")
+def recording():
+    """A short autopilot run with a live rotation toggle, recorded headless."""
+    from broadsword.headless import make_world
+    from broadsword.sim import Pilot, Settings
+    from broadsword.sim.replay import Recorder
+
+    world, digest = make_world("1-picket", 5, Settings())
+    rec, pilot = Recorder(world, "1-picket", digest), Pilot()
+    for f in range(FRAMES):
+        if f == 40:
+            world.set_rotation("exact" if world.rotation == "lut" else "lut")
+        inp = pilot(world)
+        world.step(inp)
+        rec.stepped(inp)
+    return rec.recording(), world.state_hash()
+
+
+@pytest.fixture
+def app(tmp_path):
+    a = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"))
+    yield a
+    pygame.quit()
+
+
+def key(k):
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0))
+
+
+def test_replay_window__plays_the_recording_to_its_end_and_says_it_matches(app, recording):
+    rec, final_hash = recording
+    play = app.watch_replay(rec, "run.json")
+    assert play.watched
+    for _ in range(FRAMES + 5):
+        app.frame(DT)
+    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
+    assert app.world.frame == FRAMES and app.world.state_hash() == final_hash
+    assert app.world.toggles[0].frame == 40  # the recorded toggle was applied on its frame
+    assert "every checkpoint matched" in " ".join(app.scene.lines)
+
+
+def test_replay_window__pause_and_single_step(app, recording):
+    rec, _ = recording
+    app.watch_replay(rec, "run.json")
+    for _ in range(10):
+        app.frame(DT)
+    key(pygame.K_p)
+    app.frame(DT)
+    assert isinstance(app.scene, Pause)
+    frame = app.world.frame
+    app.frame(1.0)
+    assert app.world.frame == frame
+    key(pygame.K_F2)
+    app.frame(0.0)
+    assert app.world.frame == frame + 1
+    key(pygame.K_F1)
+    app.frame(0.0)
+    assert app.overlay.visible
+    key(pygame.K_F4)  # a live toggle would change a replay's outcome: not during one
+    key(pygame.K_p)
+    app.frame(0.0)
+    assert isinstance(app.scene, Play) and not app.world.toggles[1:]
+
+
+def test_replay_window__a_different_ending_is_said(app, recording):
+    rec, _ = recording
+    app.watch_replay(dataclasses.replace(rec, state_hash="0" * 64), "run.json")
+    for _ in range(FRAMES + 5):
+        app.frame(DT)
+    assert isinstance(app.scene, ReplayEnd) and not app.scene.ok
+    assert "another state" in app.scene.lines[0]
+
+
+def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
+    rec, final_hash = recording
+    path = tmp_path / "run.json"
+    save_recording(path, rec)
+    monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
+    seen = []
+
+    def run(self):
+        while not isinstance(self.scene, ReplayEnd):
+            self.frame(DT)
+        seen.append((self.world.frame, self.world.state_hash(), self.scene.ok))
+
+    monkeypatch.setattr(App, "run", run)
+    assert cli.main(["--replay", str(path), "--mute"]) == 0
+    assert seen == [(FRAMES, final_hash, True)]
+    pygame.quit()
+    # headless still checks it
+    summary, _ = run_headless("", FRAMES, 0, False, rec, str(path))
+    assert summary["replay_matches"] is True

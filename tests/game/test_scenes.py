@@ -1,0 +1,341 @@
+"""The scenes, each driven directly or through App.frame with posted events (dummy drivers)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pygame
+import pytest
+
+from broadsword.data import load_level, resolve_level
+from broadsword.data.difficulty import Difficulty
+from broadsword.game.app import App
+from broadsword.game.controls import Action
+from broadsword.game.run import Run, Stage
+from broadsword.game.scenes import (
+    Continue,
+    GameOver,
+    HighScoresScene,
+    NameEntry,
+    OptionsScene,
+    Pause,
+    Play,
+    Results,
+    SceneStack,
+    Title,
+)
+from broadsword.game.scenes.options_screen import ROWS
+from broadsword.game.scores import Entry, HighScores
+from broadsword.sim import DT, World
+
+
+@pytest.fixture
+def app(tmp_path):
+    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
+    yield a
+    pygame.quit()
+
+
+def key(k, unicode=""):
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0))
+
+
+def post(kind):
+    pygame.event.post(pygame.event.Event(kind))
+
+
+def frames(app, n=1):
+    for _ in range(n):
+        app.frame(DT)
+
+
+def empty_stage(app, run=None, waves=()) -> World:
+    """Play an emptied first stage (no waves, no boss): it clears on its first step."""
+    level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)
+    world = World(level, app.bank.armatures, seed=1)
+    app.play_stage(Stage(world, "1-picket", ""), run or Run(0))
+    return world
+
+
+def lose_every_life(world: World) -> None:
+    world.player.lives = 1
+    world.player.bombs = 0  # no death-bomb to save it
+    world.player.invulnerable = 0.0
+    world.player.stricken = 1  # struck: the life goes on the next step
+
+
+class Flat:
+    def __init__(self, opaque, log, name):
+        self.opaque, self.log, self.name = opaque, log, name
+
+    def draw(self, surf):
+        self.log.append(self.name)
+
+
+# --------------------------------------------------------------------------- the stack
+def test_stack__draws_from_the_highest_opaque_scene_up():
+    log: list[str] = []
+    s = SceneStack()
+    for name, opaque in (("title", True), ("play", True), ("pause", False), ("veil", False)):
+        s.push(Flat(opaque, log, name))
+    s.draw(None)
+    assert log == ["play", "pause", "veil"]
+    s.pop()
+    s.replace(Flat(True, log, "scores"))
+    log.clear()
+    s.draw(None)
+    assert log == ["scores"] and s.find(Flat).name == "scores"
+    s.reset(Flat(False, log, "only"))
+    assert len(s.scenes) == 1 and s.top.name == "only"
+
+
+# --------------------------------------------------------------------------- defects (issue 12, item 10)
+def test_name_entry__m_types_m_and_does_not_mute(app):
+    app.stack.push(NameEntry(app, 1234, "1-picket"))
+    for ch in "mammoth":
+        key(getattr(pygame, f"K_{ch}"), ch)
+    frames(app)
+    assert app.scene.name == "MAMMOTH" and not app.audio.muted
+    key(pygame.K_RETURN, "\r")
+    frames(app)
+    assert isinstance(app.scene, HighScoresScene) and app.scores.entries[0].name == "MAMMOTH"
+
+
+def test_m_mutes_elsewhere(app):
+    key(pygame.K_m, "m")
+    frames(app)
+    assert app.audio.muted and isinstance(app.scene, Title)
+
+
+@pytest.mark.parametrize("kind", [pygame.WINDOWFOCUSLOST, pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN])
+def test_autopilot__never_pauses_by_itself(tmp_path, kind):
+    a = App(seed=1, audio=False, demo=True, scores=HighScores(tmp_path / "s.json"))
+    a.start_run()
+    post(pygame.WINDOWFOCUSGAINED)
+    frames(a, 2)
+    post(kind)
+    frames(a, 3)
+    assert isinstance(a.scene, Play) and a.world.frame >= 3
+    pygame.quit()
+
+
+def test_level_run__a_window_opened_without_focus_does_not_start_paused(app):
+    frames(app)  # the window's own start-up events
+    app.focused = False  # opened behind the terminal that launched it
+    app.start_run()
+    post(pygame.WINDOWFOCUSLOST)  # what the window manager may send to a window that never had focus
+    frames(app, 3)
+    assert isinstance(app.scene, Play) and app.world.frame > 0
+    post(pygame.WINDOWFOCUSGAINED)
+    post(pygame.WINDOWFOCUSLOST)  # now it had the focus, and lost it: a player's game pauses
+    frames(app)
+    assert isinstance(app.scene, Pause)
+
+
+def test_autopilot__never_asks_for_a_name_nor_enters_the_table(tmp_path):
+    a = App(seed=1, audio=False, demo=True, scores=HighScores(tmp_path / "s.json"))
+    world = empty_stage(a, waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.score.points = 40_000  # below the first extend
+    lose_every_life(world)
+    frames(a, 2)
+    assert isinstance(a.scene, GameOver) and not a.scene.qualifies  # no continue offered either
+    key(pygame.K_RETURN)
+    frames(a)
+    assert isinstance(a.scene, Title) and a.scores.entries == []
+    assert not (tmp_path / "s.json").exists()
+    pygame.quit()
+
+
+def fits(app) -> None:
+    """Every line drawn this frame lies inside the field, and no text colour touches its edges."""
+    w, h = app.screen.get_size()
+    assert app.painter.drawn
+    for r in app.painter.drawn:
+        assert 0 <= r.left and r.right <= w, r
+    img = pygame.surfarray.array3d(app.screen)
+    for column in (img[0], img[w - 1]):
+        bright = (column.max(axis=1) > 140).sum()
+        assert bright <= 6, "text at the field's edge"  # a star or two may sit there, never a line of text
+
+
+def test_text__never_clipped_at_the_right_edge(app):
+    frames(app)
+    fits(app)
+    assert "shows your hit shape" in "".join(r for _, r in __import__(
+        "broadsword.game.scenes.title", fromlist=["controls_list"]).controls_list(app.controls.bindings))
+    # the widest strings each screen can draw, fitted
+    app.custom_level = "/a/very/long/path/" * 8 + "level.toml"
+    frames(app)
+    fits(app)
+    app.custom_level = None
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    app.overlay.visible = True
+    key(pygame.K_ESCAPE)
+    frames(app)
+    assert isinstance(app.scene, Pause)
+    fits(app)
+    for scene in (Results(app, app.play), Continue(app, app.play), GameOver(app, app.play, True),
+                  NameEntry(app, 123456789, "x"), OptionsScene(app), HighScoresScene(app)):
+        app.stack.push(scene)
+        app.scores.entries = [Entry("W" * 12, 10 ** 12, "w" * 40, "2024-01-01")]
+        app.render()
+        fits(app)
+        app.stack.pop()
+    assert world is app.world
+
+
+# --------------------------------------------------------------------------- title and difficulty
+def test_title__up_down_choose_the_difficulty_it_plays_and_remembers(app, tmp_path):
+    assert app.difficulty is Difficulty.NORMAL
+    key(pygame.K_DOWN)
+    key(pygame.K_DOWN)
+    frames(app)
+    assert app.difficulty is Difficulty.LUNATIC
+    assert '"difficulty": "lunatic"' in (tmp_path / "options.json").read_text()
+    key(pygame.K_UP)
+    key(pygame.K_RETURN)
+    frames(app)
+    assert isinstance(app.scene, Play) and app.world.settings.difficulty is Difficulty.HARD
+    assert app.recorder.settings["difficulty"] == "hard"
+
+
+def test_title__o_opens_options_and_h_the_high_scores(app):
+    key(pygame.K_o)
+    frames(app)
+    assert isinstance(app.scene, OptionsScene)
+    key(pygame.K_ESCAPE)
+    key(pygame.K_h)
+    frames(app)
+    assert isinstance(app.scene, HighScoresScene)
+    key(pygame.K_ESCAPE)
+    frames(app)
+    assert isinstance(app.scene, Title)
+
+
+# --------------------------------------------------------------------------- results
+def test_results__after_a_stage_then_the_next_stage_with_the_score_carried(app):
+    world = empty_stage(app)
+    frames(app, 2)
+    results = app.scene
+    assert isinstance(results, Results) and world.complete and not results.final
+    rows = dict((label, value) for label, value, _ in results.rows())
+    assert rows["No-miss bonus"] == "+30,000" and rows["No-bomb bonus"] == "+20,000"
+    assert rows["Stage clear bonus"] == "+10,000" and rows["Score"] == f"{world.score.points:,}"
+    score = world.score.points
+    key(pygame.K_RETURN)
+    frames(app)
+    assert isinstance(app.scene, Play) and app.world is not world
+    assert app.world.level.name == app.levels[1] and app.world.score.points == score
+
+
+def test_results__a_missed_bonus_says_why(app):
+    world = empty_stage(app)
+    world.player.misses, world.progress.bombs_used = 2, 1
+    frames(app, 2)
+    rows = dict((label, value) for label, value, _ in app.scene.rows())
+    assert rows["No-miss bonus"].startswith("-- (2 misses") and rows["No-bomb bonus"].startswith("-- (1 bomb;")
+
+
+def test_results__the_last_stage_leads_to_the_final_results_and_the_name(app):
+    world = empty_stage(app, Run(len(app.levels) - 1))
+    frames(app, 2)
+    assert isinstance(app.scene, Results) and app.scene.final
+    key(pygame.K_RETURN)
+    frames(app)
+    assert isinstance(app.scene, GameOver) and app.scene.victory and app.scene.score == world.score.points
+    key(pygame.K_RETURN)
+    frames(app)
+    assert isinstance(app.scene, NameEntry) and app.scene.score == world.score.points
+
+
+# --------------------------------------------------------------------------- continues
+def test_continue__play_on_with_the_score_counting_continues(app):
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.score.points = 5000
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, Continue) and world.over
+    key(pygame.K_z)
+    frames(app, 3)
+    assert isinstance(app.scene, Play) and not world.over and world.score.points % 10 == 1
+    assert world.toggles[-1].toggle.value == "continue"
+
+
+def test_continue__declined_or_timed_out_ends_the_run(app):
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.score.points = 5000
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, Continue)
+    app.frame(11.0)  # ten seconds to decide
+    assert isinstance(app.scene, GameOver) and not app.scene.victory and app.scene.qualifies
+
+
+def test_continue__none_left_goes_straight_to_game_over(app):
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.progress.continues_used = 3
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, GameOver)
+
+
+# --------------------------------------------------------------------------- options
+def row(name: str) -> int:
+    return next(i for i, r in enumerate(ROWS) if r.label == name)
+
+
+def test_options__rebind_fire_by_pressing_a_key_and_it_is_saved(app, tmp_path):
+    app.stack.push(OptionsScene(app))
+    for _ in range(row("Fire")):
+        key(pygame.K_DOWN)
+    key(pygame.K_RETURN)
+    frames(app)
+    assert app.scene.waiting is Action.FIRE
+    key(pygame.K_F1)  # a fixed key is refused, and it still waits
+    frames(app)
+    assert app.scene.waiting is Action.FIRE and "fixed" in app.scene.note
+    key(pygame.K_c, "c")
+    frames(app)
+    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (pygame.K_c,)
+    assert '"fire": [\n   "c"\n  ]' in (tmp_path / "controls.json").read_text()
+    key(pygame.K_ESCAPE)
+    frames(app)
+    assert isinstance(app.scene, Title)
+
+
+def test_options__volumes_hitbox_and_difficulty_change_and_are_saved(app, tmp_path):
+    scene = OptionsScene(app)
+    app.stack.push(scene)
+    before = app.options.music
+    scene.row = row("Music volume")
+    key(pygame.K_LEFT)
+    scene_row_hitbox = row("Always show hit shape")
+    frames(app)
+    assert app.options.music == before - 1
+    scene.row = scene_row_hitbox
+    key(pygame.K_RETURN)
+    frames(app)
+    assert app.options.always_hitbox
+    text = (tmp_path / "options.json").read_text()
+    assert f'"music": {before - 1}' in text and '"always_hitbox": true' in text
+
+
+def test_options__always_show_hitbox_draws_the_hit_shape(app):
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.player.invulnerable = 0.0
+    frames(app)
+    outline = (255, 60, 90)
+    has = lambda: (pygame.surfarray.array3d(app.screen) == outline).all(axis=2).any()  # noqa: E731
+    assert not has()
+    app.set_options(always_hitbox=True)
+    frames(app)
+    assert has()
+
+
+# --------------------------------------------------------------------------- pause
+def test_pause__q_quits_to_the_title(app):
+    empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    key(pygame.K_p)
+    key(pygame.K_q)
+    frames(app)
+    assert isinstance(app.scene, Title) and app.play is None
