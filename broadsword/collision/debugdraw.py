@@ -24,7 +24,7 @@ __all__ = ["RGB", "Colours", "DebugDraw", "FrameColours", "draw_frame", "draw_la
 
 RGB = tuple[int, int, int]
 #: One colour for the whole batch, or one per item.
-Colours = Union[RGB, Sequence[RGB]]
+Colours = RGB | Sequence[RGB]
 
 
 @runtime_checkable

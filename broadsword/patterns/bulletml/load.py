@@ -220,7 +220,7 @@ class _RefCheck:
         self.depth: dict[str, tuple[int, int]] = {}  # action label -> (ref hops, nesting)
 
     def run(self, root: Element) -> None:
-        for label, action in self.p.actions.items():
+        for label in self.p.actions:
             self.action_ref(label, (), root)
         for bullet in self.p.bullets.values():
             for act in bullet.actions:
