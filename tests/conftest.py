@@ -35,7 +35,7 @@ QUICK = (
     "sim/test_player.py",
     "sim/test_waves.py",
     "test_packaging.py",
-    "test_userdata.py",
+    "game/test_userdata.py",
     "game/test_scores.py",
 )
 

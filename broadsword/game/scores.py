@@ -45,7 +45,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from ..fileio import locked, remove_stale_temps, write_atomic
-from ..userdata import user_data_dir
+from .userdata import user_data_dir
 
 __all__ = ["Entry", "HighScores", "data_home", "sanitise_name", "FORMAT_VERSION", "NAME_MAX"]
 
@@ -70,7 +70,7 @@ class Entry:
 
 
 def data_home() -> Path:
-    """Directory for Broadsword's saved data: :func:`broadsword.userdata.user_data_dir`
+    """Directory for Broadsword's saved data: :func:`broadsword.game.userdata.user_data_dir`
     (``$BROADSWORD_DATA_DIR``, ``$XDG_DATA_HOME/broadsword``, else the platform's own data
     directory)."""
     return user_data_dir()

@@ -18,7 +18,7 @@ Rules under test:
   other instances, the lock, kills and read-only directories: test_scores_merge.py,
   test_scores_processes.py, test_scores_readonly.py.
 * the default path is ``data_home() / "highscores.json"``; where ``data_home`` points on
-  each platform is tested in tests/test_userdata.py.
+  each platform is tested in tests/game/test_userdata.py.
 """
 
 from __future__ import annotations
@@ -448,7 +448,7 @@ def test_load__clean_load_clears_previous_warning(tmp_path):
 
 
 # --------------------------------------------------------------------------- data_home
-# The rules themselves, on every platform: tests/test_userdata.py.
+# The rules themselves, on every platform: tests/game/test_userdata.py.
 
 
 @pytest.fixture

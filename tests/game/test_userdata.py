@@ -1,4 +1,4 @@
-"""broadsword.userdata.user_data_dir: the user's data directory on every platform, tested on any machine.
+"""broadsword.game.userdata.user_data_dir: the user's data directory on every platform, tested on any machine.
 
 Precedence: ``$BROADSWORD_DATA_DIR`` (as given, ``~`` expanded) > an absolute ``$XDG_DATA_HOME``
 (+ ``broadsword``) > the platform's own: Windows ``%APPDATA%`` (else ``~/AppData/Roaming``),
@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from broadsword.game.scores import data_home
-from broadsword.userdata import user_data_dir
+from broadsword.game.userdata import user_data_dir
 
 HOME = Path("/home/ada")
 
