@@ -13,14 +13,24 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     for scale in doc["scales"]:
         methods = scale["methods"]
         default = methods["default (bins+aabb+armature, lut)"]
-        assert default["false_positives"] == 0 and default["false_negatives"] == 0
+        assert default["pose_false_positives"] == 0 and default["pose_false_negatives"] == 0
         assert default["median_ms"] > 0
+        exact = methods["default, exact rotation"]
+        assert exact["false_positives"] == 0 and exact["false_negatives"] == 0
         for name, m in methods.items():
-            if m["tiers"][-1] == "armature":  # every exact pipeline gives the exact answer
-                assert m["false_positives"] == 0 and m["false_negatives"] == 0, name
-            if m["tiers"][-1] in ("aabb", "circle"):  # bounds alone never miss
-                assert m["false_negatives"] == 0, name
+            if m["tiers"][-1] == "armature":  # every exact pipeline gives the exact answer at its poses
+                assert m["pose_false_positives"] == 0 and m["pose_false_negatives"] == 0, name
+                # ... and the truth is exact geometry at the true angles: every lut row counts the same misses
+                if m["rotation"] == "lut":
+                    assert (m["false_positives"], m["false_negatives"]) == (
+                        default["false_positives"], default["false_negatives"]), name
+            if m["tiers"][-1] in ("aabb", "circle", "obb", "kdop"):  # bounds alone never miss at their poses
+                assert m["pose_false_negatives"] == 0, name
+    big = doc["scales"][-1]["methods"]["default (bins+aabb+armature, lut)"]
+    assert big["false_positives"] + big["false_negatives"] > 0  # rounding to the degree flips some pairs
+    assert {"bins+kdop+armature, lut", "8-DOP only (bins+kdop)", "OBB only (bins+obb)"} <= set(doc["scales"][0]["methods"])
     assert doc["game_frame"]["frame_median_ms"] > 0
+    assert "NOT its bullet-hell peak" in doc["game_frame"]["where"]
     pat = doc["patterns"]
     assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
     assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
@@ -29,3 +39,4 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
         assert key in doc, key
     text = capsys.readouterr().out
     assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
+    assert "--quick: early in the level, NOT its bullet-hell peak" in text

@@ -7,9 +7,11 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    alone, each broad phase, and the peers when installed (``pip install ".[bench]"``) --
    on the same seeded frames, interleaved frame by frame so a noisy neighbour slows all
    alike: median, min and max ms per frame, ratio to the default, false positives and
-   negatives against the exact polygon answer and against pixel truth;
-2. a whole game frame at the bullet-hell level's peak, and the game's levels against
-   their sprites' own masks (how often an armature hit disagrees with what is seen);
+   negatives against exact geometry at the true angles (the ``exact`` rotation), against
+   the exact answer at the method's own poses, and against pixel truth;
+2. a whole game frame on the bullet-hell level (at its peak in a full run; ``--quick``
+   measures frames early in the level and says so), and the game's levels against their
+   sprites' own masks (how often an armature hit disagrees with what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
    whole game frame's;
 4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
@@ -45,6 +47,9 @@ METHODS = {
     "default, exact rotation": (DEFAULT, "exact"),
     "bins+circle+armature, lut": (("bins", "circle", "armature"), "lut"),
     "bins+circle+aabb+armature, lut": (("bins", "circle", "aabb", "armature"), "lut"),
+    "bins+obb+armature, lut": (("bins", "obb", "armature"), "lut"),
+    "bins+kdop+armature, lut": (("bins", "kdop", "armature"), "lut"),
+    "bins+aabb+kdop+armature, lut": (("bins", "aabb", "kdop", "armature"), "lut"),
     "paper's Figure 8 in place of exact (bins+aabb+paper)": (("bins", "aabb", "paper"), "lut"),
     "pixel masks as the last tier (bins+aabb+pixel)": (("bins", "aabb", "pixel"), "lut"),
     "brute+aabb+armature, lut": (("brute",) + DEFAULT[1:], "lut"),
@@ -52,6 +57,8 @@ METHODS = {
     "loose quadtree+aabb+armature, lut": (("loose_quadtree",) + DEFAULT[1:], "lut"),
     "AABB only (bins+aabb)": (("bins", "aabb"), "lut"),
     "circle only (bins+circle)": (("bins", "circle"), "lut"),
+    "OBB only (bins+obb)": (("bins", "obb"), "lut"),
+    "8-DOP only (bins+kdop)": (("bins", "kdop"), "lut"),
 }
 
 SCALES = [(20, 200), (100, 2000), (200, 10_000)]
@@ -103,13 +110,21 @@ def _methods(scene) -> dict:
 
 
 def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, progress, pixel_frames: int) -> dict:
-    """Every method on the same frames; timings, and accuracy against exact and pixel truth."""
+    """Every method on the same frames; timings, and accuracy against exact and pixel truth.
+
+    ``false_positives``/``false_negatives`` count against exact geometry at the true angles
+    (an ``exact``-rotation pipeline), so a ``lut`` row shows what rounding angles to whole
+    degrees costs; ``pose_false_positives``/``pose_false_negatives`` count against the exact
+    answer at the method's own poses (0/0 for every pipeline that ends in ``armature``).
+    """
     scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=seed)
     methods = _methods(scene)
     truth = {r: Pipeline(scene.shapes, scene.table, tiers=("bins", "armature"), rotation=r) for r in ("lut", "exact")}
     ms: dict[str, list[float]] = {name: [] for name in methods}
     fp = {name: 0 for name in methods}
     fn = {name: 0 for name in methods}
+    own_fp = {name: 0 for name in methods}
+    own_fn = {name: 0 for name in methods}
     pfp = {name: 0 for name in methods}
     pfn = {name: 0 for name in methods}
     exact_hits = pixel_hits = 0
@@ -122,7 +137,7 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
         if measured and f - warmup < pixel_frames:  # pixel truth is slow: a subset of the frames
             pixels = pixel_truth(scene.shapes, scene.armature, pos, ang, scene.layer, scene.table)
             pixel_hits += len(pixels)
-        exact_hits += len(answers["lut"]) if measured else 0
+        exact_hits += len(answers["exact"]) if measured else 0
         for name, (step, rotation, _tiers) in methods.items():
             t0 = time.perf_counter()
             got, tiers_ms = step(pos, ang)
@@ -131,9 +146,12 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
                 continue
             ms[name].append(dt)
             tier_ms[name].append(tiers_ms)
-            want = answers[rotation]
+            want = answers["exact"]  # the true angles
             fp[name] += len(got - want)
             fn[name] += len(want - got)
+            own = answers[rotation]  # the method's own poses
+            own_fp[name] += len(got - own)
+            own_fn[name] += len(own - got)
             if pixels is not None:
                 pfp[name] += len(got - pixels)
                 pfn[name] += len(pixels - got)
@@ -155,6 +173,7 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
         out[name] = {"tiers": list(tiers), "rotation": rotation, "median_ms": float(np.median(a)), "tier_median_ms": per_tier,
                      "min_ms": float(a.min()), "max_ms": float(a.max()),
                      "false_positives": fp[name], "false_negatives": fn[name],
+                     "pose_false_positives": own_fp[name], "pose_false_negatives": own_fn[name],
                      "pixel_false_positives": pfp[name], "pixel_false_negatives": pfn[name]}
     solo_ms = np.array(solo)
     return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits,
@@ -176,22 +195,24 @@ def markdown(results: list[dict]) -> str:
     for scale in results:
         base = scale["methods"][next(iter(scale["methods"]))]["median_ms"]
         lines.append(f"\n### Reference scene: {scale['enemies']} enemies, {scale['bullets']} bullets\n\n"
-                     f"{scale['frames']} frames, {scale['exact_hits']} exact hits in all; pixel truth over the first "
-                     f"{scale['pixel_frames']} frames ({scale['pixel_hits']} pixel hits). False positives and negatives are "
-                     "counted against the exact answer (at the method's rotation mode) and against pixel truth.\n")
-        lines.append("| method | median ms | min | max | x default | false pos | false neg | pixel false pos | pixel false neg "
-                     "| median ms per tier |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+                     f"{scale['frames']} frames, {scale['exact_hits']} exact hits in all (exact geometry at the true "
+                     f"angles); pixel truth over the first {scale['pixel_frames']} frames ({scale['pixel_hits']} pixel hits). "
+                     "False positives and negatives are counted against exact geometry at the true angles, against the "
+                     "exact answer at the method's own poses (a `lut` method's rounded angles), and against pixel truth.\n")
+        lines.append("| method | median ms | min | max | x default | false pos | false neg | at own poses fp/fn "
+                     "| pixel false pos | pixel false neg | median ms per tier |")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
         for name, m in scale["methods"].items():
             tier = ", ".join(f"{k} {v:.2f}" for k, v in m["tier_median_ms"].items())
             lines.append(
                 f"| {name} | {m['median_ms']:.2f} | {m['min_ms']:.2f} | {m['max_ms']:.2f} | {m['median_ms'] / base:.2f} | "
-                f"{m['false_positives']} | {m['false_negatives']} | {m['pixel_false_positives']} | "
+                f"{m['false_positives']} | {m['false_negatives']} | "
+                f"{m['pose_false_positives']}/{m['pose_false_negatives']} | {m['pixel_false_positives']} | "
                 f"{m['pixel_false_negatives']} | {tier} |")
         alone = scale["default_alone"]
         lines.append(f"| default, alone (as in the game: no other method between its frames) | "
                      f"{alone['median_ms']:.2f} | {alone['min_ms']:.2f} | {alone['max_ms']:.2f} | "
-                     f"{alone['median_ms'] / base:.2f} | | | | | |")
+                     f"{alone['median_ms'] / base:.2f} | | | | | | |")
         missing = [cls().why for cls in PEERS if not cls().available]
         if missing:
             lines.append(f"\nPeers not run: {'; '.join(missing)}.")
@@ -199,8 +220,9 @@ def markdown(results: list[dict]) -> str:
 
 
 def game_markdown(game: dict, visual: list[dict]) -> str:
-    lines = [f"\n### Whole game frame: {game['level']} with the autopilot, {game['bullets_median']} bullets on screen "
-             f"({game['frames']} frames after {game['warmup']})\n",
+    lines = [f"\n### Whole game frame: {game['level']} with the autopilot, frames {game['warmup'] + 1}-"
+             f"{game['warmup'] + game['frames']}, {game['bullets_median']} bullets on screen ({game['where']}; the "
+             f"most this run saw: {game['peak_bullets']}, at frame {game['peak_frame']})\n",
              "| frame median ms | frame max ms | collision median ms | render median ms |", "|---:|---:|---:|---:|",
              f"| {game['frame_median_ms']:.2f} | {game['frame_max_ms']:.2f} | {game['collision_median_ms']:.2f} | "
              f"{game['render_median_ms']:.2f} |",
@@ -308,8 +330,11 @@ def main(argv: list[str] | None = None) -> int:
         from ..data import list_levels
         from .game_frame import run_game_frames
 
-        print("  whole game frame at the bullet-hell peak ...", file=sys.stderr, flush=True)
+        print(f"  whole game frame ({'early in the level' if args.quick else 'at the bullet-hell peak'}) ...",
+              file=sys.stderr, flush=True)
         game = run_game_frames(warmup=120 if args.quick else 660, frames=10 if args.quick else 60, seed=args.seed)
+        game["where"] = ("--quick: early in the level, NOT its bullet-hell peak" if args.quick
+                         else "the level's bullet-hell peak, reached by frame 660 (docs/PERFORMANCE.md)")
         for level in list_levels():
             print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))

@@ -10,14 +10,13 @@ The model centre is the origin of the local frame.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from . import arguments
+from . import arguments, detmath
 from .predicates import orient
 from .simplicity import first_defect
 
@@ -140,7 +139,7 @@ class Armature:
         box = np.array([v[:, 0].min(), v[:, 1].min(), v[:, 0].max(), v[:, 1].max()])
         box.setflags(write=False)
         object.__setattr__(self, "vertices", v)
-        object.__setattr__(self, "radius", float(np.hypot(v[:, 0], v[:, 1]).max()))
+        object.__setattr__(self, "radius", float(detmath.norm(v[:, 0], v[:, 1]).max()))
         object.__setattr__(self, "hull", hull)
         object.__setattr__(self, "convex", len(hull) == n and _is_convex(v))
         object.__setattr__(self, "local_box", box)
@@ -196,4 +195,4 @@ def lut_max_displacement(radius: float) -> float:
     table entries themselves are correctly rounded doubles, which adds a few ulps; the
     returned bound includes ``1e-12 * radius`` for that.
     """
-    return 2.0 * radius * math.sin(math.radians(0.25)) + 1e-12 * radius
+    return 2.0 * radius * detmath.sin_deg(0.25) + 1e-12 * radius

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import detmath
 from ._indexing import selector
 from .posing import Posed
 from .tolerance import BOUND_SLACK
@@ -93,7 +94,7 @@ def oriented_boxes(posed: Posed) -> np.ndarray:
     larger in px, so still conservative.
     """
     out = np.empty((posed.n, 6))
-    norm = np.hypot(posed.cos, posed.sin)
+    norm = detmath.norm(posed.cos, posed.sin)
     ux, uy = posed.cos / norm, posed.sin / norm
     for k, idx in posed.members.items():
         x, y = posed.xs[k] * OBB_SCALE, posed.ys[k] * OBB_SCALE

@@ -16,7 +16,9 @@ polynomial kernels (``k_sin.c``, ``k_cos.c``), which take a double-double argume
 
 Every function takes float64 arrays (broadcast together where there are two arguments) or
 Python scalars, and returns the same kind: arrays in, float64 arrays out; scalars in,
-``float`` out.
+``float`` out. Scalars and small arrays (numpy's per-call cost dominates there) go through
+the same operations on Python floats, one element at a time, which give the same bits
+(IEEE doubles, no contraction); the tests check that at thousands of points.
 
 Accuracy (tested against a 80-digit ``decimal`` oracle in ``tests/collision/test_detmath.py``):
 ``sin_deg``/``cos_deg`` within 1 ulp, ``atan2_deg`` within 1 ulp.
@@ -39,9 +41,12 @@ software is freely granted, provided that this notice is preserved.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["atan2_deg", "cos_deg", "heading_deg", "norm", "rotation_table", "sin_deg", "sincos_deg", "velocity_deg"]
+__all__ = ["atan2_deg", "ceil_log2", "cos_deg", "floor_log2", "heading_deg", "norm", "rotation_table", "sin_deg", "sincos_deg",
+           "velocity_deg"]
 
 # pi / 180 and 180 / pi as double-doubles (hi + lo, |lo| <= ulp(hi) / 2); checked against
 # an 80-digit oracle in the tests.
@@ -58,6 +63,8 @@ _ATAN_LO = np.array([float.fromhex(h) for h in (
     "0x0p+0", "-0x1.2a9346eb4b87bp-53", "-0x1.0fc10e257c651p-53", "0x1.bdef92fae944fp-51",
     "-0x1.80b27b26e182bp-51", "0x1.0e62435c62f2fp-49", "0x1.80b27b26e182bp-50", "-0x1.2dd089737cc28p-49",
     "0x0p+0")])
+_ATAN_HI_LIST = tuple(_ATAN_HI.tolist())  # the same, for the scalar path
+_ATAN_LO_LIST = tuple(_ATAN_LO.tolist())
 
 # fdlibm k_sin.c: sin(x) ~ x + S1 x^3 + ... + S6 x^13 on |x| <= pi/4.
 _S1 = -1.66666666666666324348e-01
@@ -79,6 +86,7 @@ _C6 = -1.13596475577881948265e-11
 _ATAN_POLY = (-1.0 / 3, 1.0 / 5, -1.0 / 7, 1.0 / 9, -1.0 / 11, 1.0 / 13, -1.0 / 15)
 
 _SPLITTER = 134217729.0  # 2**27 + 1 (Veltkamp's split)
+_SMALL = 16  # arrays up to this size take the scalar path, element by element (faster there)
 _TINY_SHIFT = 600  # scale for arctangents of ratios below 2**-500
 
 
@@ -109,7 +117,18 @@ def _two_prod(a, b):
 # --- input and output kinds --------------------------------------------------------------
 
 def _is_scalar(*args) -> bool:
-    return not any(isinstance(a, np.ndarray) for a in args)
+    return all(isinstance(a, (int, float, np.generic)) for a in args)
+
+
+def _elementwise(fn, *arrays: np.ndarray, outputs: int = 1):
+    """Apply scalar ``fn`` to each element of the broadcast float64 ``arrays``; ``outputs``
+    float64 arrays of their shape (a tuple if more than one)."""
+    shape = arrays[0].shape
+    values = [fn(*args) for args in zip(*(a.ravel().tolist() for a in arrays))]
+    if outputs == 1:
+        return np.array(values, dtype=np.float64).reshape(shape)
+    return tuple(np.array(col, dtype=np.float64).reshape(shape) for col in zip(*values)) if values else \
+        tuple(np.empty(shape) for _ in range(outputs))
 
 
 def _out(value: np.ndarray, scalar: bool):
@@ -137,6 +156,33 @@ def _kernel_cos(x, y):
     return w + (((1.0 - w) - hz) + (z * r - x * y))
 
 
+def _sincos_reduced(t):
+    """sin and cos of ``t`` degrees, |t| <= 45 (+ an ulp): array or float."""
+    # t degrees to radians as a double-double xh + xl.
+    p, e = _two_prod(t, _PI180_HI)
+    e = e + t * _PI180_LO
+    xh = p + e
+    xl = e - (xh - p)
+    return _kernel_sin(xh, xl), _kernel_cos(xh, xl)
+
+
+def _sincos1(d: float) -> tuple[float, float]:
+    """sin and cos of ``d`` degrees, a float: the same operations as :func:`_sincos`."""
+    if not math.isfinite(d):
+        return math.nan, math.nan
+    r = math.fmod(d, 360.0)
+    q = round(r / 90.0)  # half to even, as np.rint
+    s, c = _sincos_reduced(r - 90.0 * q)
+    quadrant = q & 3
+    if quadrant & 1:
+        s, c = c, s
+    if quadrant >= 2:
+        s = -s
+    if quadrant == 1 or quadrant == 2:
+        c = -c
+    return (math.copysign(0.0, d) if s == 0.0 else s), (0.0 if c == 0.0 else c)
+
+
 def _sincos(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """sin and cos of float64 array ``d`` (degrees), the module's conventions."""
     finite = np.isfinite(d)
@@ -145,13 +191,7 @@ def _sincos(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     q = np.rint(r / 90.0)  # the nearest quadrant; a rounding of r / 90 only moves |t| past 45 by an ulp
     t = r - 90.0 * q  # exact: r and 90 q are multiples of ulp(r), |t| <= |r|
     quadrant = q.astype(np.int64) & 3
-    # t degrees to radians as a double-double xh + xl.
-    p, e = _two_prod(t, _PI180_HI)
-    e = e + t * _PI180_LO
-    xh = p + e
-    xl = e - (xh - p)
-    s = _kernel_sin(xh, xl)
-    c = _kernel_cos(xh, xl)
+    s, c = _sincos_reduced(t)
     odd = (quadrant & 1).astype(bool)
     sin = np.where(odd, c, s)
     cos = np.where(odd, s, c)
@@ -172,34 +212,34 @@ def sincos_deg(d):
     Within 1 ulp of the true values for every finite ``d``; exact at multiples of 90;
     nan for nan or +-inf.
     """
-    scalar = _is_scalar(d)
-    s, c = _sincos(np.asarray(d, dtype=np.float64))
-    return _out(s, scalar), _out(c, scalar)
+    if _is_scalar(d):
+        return _sincos1(float(d))
+    a = np.asarray(d, dtype=np.float64)
+    if a.size <= _SMALL:
+        return _elementwise(_sincos1, a, outputs=2)
+    return _sincos(a)
 
 
 def sin_deg(d):
     """Sine of ``d`` degrees (see :func:`sincos_deg`)."""
-    scalar = _is_scalar(d)
-    return _out(_sincos(np.asarray(d, dtype=np.float64))[0], scalar)
+    return sincos_deg(d)[0]
 
 
 def cos_deg(d):
     """Cosine of ``d`` degrees (see :func:`sincos_deg`)."""
-    scalar = _is_scalar(d)
-    return _out(_sincos(np.asarray(d, dtype=np.float64))[1], scalar)
+    return sincos_deg(d)[1]
 
 
 # --- arctangent --------------------------------------------------------------------------
 
-def _atan_deg_dd(th, tl):
-    """atan(th + tl) in degrees as a double-double, for 0 <= th <= 1, |tl| <= ulp(th).
+def _atan_deg_core(th, tl, c, atan_hi, atan_lo):
+    """atan(th + tl) in degrees as a double-double, for 0 <= th <= 1, |tl| <= ulp(th),
+    given the nearest breakpoint ``c = k / 8`` and ``atan(c)`` in degrees (hi, lo).
 
-    With ``c = k / 8`` the nearest breakpoint, ``atan(t) = atan(c) + atan(u)``,
-    ``u = (t - c) / (1 + t c)``, ``|u| <= 1/16``; ``u`` is formed as a double-double
-    (``t - c`` is exact by Sterbenz's lemma), so the result is good to ~2**-60 relative.
+    ``atan(t) = atan(c) + atan(u)``, ``u = (t - c) / (1 + t c)``, ``|u| <= 1/16``; ``u`` is
+    formed as a double-double (``t - c`` is exact by Sterbenz's lemma), so the result is
+    good to ~2**-60 relative. Arrays or floats.
     """
-    k = np.rint(th * 8.0)
-    c = k * 0.125
     nh, nl = _two_sum(th - c, tl)
     p, pe = _two_prod(th, c)
     dh = 1.0 + p  # |p| <= 1: fast two-sum
@@ -214,9 +254,52 @@ def _atan_deg_dd(th, tl):
     v = uh * z * poly
     mh, me = _two_prod(uh, _DEG_HI)
     ml = me + (uh * _DEG_LO + (ul + v) * _DEG_HI)
+    sh, se = _two_sum(atan_hi, mh)
+    return sh, se + (ml + atan_lo)
+
+
+def _atan_deg_dd(th, tl):
+    """:func:`_atan_deg_core` for arrays, at the nearest breakpoint."""
+    k = np.rint(th * 8.0)
     idx = k.astype(np.intp)
-    sh, se = _two_sum(np.take(_ATAN_HI, idx), mh)
-    return sh, se + (ml + np.take(_ATAN_LO, idx))
+    return _atan_deg_core(th, tl, k * 0.125, np.take(_ATAN_HI, idx), np.take(_ATAN_LO, idx))
+
+
+def _atan2_1(y: float, x: float) -> float:
+    """atan2 in degrees of two floats: the same operations as :func:`_atan2`."""
+    if math.isnan(x) or math.isnan(y):
+        return math.nan
+    ax, ay = abs(x), abs(y)
+    if math.isinf(ax) or math.isinf(ay):
+        ax, ay = float(math.isinf(ax)), float(math.isinf(ay))
+    swap = ay > ax
+    negx = math.copysign(1.0, x) < 0.0
+    num, den = min(ax, ay), max(ax, ay)
+    if den == 0.0:
+        den = 1.0
+    e = math.frexp(den)[1]
+    den = math.ldexp(den, -e)
+    tiny = num < math.ldexp(den, -500 + e)
+    num = math.ldexp(num, (_TINY_SHIFT if tiny else 0) - e)
+    th = num / den
+    p, pe = _two_prod(th, den)
+    tl = ((num - p) - pe) / den
+    if tiny and not swap and not negx:
+        mh, me = _two_prod(th, _DEG_HI)
+        out = math.ldexp(mh + (me + (th * _DEG_LO + tl * _DEG_HI)), -_TINY_SHIFT)
+    else:
+        if tiny:
+            th = tl = 0.0
+        k = round(th * 8.0)
+        ah, al = _atan_deg_core(th, tl, k * 0.125, _ATAN_HI_LIST[k], _ATAN_LO_LIST[k])
+        if swap:
+            h, le = _two_sum(90.0, -ah)
+            ah, al = h, le - al
+        if negx:
+            h, le = _two_sum(180.0, -ah)
+            ah, al = h, le - al
+        out = ah + al
+    return math.copysign(out, y)
 
 
 def _atan2(y: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -266,10 +349,13 @@ def atan2_deg(y, x):
     (-180, 180]; signs, zeros and infinities as ``math.atan2`` (so ``-180`` only for
     ``y == -0.0`` and ``x < 0``); nan if either is nan. Within 1 ulp of the true value.
     """
-    scalar = _is_scalar(y, x)
+    if _is_scalar(y, x):
+        return _atan2_1(float(y), float(x))
     yy, xx = np.broadcast_arrays(np.asarray(y, dtype=np.float64), np.asarray(x, dtype=np.float64))
+    if yy.size <= _SMALL:
+        return _elementwise(_atan2_1, yy, xx)
     with np.errstate(invalid="ignore", over="ignore", under="ignore"):
-        return _out(_atan2(yy, xx), scalar)
+        return _atan2(yy, xx)
 
 
 def heading_deg(vx, vy):
@@ -279,10 +365,11 @@ def heading_deg(vx, vy):
     ``atan2_deg(vx, -vy)``, except that a zero ``vy`` of either sign counts as +0 (a zero
     velocity heads up, 0) and straight down is always +180. Arrays or, for two scalars, a float.
     """
-    scalar = _is_scalar(vx, vy)
-    up = 0.0 - np.asarray(vy, dtype=np.float64)  # 0 - (+-0) = +0
-    h = atan2_deg(np.asarray(vx, dtype=np.float64), up)
-    return _out(np.where(h == -180.0, 180.0, h), scalar)
+    if _is_scalar(vx, vy):
+        h = _atan2_1(float(vx), 0.0 - float(vy))  # 0 - (+-0) = +0
+        return 180.0 if h == -180.0 else h
+    h = atan2_deg(np.asarray(vx, dtype=np.float64), 0.0 - np.asarray(vy, dtype=np.float64))
+    return np.where(h == -180.0, 180.0, h)
 
 
 def velocity_deg(heading, speed):
@@ -291,10 +378,9 @@ def velocity_deg(heading, speed):
     ``vx = speed sin(heading)``, ``vy = -speed cos(heading)``; broadcast together; arrays
     or, for two scalars, floats.
     """
-    scalar = _is_scalar(heading, speed)
-    s, c = _sincos(np.asarray(heading, dtype=np.float64))
-    sp = np.asarray(speed, dtype=np.float64)
-    return _out(sp * s, scalar), _out(-(sp * c), scalar)
+    s, c = sincos_deg(heading)
+    sp = float(speed) if _is_scalar(heading, speed) else np.asarray(speed, dtype=np.float64)
+    return sp * s, -(sp * c)
 
 
 # --- lengths and tables ------------------------------------------------------------------
@@ -318,6 +404,37 @@ def norm(x, y):
         r = np.ldexp(np.sqrt(b * b + s * s), e)
         r = np.where(np.isinf(ax) | np.isinf(ay), np.inf, r)
     return _out(r, scalar)
+
+
+def _log2_parts(x, caller: str):
+    xs = np.asarray(x, dtype=np.float64)
+    if np.any(~(xs >= 0.0)):
+        raise ValueError(f"{caller}: x must be >= 0 (not nan), got {x!r}")
+    m, e = np.frexp(xs)  # x = m 2**e, m in [0.5, 1): exact
+    return xs, m, e.astype(np.int64)
+
+
+def _log2_out(xs, k, scalar: bool):
+    k = np.where(xs == np.inf, 1024, np.where(xs == 0.0, -1075, k))
+    return int(k) if scalar else k
+
+
+def floor_log2(x):
+    """``floor(log2(x))`` exactly, as int64 (an int for a scalar), for ``x >= 0``.
+
+    ``0`` gives -1075 and ``inf`` 1024 (below and above every finite double's); a negative
+    or nan ``x`` raises ValueError. Unlike ``floor(np.log2(x))`` it is exact for every double.
+    """
+    xs, _, e = _log2_parts(x, "floor_log2")
+    return _log2_out(xs, e - 1, _is_scalar(x))
+
+
+def ceil_log2(x):
+    """``ceil(log2(x))`` exactly, as int64 (an int for a scalar), for ``x >= 0``: the
+    exponent of the smallest power of two ``>= x``. Zeros, infinities, errors as
+    :func:`floor_log2`."""
+    xs, m, e = _log2_parts(x, "ceil_log2")
+    return _log2_out(xs, e - (m == 0.5), _is_scalar(x))
 
 
 def rotation_table(steps: int = 360) -> tuple[np.ndarray, np.ndarray]:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import detmath
 from .posing import ArmatureSet
 
 
@@ -44,8 +45,7 @@ class MaskCache:
         key = (armature, degree % 360)
         got = self._masks.get(key)
         if got is None:
-            a = np.radians(key[1])
-            c, s = np.cos(a), np.sin(a)
+            s, c = detmath.sincos_deg(float(key[1]))
             v = self.shapes.armatures[armature].vertices
             rv = np.column_stack([v[:, 0] * c - v[:, 1] * s, v[:, 0] * s + v[:, 1] * c])
             ox, oy = int(np.floor(rv[:, 0].min())) - 1, int(np.floor(rv[:, 1].min())) - 1

@@ -35,13 +35,12 @@ pose; sweeping is meant for small, fast things (bullets) against slower ones (sh
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 
-from . import arguments
+from . import arguments, detmath
 from .armature import Armature
 from ._indexing import pick, selector
 from .tolerance import BOUND_SLACK
@@ -53,18 +52,20 @@ ROTATION_MODES = ("exact", "lut")
 
 #: Vertex count of the shape a rotating swept object is replaced by.
 _OCTAGON = 8
+#: cos(pi / 8): the octagon circumscribing a circle of radius r has vertices at r / this.
+_OCTAGON_COS = detmath.cos_deg(180.0 / _OCTAGON)
 
 
 def _size_class(count: np.ndarray) -> np.ndarray:
     """Smallest power of two >= count, and at least 4, elementwise."""
     count = np.maximum(np.asarray(count), 4)
-    return (1 << np.ceil(np.log2(count)).astype(np.int64)).astype(np.int64)
+    return np.left_shift(1, detmath.ceil_log2(count), dtype=np.int64)
 
 
 def rotation_table() -> tuple[np.ndarray, np.ndarray]:
-    """The paper's Figure 7 table: ``(cos, sin)`` of each integer degree 0..359, (360,) float64."""
-    rad = np.radians(np.arange(360, dtype=np.float64))
-    return np.cos(rad), np.sin(rad)
+    """The paper's Figure 7 table: ``(cos, sin)`` of each integer degree 0..359, (360,) float64,
+    the same bits on every machine (:func:`broadsword.collision.detmath.rotation_table`)."""
+    return detmath.rotation_table(360)
 
 
 def _padded(polys: Sequence[np.ndarray], rows: int) -> tuple[np.ndarray, np.ndarray]:
@@ -133,8 +134,8 @@ class ArmatureSet:
             idx = deg.astype(np.intp)
             return np.take(self._cos, idx), np.take(self._sin, idx)
         if mode == "exact":
-            rad = np.radians(angles)
-            return np.cos(rad), np.sin(rad)
+            s, c = detmath.sincos_deg(angles)
+            return c, s
         raise ValueError(f"rotation mode must be one of {ROTATION_MODES}, got {mode!r}")
 
 
@@ -303,7 +304,7 @@ def pose_checked(shapes: ArmatureSet, armature: np.ndarray, positions: np.ndarra
         # Halves first: p - q overflows for p, q near +-1.7e308, p/2 - q/2 never does.
         half = 0.5 * positions - 0.5 * prev_positions
         centre = np.where(swept[:, None], positions - half, positions)
-        radius = np.where(swept, radius / math.cos(math.pi / _OCTAGON) + np.hypot(half[:, 0], half[:, 1]), radius)
+        radius = np.where(swept, radius / _OCTAGON_COS + detmath.norm(half[:, 0], half[:, 1]), radius)
     # Term by term: |cx| + |cy| overflows at 1.7e308 (an infinite radius is still a bound; a nan would not be).
     with np.errstate(over="ignore"):  # a radius past the doubles is inf: still a bound
         radius = radius * (1.0 + BOUND_SLACK) + (BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1])
@@ -379,10 +380,11 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
-        t = np.pi / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)
+        t = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)  # degrees
         cx, cy = px[obj][turning], py[obj][turning]
         slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
-        r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / math.cos(math.pi / _OCTAGON)
-        x[:, turning] = _pad_rows(np.cos(t)[:, None] * r, h)
-        y[:, turning] = _pad_rows(np.sin(t)[:, None] * r, h)
+        r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
+        ts, tc = detmath.sincos_deg(t)
+        x[:, turning] = _pad_rows(tc[:, None] * r, h)  # offsets from the position
+        y[:, turning] = _pad_rows(ts[:, None] * r, h)
     return x, y

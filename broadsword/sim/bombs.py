@@ -12,11 +12,10 @@ ship is stricken; a bomb in that window cancels the hit.
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
-from ..collision import Armature
+from ..collision import Armature, detmath
 
 #: A bomb lasts this many frames.
 FRAMES = 120
@@ -40,8 +39,8 @@ def bomb_armatures() -> list[Armature]:
     """The bomb's shapes: a regular ``SIDES``-gon of each of ``RADII``."""
     out = []
     for r in RADII:
-        t = [2 * math.pi * (k + 0.5) / SIDES for k in range(SIDES)]
-        out.append(Armature([(r * math.cos(a), r * math.sin(a)) for a in t], name=f"{NAME}{int(r)}"))
+        s, c = detmath.sincos_deg(360.0 * (np.arange(SIDES) + 0.5) / SIDES)
+        out.append(Armature(np.column_stack([r * c, r * s]), name=f"{NAME}{int(r)}"))
     return out
 
 

@@ -13,6 +13,7 @@ from enum import Enum
 
 import numpy as np
 
+from ..collision import detmath
 from ..data.difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..data.levels import BossSpec, FireSpec
 from .field import DT, FIELD
@@ -99,7 +100,7 @@ class Boss:
         self.age += DT
         y = min(self.spec.y, ENTRY_Y + DESCENT * self.age)
         arrived = (self.spec.y - ENTRY_Y) / DESCENT  # seconds until it holds
-        x = FIELD[0] / 2 + self.spec.sway * math.sin(SWAY_RATE * max(0.0, self.age - arrived))
+        x = FIELD[0] / 2 + self.spec.sway * detmath.sin_deg(math.degrees(SWAY_RATE * max(0.0, self.age - arrived)))
         self.pos = np.array([x, y])
         p.pos[:] = self.pos + self.offsets[p.part]
         p.vel[:] = (p.pos - p.prev) / DT

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..collision import detmath
 from ..data.levels import FireKind, FireSpec
 from .field import FIELD
 from .motion import heading
@@ -32,7 +33,7 @@ def volley(spec: FireSpec, origin: np.ndarray, count: np.ndarray, player: np.nda
     volleys so far (rings and spirals turn by ``spin`` each volley). Returns bullets fired."""
     if spec.pattern is FireKind.AIMED:
         to = player - origin
-        base = np.degrees(np.arctan2(to[:, 1], to[:, 0]))
+        base = detmath.atan2_deg(to[:, 1], to[:, 0])
     elif spec.pattern is FireKind.SPREAD:
         base = np.full(len(origin), 90.0)  # straight down the screen
     else:  # ring, spiral: all round, turning by `spin` each volley
@@ -43,8 +44,9 @@ def volley(spec: FireSpec, origin: np.ndarray, count: np.ndarray, player: np.nda
         offsets = np.linspace(-spec.spread / 2, spec.spread / 2, spec.shots)
     else:
         offsets = np.zeros(1)
-    direction = np.radians(base[:, None] + offsets[None, :]).ravel()  # screen angle, 0 = +x
-    vel = np.column_stack([np.cos(direction), np.sin(direction)]) * spec.speed
+    direction = (base[:, None] + offsets[None, :]).ravel()  # screen angle in degrees, 0 = +x
+    s, c = detmath.sincos_deg(direction)
+    vel = np.column_stack([c, s]) * spec.speed
     return add_bullets(bullets, np.repeat(origin, len(offsets), axis=0), vel, kind)
 
 

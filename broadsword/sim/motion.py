@@ -12,6 +12,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..collision import detmath
 from ..data.levels import PathKind, PathSpec
 from .field import DT
 from .pool import Pool
@@ -24,7 +25,7 @@ HOLD_SWAY = 25.0
 
 def heading(vx: np.ndarray, vy: np.ndarray) -> np.ndarray:
     """Angle (degrees) that turns an up-facing sprite to face velocity (vx, vy)."""
-    return np.degrees(np.arctan2(vx, -vy))
+    return detmath.heading_deg(vx, vy)
 
 
 def _straight(p: PathSpec, ships: Pool, sel: np.ndarray, player: np.ndarray) -> np.ndarray:
@@ -37,17 +38,18 @@ def _sine(p: PathSpec, ships: Pool, sel: np.ndarray, player: np.ndarray) -> np.n
     """Down at ``speed``, swinging side to side ``amplitude`` px every ``period`` s."""
     v = _straight(p, ships, sel, player)
     w = 2 * np.pi / p.period
-    v[:, 0] = ships.mirror[sel] * p.amplitude * w * np.cos(w * ships.age[sel])
+    v[:, 0] = ships.mirror[sel] * p.amplitude * w * detmath.cos_deg(360.0 / p.period * ships.age[sel])
     return v
 
 
 def _arc(p: PathSpec, ships: Pool, sel: np.ndarray, player: np.ndarray) -> np.ndarray:
     """Down, turning at ``speed / radius`` until it has turned ``turn`` degrees."""
     v = np.zeros((len(sel), 2))
-    turned = np.minimum(ships.age[sel] * p.speed / p.radius, math.radians(abs(p.turn)))
-    theta = ships.mirror[sel] * math.copysign(1.0, p.turn) * turned  # 0 = straight down
-    v[:, 0] = p.speed * np.sin(theta)
-    v[:, 1] = p.speed * np.cos(theta)
+    turned = np.minimum(np.degrees(ships.age[sel] * p.speed / p.radius), abs(p.turn))
+    theta = ships.mirror[sel] * math.copysign(1.0, p.turn) * turned  # degrees, 0 = straight down
+    s, c = detmath.sincos_deg(theta)
+    v[:, 0] = p.speed * s
+    v[:, 1] = p.speed * c
     return v
 
 
@@ -58,7 +60,7 @@ def _dive(p: PathSpec, ships: Pool, sel: np.ndarray, player: np.ndarray) -> np.n
     turning = (pos[:, 1] >= p.dive_at) & (dive[:, 0] == 0) & (dive[:, 1] == 0)
     if turning.any():
         to = player - pos[turning]
-        to /= np.maximum(np.hypot(to[:, 0], to[:, 1]), 1e-9)[:, None]
+        to /= np.maximum(detmath.norm(to[:, 0], to[:, 1]), 1e-9)[:, None]
         dive[turning] = to
         ships.dive[sel] = dive
     diving = (dive[:, 0] != 0) | (dive[:, 1] != 0)
@@ -73,7 +75,7 @@ def _hold(p: PathSpec, ships: Pool, sel: np.ndarray, player: np.ndarray) -> np.n
     enter = (p.hold_y + 30.0) / p.speed
     holding = (age >= enter) & (age < enter + p.hold_for)
     v[holding, 1] = 0.0
-    v[holding, 0] = m[holding] * HOLD_SWAY * np.cos(age[holding] - enter)
+    v[holding, 0] = m[holding] * HOLD_SWAY * detmath.cos_deg(np.degrees(age[holding] - enter))
     return v
 
 

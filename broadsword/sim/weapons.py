@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..collision import detmath
 from ..data.levels import PlayerSpec
 from .bullets import add_bullets
 from .field import DT
@@ -55,6 +56,5 @@ class PlayerGun:
         self.cooldown = max(self.cooldown + self.spec.fire_every, 0.0)
         shots = volley(player.power_level, player.slow)
         pos = player.pos + shots[:, :2]
-        a = np.radians(shots[:, 2])
-        vel = np.column_stack([np.sin(a), -np.cos(a)]) * self.spec.shot_speed
+        vel = np.column_stack(detmath.velocity_deg(shots[:, 2], self.spec.shot_speed))  # heading: 0 up, clockwise
         return add_bullets(bullets, pos, vel, self.kind, damage=shots[:, 3].astype(np.int64))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import detmath
 from ._shared import Driver, Frame, auto_bin_size
 from .base import TreeLayout
 
@@ -48,7 +49,7 @@ class TreeFrame(Frame):
         half = max(0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0)
         half = half * (1 + 2**-20) + 1e-9 * self.magnitude + 1e-300  # keep the max edge inside
         leaf = tree.leaf_size or auto_bin_size(boxes, groups) / 2.0
-        depth = int(np.clip(np.ceil(np.log2(half) + 1 - np.log2(leaf)), 0, tree.max_depth))
+        depth = int(np.clip(detmath.ceil_log2(half / leaf) + 1, 0, tree.max_depth))
         self.origin, self.half, self.depth = (x0, y0), half, depth
         self.boxes, self.sel = boxes, sel
 

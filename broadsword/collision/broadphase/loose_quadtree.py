@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import detmath
 from ._shared import join
 from ._tree import TreeDriver, TreeFrame
 
@@ -20,7 +21,7 @@ class _LooseFrame(TreeFrame):
         # throughout, so nothing overflows.
         ext = np.maximum(0.5 * boxes[:, 2] - 0.5 * boxes[:, 0], 0.5 * boxes[:, 3] - 0.5 * boxes[:, 1])
         ext = ext * (1 + 1e-9) + 1e-12 * self.magnitude + 1e-300
-        level = np.clip(np.floor(np.log2(self.half / ext)), 0, self.depth).astype(np.int64)
+        level = np.clip(detmath.floor_log2(self.half / ext), 0, self.depth).astype(np.int64)
         level -= (level > 0) & (self.half / (1 << level).astype(np.float64) < ext)
         cx = 0.5 * boxes[:, 0] + 0.5 * boxes[:, 2]
         cy = 0.5 * boxes[:, 1] + 0.5 * boxes[:, 3]

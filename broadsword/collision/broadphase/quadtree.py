@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import detmath
 from ._shared import join
 from ._tree import TreeDriver, TreeFrame
 
@@ -16,7 +17,7 @@ class _QuadFrame(TreeFrame):
         differ = (x0 ^ x1) | (y0 ^ y1)
         climb = np.zeros(len(boxes), dtype=np.int64)
         nz = differ > 0
-        climb[nz] = np.floor(np.log2(differ[nz])).astype(np.int64) + 1
+        climb[nz] = detmath.floor_log2(differ[nz]) + 1
         level = self.depth - climb
         return level, x0 >> climb, y0 >> climb
 
