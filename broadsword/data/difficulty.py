@@ -47,5 +47,5 @@ DEFAULT_SPECS = {
     Difficulty.EASY: DifficultySpec(rank=0.2, lives=5, bombs=3, enemy_hp=0.75),
     Difficulty.NORMAL: DifficultySpec(rank=0.5),
     Difficulty.HARD: DifficultySpec(rank=0.75, enemy_hp=1.15),
-    Difficulty.LUNATIC: DifficultySpec(rank=1.0, bombs=2, enemy_hp=1.3),
+    Difficulty.LUNATIC: DifficultySpec(rank=1.0, lives=2, bombs=2, enemy_hp=1.3),
 }

@@ -64,6 +64,8 @@ class Pilot:
         lead = len(self.pending)  # frames until this press is felt
         best, best_cost, best_min = None, np.inf, np.inf
         target = self._target_x(world, p.pos)
+        future = self._future(threats, speeds, lead)
+        weight = 1.0 / (1.0 + 0.15 * np.arange(HORIZON))[:, None]  # the nearer future counts more
         for slow in (False, True):
             speed = (spec.slow_speed if slow else spec.speed) * DT
             for d in _DIRS:
@@ -71,7 +73,7 @@ class Pilot:
                 step = d / n * speed if n else d
                 path = start + step * frames[:, None]  # (H, 2)
                 np.clip(path, (12.0, 16.0), (FIELD[0] - 12.0, FIELD[1] - 16.0), out=path)
-                cost, closest = self._danger(path, threats, speeds, lead)
+                cost, closest = self._danger(path, future, weight)
                 cost += self._preference(path[-1], target, world)
                 if cost < best_cost:
                     best, best_cost, best_min = (int(d[0]), int(d[1]), slow), cost, closest
@@ -102,18 +104,22 @@ class Pilot:
         near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < reach * reach
         return pos[near], vel[near]
 
-    def _danger(self, path, threats, speeds, lead) -> tuple[float, float]:
-        """Cost of flying ``path`` (H, 2) with the threats flying straight on; and the
-        closest pass. The threats are as seen ``lead`` frames before the path starts."""
-        if not len(threats):
+    @staticmethod
+    def _future(threats, speeds, lead) -> np.ndarray:
+        """(H, m, 2): where each threat will be at each of the next ``HORIZON`` points of a
+        path, flying straight on; the threats are as seen ``lead`` frames before it starts."""
+        t = lead + np.arange(1, HORIZON + 1, dtype=np.float64)  # frames from seeing to each point
+        return threats[None, :, :] + speeds[None, :, :] * t[:, None, None]
+
+    def _danger(self, path, future, weight) -> tuple[float, float]:
+        """Cost of flying ``path`` (H, 2) among the threats' ``future`` positions (H, m, 2),
+        the nearer future counting more (``weight``, (H, 1)); and the closest pass."""
+        if not future.shape[1]:
             return 0.0, np.inf
-        t = lead + np.arange(1, len(path) + 1, dtype=np.float64)  # frames from seeing to each point
-        future = threats[None, :, :] + speeds[None, :, :] * t[:, None, None]  # (H, m, 2)
         d = future - path[:, None, :]
         dist = np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1])
         closest = float(dist.min())
         near = np.clip(CAREFUL - dist, 0.0, None)
-        weight = 1.0 / (1.0 + 0.15 * np.arange(len(path)))[:, None]  # the nearer future counts more
         cost = float((near * near * weight).sum()) + 1e6 * float((dist < HIT).sum())
         return cost, closest
 

@@ -58,7 +58,7 @@ def test_declared_values_override_the_defaults(level):
 @pytest.mark.parametrize("d, ships, hp, lives, rank", [
     ("easy", ["scout"], [2], 6, DEFAULT_SPECS[Difficulty.EASY].rank),  # 5 * 0.5 = 2.5, half to even: 2
     ("normal", ["scout"], [5], 3, 0.5),
-    ("lunatic", ["scout", "wasp"], [round(5 * 1.3), round(3 * 1.3)], 3, 0.95),
+    ("lunatic", ["scout", "wasp"], [round(5 * 1.3), round(3 * 1.3)], DEFAULT_SPECS[Difficulty.LUNATIC].lives, 0.95),
 ])
 def test_the_world_plays_the_difficulty(level, d, ships, hp, lives, rank):
     w = World(level, ARMATURES, settings=Settings(difficulty=d))

@@ -16,12 +16,18 @@ def test_normal_fires_the_level_as_written():
 def test_each_rank_scales_rate_and_speed(rank):
     out = RankedFire(rank).of(RING)
     assert out.every == pytest.approx(1.0 / rate_factor(rank)) and out.speed == pytest.approx(100.0 * speed_factor(rank))
-    assert (out.shots, out.pattern) == (RING.shots, RING.pattern)
+    assert out.shots == max(1, round(RING.shots * rate_factor(rank))) and out.pattern is RING.pattern
+
+
+def test_a_single_aimed_shot_stays_single():
+    aimed = FireSpec(pattern=FireKind.AIMED, shots=1)
+    assert RankedFire(1.0).of(aimed).shots == 1 and RankedFire(0.0).of(aimed).shots == 1
 
 
 def test_higher_ranks_are_harder_and_silence_stays_silent():
     easy, lunatic = RankedFire(0.2).of(RING), RankedFire(1.0).of(RING)
     assert easy.every > RING.every > lunatic.every and easy.speed < RING.speed < lunatic.speed
+    assert easy.shots < RING.shots < lunatic.shots
     assert RankedFire(1.0).of(FireSpec()) == FireSpec()
 
 
