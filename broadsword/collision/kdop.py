@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._indexing import selector
 from .posing import Posed
 
 __all__ = ["kdops", "kdops_overlap"]
@@ -34,12 +35,16 @@ def kdops(posed: Posed) -> np.ndarray:
     """
     out = np.empty((8, posed.n))  # built row-wise, as bounds.aabbs does
     for k, idx in posed.members.items():
-        x, y = posed.xs[k], posed.ys[k]
+        x, y, sel = posed.xs[k], posed.ys[k], selector(idx)
         with np.errstate(over="ignore"):  # +-inf past the doubles: rounding is monotonic, so still a bound
             s, d = x + y, x - y
         for row, v in enumerate((x, y, s, d)):
-            out[row, idx] = v.min(axis=0)
-            out[row + 4, idx] = v.max(axis=0)
+            if isinstance(sel, slice):  # a pool: reduce straight into place
+                np.min(v, axis=0, out=out[row, sel])
+                np.max(v, axis=0, out=out[row + 4, sel])
+            else:
+                out[row, sel] = v.min(axis=0)
+                out[row + 4, sel] = v.max(axis=0)
     return out.T
 
 

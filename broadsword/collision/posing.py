@@ -15,8 +15,8 @@ Rotation
 ``angles`` are in degrees; a pose maps local ``(x, y)`` to
 ``(px + x cos a - y sin a, py + x sin a + y cos a)`` (the paper's Figure 6). Two modes:
 
-* ``"exact"``: ``cos``/``sin`` of the angle.
-* ``"lut"``: the paper's Figure 7 table of 360 integer-degree values; the angle is
+* ``"exact"``: ``cos``/``sin`` of the angle (:mod:`.detmath`: the same bits on every machine).
+* ``"lut"``: the paper's Figure 7 table of 360 integer-degree values (built by :mod:`.detmath`); the angle is
   rounded to the nearest degree (halves round up). The largest vertex displacement this
   causes at distance ``r`` from the centre is ``2 r sin(0.25 deg) ~= 0.00873 r``
   (:func:`broadsword.collision.armature.lut_max_displacement`).
