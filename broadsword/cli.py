@@ -12,7 +12,7 @@
     broadsword armature generate|check ...       make and check armatures (broadsword.game.authoring)
     broadsword soak [--frames N]                 long headless play, memory report (broadsword.soak)
     broadsword balance [--seeds N]               the autopilot over seeds per stage (broadsword.balance)
-    broadsword pattern check FILE...             check BulletML patterns (broadsword.patterntool)
+    broadsword pattern check|view FILE...        check or watch BulletML patterns (broadsword.patterntool)
 
 Exit status: 0 success; 1 a check that failed (or no window to open); 2 a usage error
 (an unknown option, ``--frames -1``, a bad ``--lab``...) or a level or asset file that
@@ -54,7 +54,7 @@ SUBCOMMANDS: dict[str, Subcommand] = {
     "armature": Subcommand("broadsword.game.authoring", "generate armatures from sprites, and check armature files"),
     "soak": Subcommand("broadsword.soak", "long headless play with the autopilot, watching memory and errors"),
     "balance": Subcommand("broadsword.balance", "the autopilot over seeds per stage and difficulty: a table"),
-    "pattern": Subcommand("broadsword.patterntool", "check BulletML pattern files: bullets fired, peak live, duration"),
+    "pattern": Subcommand("broadsword.patterntool", "check BulletML pattern files, or watch one fire (a window)"),
 }
 
 PLAY = "play"

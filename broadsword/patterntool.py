@@ -1,8 +1,11 @@
-"""``broadsword pattern check FILE...``.
+"""``broadsword pattern check FILE...`` and ``broadsword pattern view FILE``.
 
     broadsword pattern check assets/patterns/*.xml [--frames N] [--rank R] [--params A,B,...]
         validate each file and report bullets fired, peak live bullets and duration;
         exit 1 naming each bad file
+    broadsword pattern view FILE [--rank R] [--seed S] [--params A,B,...]
+        a window with the pattern firing from an emitter, the target at the mouse
+        (broadsword.game.patternview has the keys)
 
 ``--params`` gives the top actions' ``$1``, ``$2``... (the game's shipped kinds take them).
 """
@@ -13,7 +16,7 @@ import argparse
 import math
 import sys
 
-from .argtypes import positive
+from .argtypes import positive, seed
 
 
 def _rank(text: str) -> float:
@@ -37,7 +40,7 @@ def _params(text: str) -> tuple[float, ...]:
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="broadsword pattern", description="Check BulletML patterns.",
+    ap = argparse.ArgumentParser(prog="broadsword pattern", description="Check and view BulletML patterns.",
                                  epilog="exit status: 0 all good; 1 a file failed to load (each is named); 2 usage")
     sub = ap.add_subparsers(dest="command", required=True)
     check = sub.add_parser("check", help="validate files and report bullets fired, peak live bullets, duration")
@@ -45,6 +48,13 @@ def _parser() -> argparse.ArgumentParser:
     check.add_argument("--frames", type=positive, default=1200, help="frames to run each pattern (default 1200)")
     check.add_argument("--rank", type=_rank, default=0.5, help="$rank, 0..1 (default 0.5)")
     check.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions, e.g. 2.5,3,30,60,0")
+    view = sub.add_parser("view", help="watch a pattern fire (target at the mouse)")
+    view.add_argument("file", metavar="FILE")
+    view.add_argument("--rank", type=_rank, default=0.5, help="starting $rank, 0..1 (default 0.5)")
+    view.add_argument("--seed", type=seed, default=0, help="the $rand stream's seed (default 0)")
+    view.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions")
+    view.add_argument("--frames", type=positive, default=None, help="quit after this many frames (for tests)")
+    view.add_argument("--screenshot", metavar="PNG", help="save the last frame to this PNG file")
     return ap
 
 
@@ -79,4 +89,9 @@ def main(argv: list[str]) -> int:
         args = _parser().parse_args(argv)
     except SystemExit as exc:  # usage errors (2), --help (0)
         return exc.code if isinstance(exc.code, int) else 2
-    return check(args.files, args.frames, args.rank, args.params)
+    if args.command == "check":
+        return check(args.files, args.frames, args.rank, args.params)
+    from .game.patternview import view
+
+    return view(args.file, rank=args.rank, seed=args.seed, params=args.params, frames=args.frames,
+                screenshot=args.screenshot)

@@ -15,6 +15,7 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
         default = methods["default (bins+aabb+armature, lut)"]
         assert default["pose_false_positives"] == 0 and default["pose_false_negatives"] == 0
         assert default["median_ms"] > 0
+        assert scale["default_alone_swept"]["median_ms"] > 0  # the game's sweeps, beside the default alone
         exact = methods["default, exact rotation"]
         assert exact["false_positives"] == 0 and exact["false_negatives"] == 0
         for name, m in methods.items():
@@ -29,8 +30,16 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     big = doc["scales"][-1]["methods"]["default (bins+aabb+armature, lut)"]
     assert big["false_positives"] + big["false_negatives"] > 0  # rounding to the degree flips some pairs
     assert {"bins+kdop+armature, lut", "8-DOP only (bins+kdop)", "OBB only (bins+obb)"} <= set(doc["scales"][0]["methods"])
-    assert doc["game_frame"]["frame_median_ms"] > 0
-    assert "NOT its bullet-hell peak" in doc["game_frame"]["where"]
+    frames = doc["game_frame"]  # DESIGN.md's contract: one entry per scene measured
+    assert [e["level"] for e in frames] == ["3-broadsword", "stress-5000"]
+    for e in frames:
+        assert set(e) >= {"bullets", "median_ms", "step_ms", "collision_ms", "render_ms", "present_ms"}
+        assert e["median_ms"] > 0 and e["collision_ms"] > 0 and e["render_ms"] > 0
+        assert min(e["step_ms"], e["present_ms"]) >= 0
+    assert "NOT its bullet-hell peak" in frames[0]["where"]
+    assert frames[1]["bullets"] >= 4750  # the stress scene really holds its count
+    drawing = doc["bullet_drawing"]
+    assert drawing["bullets"] == 2000 and drawing["batched_draw_us_per_bullet"] > 0
     pat = doc["patterns"]
     assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
     assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
@@ -39,4 +48,4 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
         assert key in doc, key
     text = capsys.readouterr().out
     assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
-    assert "--quick: early in the level, NOT its bullet-hell peak" in text
+    assert "Drawing 2,000 bullets" in text and "with the game's sweeps" in text and "--quick: early in the level, NOT its bullet-hell peak" in text

@@ -10,8 +10,10 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    negatives against exact geometry at the true angles (the ``exact`` rotation), against
    the exact answer at the method's own poses, and against pixel truth;
 2. a whole game frame on the bullet-hell level (at its peak in a full run; ``--quick``
-   measures frames early in the level and says so), and the game's levels against their
-   sprites' own masks (how often an armature hit disagrees with what is seen);
+   measures frames early in the level and says so) and on stress scenes holding 5,000
+   and 10,000 enemy bullets, drawing bullets batched against one by one, and the game's
+   levels against their sprites' own masks (how often an armature hit disagrees with
+   what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
    whole game frame's;
 4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
@@ -32,7 +34,7 @@ import time
 
 import numpy as np
 
-from ..collision import Pipeline, retain_heap
+from ..collision import FrameObjects, Pipeline, retain_heap
 from . import analysis
 from .peers import PEERS
 from ..collision.scenarios import ReferenceScene
@@ -120,7 +122,7 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=seed)
     methods = _methods(scene)
     truth = {r: Pipeline(scene.shapes, scene.table, tiers=("bins", "armature"), rotation=r) for r in ("lut", "exact")}
-    ms: dict[str, list[float]] = {name: [] for name in methods}
+    ms = {name: [] for name in methods}
     fp = {name: 0 for name in methods}
     fn = {name: 0 for name in methods}
     own_fp = {name: 0 for name in methods}
@@ -128,7 +130,7 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     pfp = {name: 0 for name in methods}
     pfn = {name: 0 for name in methods}
     exact_hits = pixel_hits = 0
-    tier_ms: dict[str, list[dict[str, float]]] = {name: [] for name in methods}
+    tier_ms = {name: [] for name in methods}
     for f in range(warmup + frames):
         pos, ang = scene.advance()
         measured = f >= warmup
@@ -158,14 +160,24 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
         progress(f + 1, warmup + frames)
     # The default pipeline alone, as the game runs it: interleaving evicts each method's
     # buffers from the cache between its frames, which the product never does.
+    # Beside it, interleaved, the same pipeline with the game's sweeps: every bullet swept
+    # from where it was a frame before along its velocity, without turning (as the game's
+    # bullets move; the scene's own wrap-around and jitter are not part of a bullet's path).
     solo_pipe = Pipeline(scene.shapes, scene.table, tiers=DEFAULT, rotation="lut")
-    solo = []
+    swept_pipe = Pipeline(scene.shapes, scene.table, tiers=DEFAULT, rotation="lut")
+    names = list(scene.table.names)
+    bullet = np.isin(scene.layer, [names.index(n) for n in ("enemy_bullet", "player_bullet") if n in names])
+    solo, swept = [], []
     for f in range(warmup + frames):
         pos, ang = scene.advance()
-        t0 = time.perf_counter()
-        solo_pipe.step(scene.armature, scene.layer, pos, ang)
-        if f >= warmup:
-            solo.append((time.perf_counter() - t0) * 1e3)
+        prev = pos - scene.vel * scene.dt
+        runs = [(solo, lambda: solo_pipe.step(scene.armature, scene.layer, pos, ang)),
+                (swept, lambda: swept_pipe.run(FrameObjects(scene.armature, scene.layer, pos, ang, prev, ang, bullet)))]
+        for times, run in runs[:: 1 if f % 2 else -1]:  # alternate which goes first
+            t0 = time.perf_counter()
+            run()
+            if f >= warmup:
+                times.append((time.perf_counter() - t0) * 1e3)
     out = {}
     for name, (_, rotation, tiers) in methods.items():
         a = np.array(ms[name])
@@ -175,11 +187,12 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
                      "false_positives": fp[name], "false_negatives": fn[name],
                      "pose_false_positives": own_fp[name], "pose_false_negatives": own_fn[name],
                      "pixel_false_positives": pfp[name], "pixel_false_negatives": pfn[name]}
-    solo_ms = np.array(solo)
+    solo, swept = np.array(solo), np.array(swept)
     return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits,
             "pixel_frames": min(pixel_frames, frames), "pixel_hits": pixel_hits, "methods": out,
-            "default_alone": {"median_ms": float(np.median(solo_ms)), "min_ms": float(solo_ms.min()),
-                              "max_ms": float(solo_ms.max())}}
+            "default_alone": {"median_ms": float(np.median(solo)), "min_ms": float(solo.min()), "max_ms": float(solo.max())},
+            "default_alone_swept": {"median_ms": float(np.median(swept)), "min_ms": float(swept.min()),
+                                    "max_ms": float(swept.max())}}
 
 
 def _progress(label: str):
@@ -213,20 +226,18 @@ def markdown(results: list[dict]) -> str:
         lines.append(f"| default, alone (as in the game: no other method between its frames) | "
                      f"{alone['median_ms']:.2f} | {alone['min_ms']:.2f} | {alone['max_ms']:.2f} | "
                      f"{alone['median_ms'] / base:.2f} | | | | | | |")
+        sw = scale["default_alone_swept"]
+        lines.append(f"| default, alone, with the game's sweeps (every bullet swept along its velocity; "
+                     f"{sw['median_ms'] / alone['median_ms']:.2f}x without) | {sw['median_ms']:.2f} | {sw['min_ms']:.2f} | "
+                     f"{sw['max_ms']:.2f} | {sw['median_ms'] / base:.2f} | | | | | | |")
         missing = [cls().why for cls in PEERS if not cls().available]
         if missing:
             lines.append(f"\nPeers not run: {'; '.join(missing)}.")
     return "\n".join(lines)
 
 
-def game_markdown(game: dict, visual: list[dict]) -> str:
-    lines = [f"\n### Whole game frame: {game['level']} with the autopilot, frames {game['warmup'] + 1}-"
-             f"{game['warmup'] + game['frames']}, {game['bullets_median']} bullets on screen ({game['where']}; the "
-             f"most this run saw: {game['peak_bullets']}, at frame {game['peak_frame']})\n",
-             "| frame median ms | frame max ms | collision median ms | render median ms |", "|---:|---:|---:|---:|",
-             f"| {game['frame_median_ms']:.2f} | {game['frame_max_ms']:.2f} | {game['collision_median_ms']:.2f} | "
-             f"{game['render_median_ms']:.2f} |",
-             "\n### The levels against their sprites' own masks (what the player sees)\n",
+def game_markdown(visual: list[dict]) -> str:
+    lines = ["\n### The levels against their sprites' own masks (what the player sees)\n",
              "Per level and layer pair, over the frames played by the autopilot: hits both agree on, armature hits the "
              "sprites do not show, and sprite overlaps the armatures do not count (by design for the player's small "
              "hit shape).\n", "| level | frames | pair | both | armature only | sprite only |", "|---|---:|---|---:|---:|---:|"]
@@ -325,26 +336,30 @@ def main(argv: list[str] | None = None) -> int:
     print(markdown(results), flush=True)
 
     game = None
+    drawing = None
     visual = []
     if not args.no_game:
         from ..data import list_levels
-        from .game_frame import run_game_frames
+        from .game_frame import markdown as frame_markdown, run_all
 
-        print(f"  whole game frame ({'early in the level' if args.quick else 'at the bullet-hell peak'}) ...",
-              file=sys.stderr, flush=True)
-        game = run_game_frames(warmup=120 if args.quick else 660, frames=10 if args.quick else 60, seed=args.seed)
-        game["where"] = ("--quick: early in the level, NOT its bullet-hell peak" if args.quick
-                         else "the level's bullet-hell peak, reached by frame 660 (docs/PERFORMANCE.md)")
+        print("  whole game frame: the bullet-hell stage's peak and the stress scenes ...", file=sys.stderr, flush=True)
+        game = run_all(args.quick, args.seed)
+        print(frame_markdown(game), flush=True)
         for level in list_levels():
             print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
-        print(game_markdown(game, visual), flush=True)
+        print(game_markdown(visual), flush=True)
+        from .drawing import markdown as drawing_markdown, run_bullet_drawing
+
+        print("  drawing bullets, batched and one by one ...", file=sys.stderr, flush=True)
+        drawing = run_bullet_drawing(2000 if args.quick else 10_000, frames=5 if args.quick else 30, seed=args.seed)
+        print(drawing_markdown(drawing), flush=True)
 
     from .patterns import markdown as patterns_markdown, run_pattern_frames
 
     print("  BulletML patterns ...", file=sys.stderr, flush=True)
     patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
-    print(patterns_markdown(patterns, game), flush=True)
+    print(patterns_markdown(patterns, game[0] if game else None), flush=True)
 
     sections = {}
     for key, fn in (("scaling", analysis.scaling), ("bin_size", analysis.bin_size_curve),
@@ -362,7 +377,7 @@ def main(argv: list[str] | None = None) -> int:
         doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
                "python": platform.python_version(), "numpy": np.__version__, "allocator": heap,
                "host_canary_before": canary, "host_canary_after": host_canary(), "scales": results,
-               "game_frame": game, "levels_vs_sprites": visual, "patterns": patterns, **sections}
+               "game_frame": game, "bullet_drawing": drawing, "levels_vs_sprites": visual, "patterns": patterns, **sections}
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")

@@ -1,61 +1,135 @@
-"""Whole-frame timing of the game: simulation step, collision and rendering to the window.
+"""Whole-frame timing of the game: simulation step, collision, rendering and presenting.
 
-Plays a level with the autopilot through the real :class:`broadsword.game.app.App` under
-SDL's dummy video driver for ``warmup`` frames, then times ``frames`` whole frames (one
-fixed step each, rendered and presented). It reports the bullets on screen while timing
-beside the most the run saw up to then and when (``peak_bullets``, ``peak_frame``): the
-most of the frames played, not necessarily of the level. The full benchmark's 660 warm-up
-frames reach the level's peak; ``--quick``'s 120 are early in it, and its tables say so.
+A level is played by the autopilot (the game's :class:`~broadsword.sim.Pilot`) through the
+game's own :class:`~broadsword.game.render.Renderer`, under SDL's dummy video driver (or
+whatever ``SDL_VIDEODRIVER`` says, e.g. ``x11`` under Xvfb), until its enemy bullets reach
+the count asked for; then ``frames`` whole frames are timed, each split into
+
+* ``step_ms``: the simulation step without its collision (patterns, movement, rules);
+* ``collision_ms``: the collision pipeline inside the step (its own clock, the game's
+  sweeps included);
+* ``render_ms``: drawing the world onto the field-sized surface;
+* ``present_ms``: scaling it into the window and flipping, as the game does;
+
+and ``median_ms`` is the median of their per-frame sum. The stress scenes
+(``stress/stress-5000.toml``, ``stress/stress-10000.toml``, benchmark data, not shipped
+stages) hold about 5,000 and 10,000 live enemy bullets; ``3-broadsword`` is the shipped
+bullet-hell stage at its peak.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
+STRESS = Path(__file__).resolve().parent / "stress"
+#: Enemy-bullet count -> stress scene.
+STRESS_LEVELS = {5000: STRESS / "stress-5000.toml", 10_000: STRESS / "stress-10000.toml"}
+#: The window's scale while measuring (the game's default window).
+SCALE = 1.25
 
-def run_game_frames(level: str = "3-broadsword", warmup: int = 660, frames: int = 60, seed: int = 0) -> dict:
+
+def _present(screen) -> None:
+    """Scale the field into the window and flip, as the game's window does."""
+    import pygame
+
+    win = pygame.display.get_surface()
+    ww, wh = win.get_size()
+    fw, fh = screen.get_size()
+    k = min(ww / fw, wh / fh)
+    size = (max(1, int(fw * k)), max(1, int(fh * k)))
+    win.fill((0, 0, 0))
+    win.blit(pygame.transform.scale(screen, size), ((ww - size[0]) // 2, (wh - size[1]) // 2))
+    pygame.display.flip()
+
+
+def run_game_frames(level: str | Path = "3-broadsword", bullets: int | None = None, warmup: int = 660,
+                    frames: int = 60, seed: int = 0) -> dict:
+    """Play ``level`` (a shipped level's name or a file) until it shows ``bullets`` enemy
+    bullets (at most ``warmup`` steps; with ``bullets=None``, exactly ``warmup`` steps),
+    then time ``frames`` whole frames. Returns the ``game_frame`` entry of DESIGN.md
+    (``bullets`` is the median live enemy-bullet count over the timed frames) plus
+    ``level``, ``frames``, ``warmup`` (steps taken), ``max_ms``, ``player_bullets`` and the
+    1-minute load average."""
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     import pygame
 
-    from ..game.app import App
-    from ..game.scores import HighScores
-    from ..sim import DT
+    from ..data import check_level_sprites, load_level, resolve_level
+    from ..game.render import Renderer
+    from ..game.sprites import SpriteBank
+    from ..sim import FIELD, Pilot, World
 
-    scores = HighScores(Path(tempfile.mkdtemp()) / "scores.json")
-    app = App(start_level=level, seed=seed, demo=True, audio=False, scores=scores)
-    app.start_run()
-    world = app.world
-    assert world is not None  # start_run() made it
-    seen = []  # bullets on screen after every frame, warm-up included
-    for _ in range(warmup):
-        app.frame(DT)
-        seen.append(world.enemy_bullets.n + world.player_bullets.n)
-    total, collide, render = [], [], []
-    bullets = []
+    pygame.init()
+    pygame.display.set_mode((int(FIELD[0] * SCALE), int(FIELD[1] * SCALE)))
+    screen = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
+    bank = SpriteBank()
+    bank.convert()
+    spec = load_level(resolve_level(str(level)))
+    check_level_sprites(spec, bank.armatures)
+    world = World(spec, bank.armatures, seed=seed)
+    renderer = Renderer(bank, seed)
+    pilot = Pilot()
+    steps, peak, peak_step = 0, 0, 0
+    while steps < warmup and (bullets is None or world.enemy_bullets.n < bullets) and not world.over:
+        renderer.on_events(world.step(pilot(world)))
+        steps += 1
+        if world.enemy_bullets.n > peak:
+            peak, peak_step = world.enemy_bullets.n, steps
+    renderer.draw(screen, world, 1.0)  # fills the rotation tables before timing
+    clock = time.perf_counter
+    rows, counts, own = [], [], []
     for _ in range(frames):
-        t0 = time.perf_counter()
-        app.frame(DT)  # events, one fixed step, render, present
-        total.append((time.perf_counter() - t0) * 1e3)
-        bullets.append(world.enemy_bullets.n + world.player_bullets.n)
-        if world.collision is not None:
-            collide.append(world.collision.result.ms)
-    # Split one frame's cost: time the render alone on the final state.
-    for _ in range(frames):
-        t0 = time.perf_counter()
-        app.render()
-        render.append((time.perf_counter() - t0) * 1e3)
+        t0 = clock()
+        ev = world.step(pilot(world))
+        renderer.on_events(ev)
+        t1 = clock()
+        renderer.draw(screen, world, 1.0)
+        t2 = clock()
+        _present(screen)
+        t3 = clock()
+        collide = world.collision.result.ms if world.collision is not None else 0.0
+        rows.append(((t1 - t0) * 1e3 - collide, collide, (t2 - t1) * 1e3, (t3 - t2) * 1e3))
+        counts.append(world.enemy_bullets.n)
+        own.append(world.player_bullets.n)
     pygame.quit()
-    med = lambda a: float(np.median(a)) if a else 0.0  # noqa: E731
-    seen += bullets
-    peak = int(max(seen)) if seen else 0
-    measured = int(np.median(bullets)) if bullets else 0
-    return {"level": level, "frames": frames, "warmup": warmup, "bullets_median": measured,
-            "peak_bullets": peak, "peak_frame": int(np.argmax(seen)) + 1 if seen else 0,
-            "frame_median_ms": med(total), "frame_max_ms": float(max(total)), "collision_median_ms": med(collide),
-            "render_median_ms": med(render), "game_over": world.over}
+    a = np.array(rows)
+    med = np.median(a, axis=0)
+    total = a.sum(axis=1)
+    return {"bullets": int(np.median(counts)), "median_ms": float(np.median(total)), "step_ms": float(med[0]),
+            "collision_ms": float(med[1]), "render_ms": float(med[2]), "present_ms": float(med[3]),
+            "max_ms": float(total.max()), "level": Path(str(level)).stem, "frames": frames, "warmup": steps,
+            "player_bullets": int(np.median(own)), "game_over": bool(world.over),
+            "peak_bullets": max(peak, max(counts)),  # the most this run saw, and at which step
+            "peak_frame": peak_step if peak >= max(counts) else steps + 1 + int(np.argmax(counts)),
+            "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else None}
+
+
+def run_all(quick: bool = False, seed: int = 0) -> list[dict]:
+    """The ``game_frame`` list: the shipped bullet-hell stage at its peak, then each stress
+    scene at its count (5,000 only in quick mode, briefly)."""
+    out = [run_game_frames("3-broadsword", None, 120 if quick else 3240, 10 if quick else 60, seed)]
+    out[0]["where"] = ("--quick: early in the level, NOT its bullet-hell peak" if quick
+                       else "the level's bullet-hell peak (54 s in; docs/PERFORMANCE.md)")
+    for count, path in STRESS_LEVELS.items():
+        if quick and count > 5000:
+            continue
+        out.append(run_game_frames(path, count, 900, 5 if quick else 60, seed))
+        out[-1]["where"] = f"stress scene, once {count:,} enemy bullets were reached"
+    return out
+
+
+def markdown(entries: list[dict]) -> str:
+    lines = ["\n### Whole game frame (autopilot; step, collision with the game's sweeps, render, present)\n",
+             "| scene | where | enemy bullets | most seen (step) | warm-up steps | frames | median ms | step | collision "
+             "| render | present | max ms | load |", "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for e in entries:
+        la = f"{e['load_average']:.1f}" if e.get("load_average") is not None else ""
+        lines.append(f"| {e['level']} | {e.get('where', '')} | {e['bullets']:,} | {e['peak_bullets']:,} ({e['peak_frame']}) "
+                     f"| {e['warmup']} | {e['frames']} | {e['median_ms']:.2f} | "
+                     f"{e['step_ms']:.2f} | {e['collision_ms']:.2f} | {e['render_ms']:.2f} | {e['present_ms']:.2f} | "
+                     f"{e['max_ms']:.2f} | {la} |")
+    return "\n".join(lines)

@@ -69,7 +69,7 @@ def run_pattern_frames(bullets: int = 2000, frames: int = 120, seed: int = 0) ->
 
 
 def markdown(result: dict, game: dict | None) -> str:
-    frame = f"{game['frame_median_ms']:.2f}" if game else "(not run)"
+    frame = f"{game['median_ms']:.2f}" if game else "(not run)"
     la = result.get("load_average")
     load = f"; host load average {la[0]:.2f} over 1 minute" if la else ""
     return "\n".join([

@@ -372,8 +372,10 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
     """Current-pose convex shape of each swept object as offsets from its position, (rows, m)
     arrays: its hull (padded with its last vertex), or the circumscribed octagon if it turned."""
     arm = armature[obj]
-    hx = _pad_rows(shapes._hx[:rows, arm], rows)
-    hy = _pad_rows(shapes._hy[:rows, arm], rows)
+    one = arm.min() == arm.max()
+    cols = arm[:1] if one else arm  # one armature: a single (rows, 1) column, broadcast
+    hx = _pad_rows(shapes._hx[:rows, cols], rows)
+    hy = _pad_rows(shapes._hy[:rows, cols], rows)
     c, s = cos[obj], sin[obj]
     x = hx * c - hy * s
     y = hx * s + hy * c

@@ -18,9 +18,9 @@ from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
 from ..data.levels import Theme
 from .backdrop import Backdrop
+from .bullets import BulletSprites
 from .sprites import SpriteBank
 
-ROUND_BULLETS = ("pellet", "orb")  # rotation-invariant sprites: never rotated
 LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
     "player": (80, 255, 255),
     "graze": (110, 160, 255),
@@ -54,6 +54,7 @@ class Renderer:
         self.strip = self._explosion_frames()
         self.life_icon = pygame.transform.scale_by(bank.images["player"], 0.5)
         self._scaled: dict[tuple[int, float], pygame.Surface] = {}  # explosion frames, grown
+        self._sprites: BulletSprites | None = None  # the bullets' rotation tables, for the level's kinds
 
     def _explosion_frames(self) -> list[pygame.Surface]:
         strip = self.bank.images.get("explosion")
@@ -116,17 +117,14 @@ class Renderer:
                 surf.blit(img, img.get_rect(center=(x, y)))
 
     def _bullets(self, surf, pool, world: World, alpha: float) -> None:
+        """Every bullet of ``pool`` in one ``fblits`` call (see :mod:`.bullets`)."""
         if not pool.n:
             return
+        kinds = world.kinds
+        if self._sprites is None or self._sprites.names != kinds.names:
+            self._sprites = BulletSprites(self.bank, kinds.names, kinds.frame)
         pos = self._lerp(pool.pos, pool.prev, alpha)
-        names, frame_of = world.kinds.names, world.kinds.frame
-        blits = []
-        for (x, y), a, k in zip(pos.tolist(), pool.angle.tolist(), world.kinds.current(pool.arm, world.time).tolist()):
-            name, f = names[k], int(frame_of[k])
-            img = self.bank.frame(name, f) if name in ROUND_BULLETS else self.bank.rotated(name, a, f)
-            w, h = img.get_size()
-            blits.append((img, (x - w * 0.5, y - h * 0.5)))
-        surf.fblits(blits)  # one call for the whole crowd
+        surf.fblits(self._sprites.blits(kinds.current(pool.arm, world.time), pool.angle, pos))
 
     def _bomb(self, surf, world: World) -> None:
         """The bomb: rings of light at its current radius, fading as it ends (cosmetic; the

@@ -41,6 +41,7 @@ class SpriteBank:
             self.images[stem] = self.frames[stem][0]
         self._rot: dict[tuple[str, int, int], pygame.Surface] = {}
         self._converted = False
+        self.version = 0  # bumped when the images change (convert), so caches of them can tell
 
     def convert(self) -> None:
         """Convert images to the display's format once a display exists (faster blits)."""
@@ -50,6 +51,7 @@ class SpriteBank:
         self.images = {k: self.frames[k][0] if k in self.frames else v.convert_alpha() for k, v in self.images.items()}
         self._rot.clear()
         self._converted = True
+        self.version += 1
 
     def image(self, name: str) -> pygame.Surface:
         return self.images[name]

@@ -44,9 +44,10 @@ class PhaseEnd(Enum):
 
 
 def parts_pool(capacity: int = 1) -> Pool:
-    """A pool of boss parts: pose, armature kind, age, part index and firing schedule."""
+    """A pool of boss parts: pose, armature kind, age, part index and ``next_fire``, the age
+    at which the part's current pattern starts (:mod:`.emitters` runs it)."""
     return Pool(capacity=capacity, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
-                arm=((), int), age=((), float), part=((), int), next_fire=((), float), volley=((), int))
+                arm=((), int), age=((), float), part=((), int), next_fire=((), float))
 
 
 class Boss:
@@ -86,8 +87,7 @@ class Boss:
         at = self.pos + self.offsets
         self.parts.add(pos=at, prev=at, vel=np.zeros((k, 2)), angle=np.zeros(k),
                        arm=[kinds_base[p.sprite] for p in self.spec.parts], age=np.zeros(k), part=np.arange(k),
-                       next_fire=[self.spec.fire_of(0, i).delay + FIRST_VOLLEY_GRACE for i in range(k)],
-                       volley=np.zeros(k, dtype=int))
+                       next_fire=[self.spec.fire_of(0, i).delay + FIRST_VOLLEY_GRACE for i in range(k)])
         return True
 
     def move(self) -> None:
@@ -143,13 +143,12 @@ class Boss:
         return how
 
     def _rearm(self) -> None:
-        """A new phase's patterns start afresh: each part's first volley after its
-        pattern's delay plus :data:`PHASE_GRACE`, its volley count from zero."""
+        """A new phase's patterns start afresh (the emitters restart them): each part's
+        after its pattern's delay plus :data:`PHASE_GRACE`."""
         p = self.parts
         if p.n:
             delay = np.array([self.fire_of(i).delay for i in p.part.tolist()], dtype=np.float64)
             p.next_fire[:] = p.age + delay + PHASE_GRACE
-            p.volley[:] = 0
 
     def wreck(self) -> list[tuple[float, float]]:
         """Remove the parts; returns where they were."""

@@ -53,7 +53,8 @@ class WaveShips:
         self.kind = [kinds_base[w.enemy] for w in waves]  # each wave's armature kind
         self.pool = Pool(limit=SHIPS_LIMIT, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
                          arm=((), int), hp=((), int), age=((), float), wave=((), int), mirror=((), float),
-                         dive=((2,), float), next_fire=((), float), volley=((), int))
+                         dive=((2,), float), next_fire=((), float), uid=((), int))
+        self.next_uid = 0  # every ship sent gets the next id (its emitter follows it by id)
 
     def spawn(self, w: int, rng: np.random.Generator) -> None:
         """Send one ship of wave ``w`` (two when the wave is mirrored); its entry x is
@@ -68,7 +69,9 @@ class WaveShips:
         pos = np.array([[x, ENTRY_Y] for x in xs])
         self.pool.add(pos=pos, prev=pos, vel=np.zeros((k, 2)), angle=np.full(k, 180.0), arm=np.full(k, self.kind[w]),
                       hp=np.full(k, self.hp[w]), age=np.zeros(k), wave=np.full(k, w), mirror=mirrors,
-                      dive=np.zeros((k, 2)), next_fire=np.full(k, spec.fire.delay), volley=np.zeros(k, dtype=int))
+                      dive=np.zeros((k, 2)), next_fire=np.full(k, spec.fire.delay),
+                      uid=np.arange(self.next_uid, self.next_uid + k))
+        self.next_uid += k
 
     def move(self, player: np.ndarray) -> None:
         move_wave_ships(self.pool, self.paths, player)

@@ -11,7 +11,7 @@ section 1.4). It orders small systems, each in its own module:
 3. apply what collided: damage, deaths, grazes, items, the bomb's work, score
    (:mod:`.combat`; mark, then compact);
 4. spawn: the player's gun (:mod:`.weapons`), the wave timeline and the boss's arrival
-   (:mod:`.waves`, :mod:`.boss`), the enemies' volleys (:mod:`.emitters`); run the boss's
+   (:mod:`.waves`, :mod:`.boss`), the enemies' BulletML patterns (:mod:`.emitters`); run the boss's
    phase clock; cull what left the field; extends and the stage's end (:mod:`.progress`).
 
 It returns the frame's :class:`~broadsword.sim.events.Events`. The same level, seed,
@@ -24,11 +24,12 @@ import numpy as np
 
 from ..collision import Pipeline
 from ..data.levels import Level
-from . import emitters, hashing
+from . import hashing
 from .bombs import NAME as BOMB, Bomb, bomb_armatures
 from .boss import Boss, parts_pool
 from .rank import RankedFire
-from .bullets import bullet_pool, cull_bullets, move_bullets
+from .bullets import bullet_pool, cull_bullets, enemy_bullets, move_bullets
+from .emitters import EnemyGuns
 from .collide import CollisionRecord, CollisionStep
 from .combat import Combat
 from .events import Events
@@ -81,7 +82,11 @@ class World:
         None when the level has no boss.
     parts : Pool
         The boss's parts (an empty pool without a boss).
-    enemy_bullets, player_bullets : Pool
+    enemy_bullets : EnemyBullets
+        The enemies' bullets: the BulletML engine's store (``guns.engine.bullets``).
+    player_bullets : Pool
+    guns : EnemyGuns
+        Every firing ship's and boss part's pattern.
     items : Items
     bomb : Bomb
     kinds : Kinds
@@ -126,7 +131,8 @@ class World:
         self.ships = WaveShips(level.waves, self.kinds.base, self.difficulty)
         self.boss = Boss(level.boss, self.difficulty) if level.boss else None
         self.parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
-        self.enemy_bullets = bullet_pool(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
+        self.enemy_bullets = enemy_bullets(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
+        self.guns = EnemyGuns(self.enemy_bullets, self.fires, self.seed)
         self.player_bullets = bullet_pool(PLAYER_BULLETS, PLAYER_BULLETS_LIMIT)
         self.items = Items(self.kinds.base)
         self.bomb = Bomb(self.kinds.base[BOMB])
@@ -153,7 +159,7 @@ class World:
     def set_rotation(self, mode: str) -> None:
         """Switch the rotation mode live (F4), before the next step; recorded in ``toggles``."""
         if mode != self.pipeline.rotation:
-            self.pipeline.rotation = Settings(rotation=mode).rotation or mode  # validated; never None here
+            self.pipeline.rotation = Settings(rotation=mode).rotation
             self.toggles.append(ToggleEvent(self.frame, Toggle.ROTATION, mode))
 
     def continue_game(self) -> None:
@@ -193,6 +199,7 @@ class World:
         self._cull()
         self._check_limits()
         self.frame += 1
+        self.guns.engine.end_frame()
         self.player.tick()
         self.bomb.tick()
         self.progress.extends(ev)
@@ -211,7 +218,6 @@ class World:
 
     def damage_boss(self, amount: int, ev: Events) -> None:
         """Hurt the boss; a phase that ends goes through :meth:`Progress.phase_ended`."""
-        assert self.boss is not None  # only a level with a boss has boss parts to hit
         how = self.boss.damage(amount)
         if how is not None:
             self.progress.phase_ended(how, ev)
@@ -221,7 +227,7 @@ class World:
         self.ships.move(self.player.pos)
         if self.boss:
             self.boss.move()
-        move_bullets(self.enemy_bullets)
+        self.guns.engine.advance()  # enemy bullets: their patterns' changes and commands, then the move
         move_bullets(self.player_bullets)
         self.items.move(self.player.pos, self.player.alive)
 
@@ -231,22 +237,9 @@ class World:
             self.ships.spawn(w, self.rng)
         if self.boss and self.boss.arrive(self.time, self.kinds.base):
             ev.boss_arrived = True
-        if not self.player.alive:
-            return
-        player = self.player.pos
-        if self.parts.n:
-            idx = np.flatnonzero(emitters.due(self.parts))
-            boss = self.boss
-            assert boss is not None  # parts exist only with a boss
-            specs = [self.fires.of(boss.fire_of(p)) for p in self.parts.part[idx].tolist()]
-            ev.enemy_shots += emitters.fire(self.parts, idx, specs, player, self.enemy_bullets, self.kinds.base)
-        ships = self.ships.pool
-        if ships.n:
-            due = emitters.due(ships)
-            for w in np.unique(ships.wave[due]).tolist():
-                idx = np.flatnonzero(due & (ships.wave == w))
-                specs = [self.fires.of(self.level.waves[w].fire)] * len(idx)
-                ev.enemy_shots += emitters.fire(ships, idx, specs, player, self.enemy_bullets, self.kinds.base)
+        self.guns.sync_ships(self.ships.pool, [w.fire for w in self.level.waves], self.kinds.base)
+        self.guns.sync_boss(self.boss, self.kinds.base)
+        ev.enemy_shots += self.guns.fire(self.player.pos.copy(), self.player.alive)
 
     def _cull(self) -> None:
         cull_bullets(self.enemy_bullets)

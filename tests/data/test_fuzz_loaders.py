@@ -172,7 +172,7 @@ KNOWN_KEYS = sorted({
     "fire_every", "shot_speed", "lives", "wave", "at", "enemy", "count", "every", "hp", "score", "mirror", "path", "x",
     "amplitude", "period", "radius", "turn", "dive_at", "hold_y", "hold_for", "fire", "bullet", "bullet_speed", "shots",
     "spread", "volley_turn", "fire_delay", "boss", "y", "sway", "part", "sprite", "offset", "spin", "shapes", "hit",
-    "frames", "frame_time", "frame", "vertices", "version", "seed", "inputs", "state_hash",
+    "frames", "frame_time", "frame", "vertices", "version", "seed", "inputs", "state_hash", "pattern", "pattern_params",
 })
 keys = st.one_of(st.sampled_from(KNOWN_KEYS), st.text(max_size=8))
 SPECIAL_NUMBERS = [math.nan, math.inf, -math.inf, 1e300, -1e300, 5e-324, -0.0, 0, -1, -1000, 10**6, 2**63, -2**63,
@@ -181,7 +181,7 @@ numbers = st.one_of(st.sampled_from(SPECIAL_NUMBERS), st.integers(-2**70, 2**70)
                     st.floats(allow_nan=True, allow_infinity=True))
 NAMES = ["", "scout", "pellet", "boss_core", "player", "aimed", "ring", "sine", "hold", "auto", "bins", "armature",
          "lut", "../x", "/abs/x", "..\\x", "x.png", "../x.png", "/etc/passwd.png", "a\nb", "\x00", "hit", "graze",
-         "__import__('os')", "1-picket", "zz", "0505", "ff"]
+         "__import__('os')", "1-picket", "zz", "0505", "ff", "flower.xml", "../aimed.xml", "/etc/passwd.xml", "ring"]
 strings = st.one_of(st.sampled_from(NAMES), st.text(max_size=20))
 scalars = st.one_of(numbers, strings, st.booleans(), st.dates())
 values = st.recursive(scalars, lambda inner: st.lists(inner, max_size=5) | st.dictionaries(keys, inner, max_size=4),

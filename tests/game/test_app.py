@@ -149,6 +149,21 @@ def test_app__overlay_draws_grid_and_armatures(app):
     assert any(tuple(c) == (80, 255, 255) for c in near)
 
 
+def test_app__overlay_keys_reach_the_overlay_only_while_it_shows(app):
+    from broadsword.game.overlay import KEY_PANEL, KEY_SWEPT, PanelPlace
+
+    quiet(app)
+    key(app, KEY_SWEPT)  # overlay hidden: not its key
+    frames(app, 1)
+    assert not app.overlay.swept
+    key(app, pygame.K_F1)
+    key(app, KEY_SWEPT)
+    key(app, KEY_PANEL)
+    frames(app, 2)
+    assert app.overlay.visible and app.overlay.swept and app.overlay.place is PanelPlace.TOP_LEFT
+    assert len(app.overlay.history) >= 1  # the frame-time graph records the steps it saw
+
+
 def test_app__overlay_does_not_change_the_game(tmp_path):
     hashes = []
     for overlay in (False, True):

@@ -52,7 +52,7 @@ def test_collision__uses_the_frame_the_ship_shows(world, armatures):
         w.player_bullets.keep(np.zeros(w.player_bullets.n, dtype=bool))
         at = np.array([[240.0, 300.0]])
         w.ships.pool.add(pos=at, prev=at, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["wasp"]], hp=[1], age=[age],
-                         wave=[0], mirror=[1.0], dive=[[0.0, 0.0]], next_fire=[99.0], volley=[0])
+                         wave=[0], mirror=[1.0], dive=[[0.0, 0.0]], next_fire=[99.0], uid=[999])
         shot = at + np.array([wing])
         w.player_bullets.add(pos=shot, prev=shot, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["shot"]],
                              damage=[1], grazed=[False])

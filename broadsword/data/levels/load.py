@@ -19,6 +19,7 @@ from pathlib import Path
 from ...collision import ROTATION_MODES, Tier, check_tiers
 from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
 from ..errors import DataError, shown
+from ..patterns import load_pattern, resolve_pattern
 from ..resources import read_toml
 from ..table import MISSING, Table
 from .specs import (BOSS_DROPS, PATHS, PATTERNS, THEMES, Theme, BossPart, BossPhaseSpec, BossSpec, Drops, FireKind, FireSpec, Level, PathKind,
@@ -34,11 +35,48 @@ PARTS_MAX = 16
 OFFSET_MAX = 1000.0
 
 #: The keys of a firing pattern (a wave's or a boss part's), read only when it fires.
-FIRE_KEYS = ("bullet", "bullet_speed", "fire_every", "shots", "spread", "volley_turn", "fire_delay")
+FIRE_KEYS = ("bullet", "bullet_speed", "fire_every", "shots", "spread", "volley_turn", "fire_delay", "pattern",
+             "pattern_params")
+#: The keys only the original kinds (``fire = "aimed"``...) read; a pattern file says it all itself.
+KIND_KEYS = ("bullet_speed", "fire_every", "shots", "spread", "volley_turn")
+#: A pattern file gets at most this many ``pattern_params``.
+PATTERN_PARAMS_MAX = 16
+
+
+def _bulletml(t: Table) -> FireSpec:
+    """``pattern = "FILE.xml"`` (beside the level or shipped; see :mod:`..patterns`), with
+    optional ``pattern_params``, ``bullet`` and ``fire_delay``."""
+    d = FireSpec()
+    if "fire" in t.doc:
+        raise t.error("fire", "give fire (one of the built-in kinds) or pattern (a BulletML file), not both")
+    for key in KIND_KEYS:
+        if key in t.doc:
+            raise t.error(key, "only for the built-in kinds (fire = ...); a pattern file says how it fires "
+                               "(give it numbers with pattern_params)")
+    name = t.raw("pattern", "")
+    try:
+        path = resolve_pattern(name, t.path)
+    except ValueError as exc:
+        raise t.error("pattern", str(exc)) from None
+    try:
+        pattern = load_pattern(path)
+    except ValueError as exc:
+        raise t.error("pattern", f"the pattern file is bad: {exc}") from None
+    params = t.raw("pattern_params", [])
+    if not (isinstance(params, list) and len(params) <= PATTERN_PARAMS_MAX and all(_is_number(v) for v in params)
+            and all(-1e6 <= v <= 1e6 for v in params)):
+        raise t.error("pattern_params", f"must be a list of at most {PATTERN_PARAMS_MAX} numbers in [-1e6, 1e6] "
+                                        f"($1, $2, ... of the pattern), got {shown(params)}")
+    return FireSpec(pattern=FireKind.BULLETML, bullet=t.sprite("bullet", d.bullet),
+                    delay=t.num("fire_delay", d.delay, 0, 600), file=name, params=tuple(params), bulletml=pattern)
 
 
 def _fire(t: Table) -> FireSpec:
     d = FireSpec()
+    if "pattern" in t.doc:
+        return _bulletml(t)
+    if "pattern_params" in t.doc:
+        raise t.error("pattern_params", "only with pattern (a BulletML file)")
     pattern = FireKind(t.str("fire", d.pattern.value, PATTERNS))
     if pattern is FireKind.NONE:
         for key in FIRE_KEYS:

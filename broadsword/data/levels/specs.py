@@ -5,8 +5,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
+
+if TYPE_CHECKING:
+    from ...patterns.bulletml import Pattern
 
 
 class PathKind(str, Enum):
@@ -34,17 +38,21 @@ THEMES = tuple(t.value for t in Theme)
 
 
 class FireKind(str, Enum):
-    """What a ship fires (``fire`` in a level file)."""
+    """What a ship fires: ``fire`` in a level file names one of the original kinds, each a
+    shipped BulletML file fed the level's numbers; ``pattern`` names a BulletML file
+    (BULLETML)."""
 
     NONE = "none"
     AIMED = "aimed"
     SPREAD = "spread"
     RING = "ring"
     SPIRAL = "spiral"
+    BULLETML = "bulletml"
 
 
 PATHS = tuple(k.value for k in PathKind)
-PATTERNS = tuple(k.value for k in FireKind)
+#: What ``fire`` may say (a BulletML file is named by ``pattern`` instead).
+PATTERNS = tuple(k.value for k in FireKind if k is not FireKind.BULLETML)
 
 @dataclass(frozen=True)
 class SceneSpec:
@@ -68,6 +76,12 @@ class PlayerSpec:
 
 @dataclass(frozen=True)
 class FireSpec:
+    """What one ship or boss part fires: always a BulletML pattern (``bulletml``) run from
+    the shooter, starting ``delay`` s after it appears. The original kinds (``aimed``...)
+    are the shipped files ``assets/patterns/KIND.xml`` fed ``speed``, ``shots``,
+    ``spread``/``spin`` and ``every`` as ``$1``..``$4`` (the sim converts them to frames);
+    a level's own ``pattern`` file gets ``params`` as ``$1``, ``$2``..."""
+
     pattern: FireKind = FireKind.NONE
     bullet: str = "pellet"
     speed: float = 160.0  # px/s
@@ -76,9 +90,19 @@ class FireSpec:
     spread: float = 0.0  # degrees across a spread volley
     spin: float = 0.0  # degrees the volley turns each time (spirals)
     delay: float = 0.5  # s after spawning before the first volley
+    file: str = ""  # BULLETML: the level's ``pattern`` value, as written
+    params: tuple[float, ...] = ()  # BULLETML: ``$1``, ``$2``...
+    bulletml: "Pattern | None" = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         object.__setattr__(self, "pattern", FireKind(self.pattern))  # a name from a file or a test
+        object.__setattr__(self, "params", tuple(float(p) for p in self.params))
+        if self.bulletml is None and self.fires:
+            if self.pattern is FireKind.BULLETML:
+                raise ValueError("a BulletML FireSpec needs its loaded pattern (bulletml=...)")
+            from ..patterns import shipped_kind  # the original kinds are shipped files
+
+            object.__setattr__(self, "bulletml", shipped_kind(self.pattern.value))
 
     @property
     def fires(self) -> bool:

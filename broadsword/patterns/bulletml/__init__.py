@@ -9,8 +9,9 @@
 See docs/PATTERNS.md for the conventions and every choice where the specification is silent.
 """
 
+from . import limits
 from .engine import Engine, trace
 from .load import load, loads
 from .model import Orientation, Pattern
 
-__all__ = ["Engine", "Orientation", "Pattern", "load", "loads", "trace"]
+__all__ = ["Engine", "Orientation", "Pattern", "limits", "load", "loads", "trace"]

@@ -2,13 +2,17 @@
 
 One frame (:meth:`Engine.step`), at frame number ``now`` (0 for the first):
 
-1. every emitter's ongoing changes, then its commands (in the order emitters were added);
+1. every emitter's ongoing changes, then its commands (in the order emitters were added)
+   (:meth:`Engine.fire`);
 2. every bullet alive before this frame: its ongoing changes (all at once, vectorised),
    then, for the bullets whose runner is due, their commands (in the order they were fired);
-3. every bullet alive before this frame moves one frame; bullets fired during this frame
-   appear at their firer's position (before the firer moves) and neither move nor run until
-   the next frame;
-4. bullets that vanished are removed (they did not move).
+   then it moves one frame; bullets fired during this frame appear at their firer's position
+   (before the firer moves) and neither move nor run until the next frame; bullets that
+   vanished are removed (they did not move) (:meth:`Engine.advance`).
+
+The game calls the two parts separately (``advance`` with the other movement, ``fire`` with
+the other spawning, after collision); bullets then keep the same timing relative to their
+firing.
 
 ``$rand`` draws come from the engine's own ``numpy.random.Generator(PCG64(seed))``, in the
 order the commands run, so a run is a function of the seed.
@@ -28,32 +32,39 @@ from .store import NEVER, Movers
 
 class Engine:
     """Emitters and their bullets. ``target`` (2,) is where ``aim`` points (the player);
-    ``rank`` is ``$rank`` (0..1); ``max_bullets`` caps the live bullets (fires past it are
-    refused and counted in ``refused``). Counters: ``fired`` (bullets created so far),
-    ``peak`` (most live at the end of a frame)."""
+    ``rank`` is ``$rank`` (0..1); ``seed`` seeds ``$rand`` (an int or a
+    ``numpy.random.SeedSequence``). ``bullets`` is the store bullets live in (default: a new
+    :class:`Movers` capped at ``max_bullets``; the game passes its enemy-bullet pool, a
+    Movers with its own columns and limit). Fires past the store's limit are refused and
+    counted in ``bullets.refused``; fires from a ``mute`` emitter are dropped. Counters:
+    ``fired`` (bullets created so far), ``peak`` (most live at the end of a frame)."""
 
-    def __init__(self, rank: float = 0.5, seed: int = 0, max_bullets: int = MAX_LIVE_BULLETS):
+    def __init__(self, rank: float = 0.5, seed=0, max_bullets: int = MAX_LIVE_BULLETS, bullets: Movers | None = None):
         self.rank = float(rank)
         self.scope = Scope((), self.rank, np.random.Generator(np.random.PCG64(seed)))
-        self.max_bullets = max_bullets
         self.frame = 0
         self.target = np.zeros(2)
         self.emitters = Movers(8)
-        self.bullets = Movers(256)
-        self.fired = self.refused = self.peak = 0
+        self.bullets = bullets if bullets is not None else Movers(256, limit=max_bullets)
+        self.fired = self.peak = 0
+
+    @property
+    def refused(self) -> int:
+        return self.bullets.refused
 
     # -- set up -------------------------------------------------------------------------
     def set_rank(self, rank: float) -> None:
         self.rank = self.scope.rank = float(rank)
 
-    def add_emitter(self, pattern: Pattern, pos, params: tuple[float, ...] = (), tag: int = 0,
-                    direction: float = 0.0) -> int:
-        """Start ``pattern`` from a new emitter at ``pos`` (its top actions see ``params`` as
-        ``$1``, ``$2``...); returns the emitter's row. Its bullets carry ``tag``. The
-        emitter's own direction (``relative`` at the top level) starts at ``direction``."""
+    def add_emitter(self, pattern: Pattern, pos, params: tuple[float, ...] = (), tag: int = 0, owner: int = 0,
+                    start: int | None = None, direction: float = 0.0) -> int:
+        """Start ``pattern`` from a new emitter at ``pos``; returns the emitter's row. Its top
+        actions see ``params`` as ``$1``, ``$2``... and first run at frame ``start`` (default:
+        this frame). Its bullets carry ``tag``; ``owner`` is the caller's id for it. The
+        emitter's own direction (what ``relative`` means at the top) starts at ``direction``."""
         runner = Runner([Thread(pattern, (top,), tuple(float(p) for p in params)) for top in pattern.top])
-        row = self.emitters.add(float(pos[0]), float(pos[1]), direction, 0.0, runner, self.frame, tag)
-        return row
+        wake = self.frame if start is None else max(int(start), self.frame)
+        return self.emitters.add_one(float(pos[0]), float(pos[1]), direction, 0.0, runner, wake, tag, owner)
 
     # -- what the machine calls ---------------------------------------------------------
     def eval(self, expr: Expr, params) -> float:
@@ -78,30 +89,46 @@ class Engine:
 
     def spawn(self, movers: Movers, row: int, direction: float, speed: float, pattern: Pattern, actions,
               params) -> None:
-        if self.bullets.n >= self.max_bullets:
-            self.refused += 1
+        if movers.mute[row]:
             return
         runner = Runner([Thread(pattern, actions, params)]) if actions else None
         p = movers.pos[row]
-        self.bullets.add(float(p[0]), float(p[1]), direction, speed, runner,
-                         self.frame + 1 if runner else NEVER, int(movers.tag[row]))
-        self.fired += 1
+        if self.bullets.add_one(float(p[0]), float(p[1]), direction, speed, runner,
+                                self.frame + 1 if runner else NEVER, int(movers.tag[row])) is not None:
+            self.fired += 1
 
     # -- one frame ----------------------------------------------------------------------
     def step(self) -> None:
-        """Advance one frame (see the module doc for the order)."""
-        now = self.frame
+        """Advance one frame: the emitters fire, then the bullets alive before it act and
+        move (see the module doc for the order)."""
+        m = self.bullets.n
+        self.fire()
+        self.advance(m)
+        self.end_frame()
+
+    def fire(self) -> None:
+        """This frame's emitter part: their changes, then their commands (new bullets appear
+        at their emitters and are settled, not moved)."""
+        e = self.emitters
+        self._run(e, e.n, self.frame)
+        self.bullets.settle()
+
+    def advance(self, m: int | None = None) -> None:
+        """This frame's bullet part, for rows ``[0, m)`` (default: all): changes, commands,
+        the move; then vanished bullets go."""
         b = self.bullets
-        m = b.n
-        self._run(self.emitters, self.emitters.n, now)
-        self._run(b, m, now)
+        m = b.n if m is None else m
+        self._run(b, m, self.frame)
+        b.settle()
         b.move(m)
         if m and b.dead[:m].any():
             keep = np.ones(b.n, dtype=bool)
             keep[:m] = ~b.dead[:m]
             b.keep(keep)
-        self.peak = max(self.peak, b.n)
-        self.frame = now + 1
+
+    def end_frame(self) -> None:
+        self.peak = max(self.peak, self.bullets.n)
+        self.frame += 1
 
     def _run(self, movers: Movers, m: int, now: int) -> None:
         movers.apply_changes(now, m)
@@ -111,12 +138,13 @@ class Engine:
 
     # -- questions ----------------------------------------------------------------------
     def running(self) -> int:
-        """How many emitters and bullets still have actions to run."""
-        return sum(int(np.count_nonzero(mv.wake[: mv.n] != NEVER)) for mv in (self.emitters, self.bullets))
+        """How many emitters and bullets still have actions running: commands to come or a
+        change (direction, speed, accel) under way."""
+        return sum(int(np.count_nonzero((mv.wake != NEVER) | mv.ch_on.any(axis=1))) for mv in (self.emitters, self.bullets))
 
     def emitters_done(self) -> bool:
         """True once no emitter has commands left (its bullets may still be acting)."""
-        return not bool(np.any(self.emitters.wake[: self.emitters.n] != NEVER))
+        return not bool(np.any(self.emitters.wake != NEVER))
 
 
 def trace(pattern: Pattern, frames: int, origin, target, rank: float = 0.5, seed: int = 0) -> list[np.ndarray]:

@@ -4,8 +4,9 @@ A BulletML ``changeDirection``, ``changeSpeed`` or ``accel`` is a linear functio
 frame number (libBulletML's "LinearFunc"): from ``y0`` at frame ``x0`` (the frame its command
 ran) to ``y1`` at frame ``x1 = x0 + term``. It is kept as one *channel* per row and applied to
 every row at once at the start of each frame; the Python machine runs only for rows whose
-``wake`` frame has come. Bullets that are only turning, speeding or drifting cost numpy
-work, not Python work.
+``wake`` frame has come. A row's velocity per frame is cached in ``step`` and recomputed
+(vectorised) only for rows marked ``dirty`` -- new rows and rows whose channels ran -- so a
+bullet flying straight costs one addition a frame.
 """
 
 from __future__ import annotations
@@ -21,75 +22,98 @@ NEVER = np.iinfo(np.int64).max
 #: (px/frame), and the accel velocity's x and y (px/frame), added to the polar velocity.
 DIR, SPD, AX, AY = 0, 1, 2, 3
 
+#: The columns every Movers has: name -> (shape per row, dtype).
+COLUMNS = {"pos": ((2,), np.float64), "state": ((4,), np.float64), "step": ((2,), np.float64),
+           "dirty": ((), bool), "wake": ((), np.int64), "ch_on": ((4,), bool), "ch_x0": ((4,), np.int64),
+           "ch_x1": ((4,), np.int64), "ch_y0": ((4,), np.float64), "ch_y1": ((4,), np.float64),
+           "runner": ((), object), "dead": ((), bool), "mute": ((), bool), "tag": ((), np.int64),
+           "owner": ((), np.int64)}
+
 
 class Movers:
     """Rows of moving things, packed first (``n`` live), removal by mask (order kept).
 
-    Arrays (first ``n`` rows live): ``pos`` (n, 2) float64 px, x right, y down;
-    ``state`` (n, 4) float64 (``DIR``, ``SPD``, ``AX``, ``AY``); ``wake`` (n,) int64 frame
-    at which the row's runner must run next (``NEVER``: none); ``ch_on`` (n, 4) bool,
-    ``ch_x0``/``ch_x1`` (n, 4) int64, ``ch_y0``/``ch_y1`` (n, 4) float64 the channels;
-    ``runner`` (n,) object (None or the row's runner); ``dead`` (n,) bool (vanished this
-    frame); ``tag`` (n,) int64 (the owner's tag, copied to every bullet it fires).
+    Attribute access gives the live rows (``movers.pos`` is ``(n, 2)``), as the game's pools
+    do. Columns: ``pos`` (n, 2) float64 px, x right, y down; ``state`` (n, 4) float64
+    (``DIR``, ``SPD``, ``AX``, ``AY``); ``step`` (n, 2) the velocity per frame (valid when not
+    ``dirty``); ``wake`` (n,) int64 frame at which the row's runner runs next (``NEVER``:
+    none); ``ch_on`` (n, 4) bool, ``ch_x0``/``ch_x1`` (n, 4) int64, ``ch_y0``/``ch_y1``
+    (n, 4) float64 the channels; ``runner`` (n,) object (None or the row's runner); ``dead``
+    (n,) bool (vanished); ``mute`` (n,) bool (an emitter whose fires are dropped); ``tag``
+    (n,) int64 copied from an emitter to every bullet it fires; ``owner`` (n,) int64 (the
+    caller's id for an emitter). ``extra`` columns (name -> (shape, dtype)) are kept
+    alongside; subclasses fill them in :meth:`_born` and :meth:`_settled`.
+
+    ``limit`` caps the rows (None: no cap); adds past it are refused and counted in
+    ``refused``.
     """
 
-    # The columns, bound by _bind() (declared for type checkers; shapes in the docstring).
-    pos: np.ndarray
-    state: np.ndarray
-    wake: np.ndarray
-    ch_on: np.ndarray
-    ch_x0: np.ndarray
-    ch_x1: np.ndarray
-    ch_y0: np.ndarray
-    ch_y1: np.ndarray
-    runner: np.ndarray
-    dead: np.ndarray
-    tag: np.ndarray
-
-    _COLUMNS = {"pos": ((2,), np.float64), "state": ((4,), np.float64), "wake": ((), np.int64),
-                "ch_on": ((4,), bool), "ch_x0": ((4,), np.int64), "ch_x1": ((4,), np.int64),
-                "ch_y0": ((4,), np.float64), "ch_y1": ((4,), np.float64), "runner": ((), object),
-                "dead": ((), bool), "tag": ((), np.int64)}
-
-    def __init__(self, capacity: int = 64):
+    def __init__(self, capacity: int = 64, limit: int | None = None, **extra):
+        self._spec = {**COLUMNS, **{k: (tuple(s), np.dtype(d)) for k, (s, d) in extra.items()}}
+        self._data = {k: np.zeros((max(1, capacity), *shape), dtype) for k, (shape, dtype) in self._spec.items()}
         self.n = 0
-        self._cols = {k: np.zeros((capacity, *shape), dtype) for k, (shape, dtype) in self._COLUMNS.items()}
-        self._bind()
+        self.limit = limit
+        self.refused = 0
 
-    def _bind(self) -> None:
-        for k, arr in self._cols.items():
-            setattr(self, k, arr)
+    def __getattr__(self, name):
+        data = self.__dict__.get("_data")
+        if data is not None and name in data:
+            return data[name][: self.n]
+        raise AttributeError(name)
 
-    def add(self, x: float, y: float, direction: float, speed: float, runner, wake: int, tag: int) -> int:
-        """Append one row; returns its index."""
+    def __len__(self) -> int:
+        return self.n
+
+    def full(self) -> bool:
+        return self.limit is not None and self.n >= self.limit
+
+    def _grow(self, need: int) -> None:
+        cap = len(self._data["pos"])
+        if need <= cap:
+            return
+        cap = max(need, 2 * cap)
+        for k, arr in self._data.items():
+            grown = np.zeros((cap, *arr.shape[1:]), arr.dtype)
+            grown[: self.n] = arr[: self.n]
+            self._data[k] = grown
+
+    def add_one(self, x: float, y: float, direction: float, speed: float, runner, wake: int, tag: int = 0,
+                owner: int = 0) -> int | None:
+        """Append one row (its velocity is computed at the next :meth:`settle`); returns its
+        index, or None if the movers are at their ``limit``."""
+        if self.full():
+            self.refused += 1
+            return None
         i = self.n
-        if i == len(self.pos):
-            for k, arr in self._cols.items():
-                grown = np.zeros((2 * len(arr), *arr.shape[1:]), arr.dtype)
-                grown[:i] = arr[:i]
-                self._cols[k] = grown
-            self._bind()
-        self.pos[i] = (x, y)
-        self.state[i] = (direction, speed, 0.0, 0.0)
-        self.wake[i] = wake
-        self.ch_on[i] = False
-        self.runner[i] = runner
-        self.dead[i] = False
-        self.tag[i] = tag
+        self._grow(i + 1)
+        d = self._data
+        d["pos"][i] = (x, y)
+        d["state"][i] = (direction, speed, 0.0, 0.0)
+        d["dirty"][i] = True
+        d["wake"][i] = wake
+        d["ch_on"][i] = False
+        d["runner"][i] = runner
+        d["dead"][i] = d["mute"][i] = False
+        d["tag"][i], d["owner"][i] = tag, owner
         self.n = i + 1
+        self._born(i)
         return i
+
+    def _born(self, i: int) -> None:
+        """Hook: fill the extra columns of new row ``i``."""
 
     def set_channel(self, row: int, ch: int, x0: int, x1: int, y0: float, y1: float) -> None:
         """Start a linear change of column ``ch`` of ``row``: ``y0`` at frame ``x0`` to ``y1``
         at frame ``x1`` (replacing any change of that column)."""
-        self.ch_on[row, ch] = True
-        self.ch_x0[row, ch], self.ch_x1[row, ch] = x0, x1
-        self.ch_y0[row, ch], self.ch_y1[row, ch] = y0, y1
+        d = self._data
+        d["ch_on"][row, ch] = True
+        d["ch_x0"][row, ch], d["ch_x1"][row, ch] = x0, x1
+        d["ch_y0"][row, ch], d["ch_y1"][row, ch] = y0, y1
 
     def apply_changes(self, now: int, m: int | None = None) -> None:
         """Apply every running channel of rows ``[0, m)`` at frame ``now``: the value
         ``y0 + (y1 - y0) / (x1 - x0) * (now - x0)``, or ``y1`` (and the channel ends) once
-        ``now >= x1``."""
+        ``now >= x1``. The rows changed become dirty."""
         m = self.n if m is None else m
         r, c = np.nonzero(self.ch_on[:m])
         if not len(r):
@@ -100,26 +124,39 @@ class Movers:
         span = np.where(last, 1, x1 - x0).astype(np.float64)
         self.state[r, c] = np.where(last, y1, y0 + (y1 - y0) / span * (now - x0).astype(np.float64))
         self.ch_on[r[last], c[last]] = False
+        self.dirty[r] = True
+
+    def settle(self) -> None:
+        """Recompute ``step`` (direction and speed as a vector, plus the accel velocity) for
+        the dirty rows, all at once."""
+        rows = np.flatnonzero(self.dirty)
+        if not len(rows):
+            return
+        st = self.state[rows]
+        vx, vy = velocity_deg(st[:, DIR], st[:, SPD])
+        self.step[rows, 0] = vx + st[:, AX]
+        self.step[rows, 1] = vy + st[:, AY]
+        self.dirty[rows] = False
+        self._settled(rows)
+
+    def _settled(self, rows: np.ndarray) -> None:
+        """Hook: rows ``rows`` have a new ``step``."""
 
     def move(self, m: int) -> None:
-        """One frame's move of rows ``[0, m)``: along their direction at their speed, plus
-        the accel velocity."""
+        """One frame's move of rows ``[0, m)`` along ``step`` (call :meth:`settle` first)."""
         if m:
-            st = self.state[:m]
-            vx, vy = velocity_deg(st[:, DIR], st[:, SPD])
-            self.pos[:m, 0] += vx + st[:, AX]
-            self.pos[:m, 1] += vy + st[:, AY]
+            self.pos[:m] += self.step[:m]
 
     def keep(self, mask: np.ndarray) -> None:
         """Keep the live rows where ``mask`` (n,) is True, packed, in order."""
         k = int(np.count_nonzero(mask))
         if k == self.n:
             return
-        for arr in self._cols.values():
+        for arr in self._data.values():
             arr[:k] = arr[: self.n][mask]
-        self.runner[k : self.n] = None  # let finished runners go
+        self._data["runner"][k : self.n] = None  # let finished runners go
         self.n = k
 
     def clear(self) -> None:
-        self.runner[: self.n] = None
+        self._data["runner"][: self.n] = None
         self.n = 0

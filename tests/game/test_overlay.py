@@ -1,0 +1,64 @@
+"""The overlay at density: its batched parts put the right pixels where they say, and its keys."""
+
+from __future__ import annotations
+
+import numpy as np
+import pygame
+
+from broadsword.collision import GridLayout
+from broadsword.collision.debugdraw import FrameColours
+from broadsword.game.overlay import KEY_LENS, KEY_PANEL, KEY_SWEPT, Overlay, PanelPlace
+from broadsword.game.overlay_dense import crosses, heat_map, marks, stacked_graph
+
+
+def test_overlay__keys_toggle_swept_lens_and_move_the_panel():
+    pygame.init()
+    o = Overlay()
+    assert not o.swept and o.lens and o.place is PanelPlace.TOP_RIGHT
+    assert o.handle_key(KEY_SWEPT) and o.swept
+    assert o.handle_key(KEY_LENS) and not o.lens
+    places = [o.place]
+    for _ in range(len(PanelPlace)):
+        assert o.handle_key(KEY_PANEL)
+        places.append(o.place)
+    assert places[1:-1] == list(PanelPlace)[1:] and places[-1] is PanelPlace.TOP_RIGHT
+    assert not o.handle_key(pygame.K_a)
+
+
+def test_heat_map__shades_occupied_bins_only_by_share():
+    # 2 x 2 bins of 10 px at (0, 0); object 0 in bin (col 0, row 0), objects 1-2 in (col 1, row 1)
+    ranges = tuple(np.array(v) for v in ([0, 1, 1], [0, 1, 1], [0, 1, 1], [0, 1, 1]))
+    layout = GridLayout((0.0, 0.0), 10.0, (2, 2), ranges, np.arange(3))
+    surf = pygame.Surface((20, 20))
+    heat_map(surf, layout, FrameColours([]), alpha=255)
+    px = pygame.surfarray.array3d(surf)
+    assert tuple(px[15, 15]) == FrameColours([]).heat_high  # the fullest bin
+    half = tuple(px[5, 5])
+    assert half != (0, 0, 0) and half != FrameColours([]).heat_high  # half as full: between
+    assert tuple(px[15, 5]) == (0, 0, 0) and tuple(px[5, 15]) == (0, 0, 0)  # empty bins left clear
+
+
+def test_marks_and_crosses__one_write_puts_each_vertex_and_centre():
+    surf = pygame.Surface((40, 40))
+    square = np.array([[[10.0, 10.0], [20.0, 10.0], [20.0, 20.0], [10.0, 20.0]]])
+    marks(surf, [square, square[:, :3] + 50], [np.array([[255, 0, 255]], np.uint8)] * 2)  # the second is off-surface
+    px = pygame.surfarray.array3d(surf)
+    for x, y in [(10, 10), (20, 10), (20, 20), (10, 20), (15, 15)]:
+        assert tuple(px[x, y]) == (255, 0, 255)
+    assert int((px.sum(axis=2) > 0).sum()) == 5
+    crosses(surf, np.array([[30.0, 30.0]]), (255, 40, 40))
+    px = pygame.surfarray.array3d(surf)
+    assert all(tuple(px[30 + dx, 30 + dy]) == (255, 40, 40) for dx, dy in [(0, 0), (-2, 0), (2, 0), (0, -2), (0, 2)])
+
+
+def test_stacked_graph__columns_stack_tiers_from_the_bottom():
+    history = np.array([[1.0, 1.0], [2.0, 0.0]])  # two frames, two tiers
+    img = pygame.surfarray.array3d(stacked_graph(history, [(255, 0, 0), (0, 255, 0)], (4, 10), scale_ms=5.0))
+    assert img.shape == (4, 10, 3)  # 10 px for 5 ms: 2 px a millisecond
+    red, green = (255, 0, 0), (0, 255, 0)
+    last, before = img[3], img[2]  # newest frame rightmost
+    assert (last[6:] == red).all() and not (last[:6] == red).all(axis=1).any()  # 2 ms of tier 0: 4 px
+    assert not (last == green).all(axis=1).any()
+    assert (before[8:] == red).all() and (before[6:8] == green).all()  # 1 + 1 ms stacked
+    assert not ((before[:6] == red).all(axis=1) | (before[:6] == green).all(axis=1)).any()
+    assert not (img[0] == (255, 0, 0)).all(axis=1).any()  # no data yet: background
