@@ -192,38 +192,40 @@ class Posed:
         return [self.polygon(i) for i in range(self.n)]
 
 
-def _sweep(ux: np.ndarray, uy: np.ndarray, px: np.ndarray, py: np.ndarray, qx: np.ndarray, qy: np.ndarray):
-    """Minkowski sum of convex CCW polygons posed at ``p`` with the path back to ``q``.
+def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray, ox: np.ndarray | None = None,
+           oy: np.ndarray | None = None, ws: Workspace | None = None):
+    """Minkowski sum of convex CCW polygons (H, m) with the segments from 0 to (-dx, -dy).
 
-    ``ux, uy`` (H, m) are the polygons' vertices as offsets from the position; ``p`` (this
-    frame's position) and ``q`` (last frame's) are (m,). The sum is the hull of the polygon
-    at ``p`` and at ``q``. Returns (2H, m) arrays: vertex ``k`` is emitted twice, at ``q``
-    instead of ``p`` when its incoming (first copy) or outgoing (second copy) edge faces
-    backwards along the path. Edges facing backwards are those with ``e x d > 0`` for
-    ``d = p - q``; the outward normal of a CCW edge ``e`` is ``(ey, -ex)``, and
-    ``(ey, -ex) . (-d) = ex dy - ey dx``.
-
-    Overflow-safe for every finite pose: the sign test is scale-free, so it uses halved edges
-    and the direction ``p/2 - q/2`` scaled by a power of two below 1 (both exact scalings,
-    neither can overflow), and each vertex is ``p + u`` or ``q + u`` -- a pose -- where
-    ``p - q`` itself may overflow (a bullet from -1.7e308 to +1.7e308).
+    Returns (2H, m) arrays (``ox``, ``oy`` when given, filled in place): vertex ``k`` of each
+    polygon is emitted twice, shifted back by ``d`` when its incoming (first copy) or
+    outgoing (second copy) edge faces backwards along the path. Edges facing backwards are
+    those with ``e x d > 0``; the outward normal of a CCW edge ``e`` is ``(ey, -ex)``, and
+    ``(ey, -ex) . (-d) = ex dy - ey dx``. Scratch arrays come from ``ws`` (no fresh
+    allocation per frame: at 10,000 bullets fresh temporaries cost more in page faults than
+    the arithmetic); the arithmetic, and so every bit of the result, is the same either way.
     """
-    ex = 0.5 * np.roll(ux, -1, axis=0) - 0.5 * ux
-    ey = 0.5 * np.roll(uy, -1, axis=0) - 0.5 * uy
-    dx, dy = 0.5 * px - 0.5 * qx, 0.5 * py - 0.5 * qy
-    _, exponent = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
-    dx, dy = np.ldexp(dx, -exponent), np.ldexp(dy, -exponent)  # |d| < 1, same direction
-    back_out = (ex * dy - ey * dx) > 0  # edge k -> k+1
-    back_in = np.roll(back_out, 1, axis=0)  # edge k-1 -> k
-    vx, vy = px + ux, py + uy  # each vertex at this frame's position
-    bx, by = qx + ux, qy + uy  # ... and at last frame's
-    h, m = ux.shape
-    ox = np.empty((2 * h, m))
-    oy = np.empty((2 * h, m))
-    ox[0::2] = np.where(back_in, bx, vx)
-    oy[0::2] = np.where(back_in, by, vy)
-    ox[1::2] = np.where(back_out, bx, vx)
-    oy[1::2] = np.where(back_out, by, vy)
+    ws = ws or Workspace()
+    h, m = vx.shape
+    if ox is None:
+        ox, oy = np.empty((2 * h, m)), np.empty((2 * h, m))
+    ex, ey = ws.get("sweep_ex", (h, m)), ws.get("sweep_ey", (h, m))
+    np.subtract(vx[1:], vx[:-1], out=ex[:-1])  # edge k -> k+1 (the last wraps to the first)
+    np.subtract(vx[:1], vx[-1:], out=ex[-1:])
+    np.subtract(vy[1:], vy[:-1], out=ey[:-1])
+    np.subtract(vy[:1], vy[-1:], out=ey[-1:])
+    t, u = ws.get("sweep_t", (h, m)), ws.get("sweep_u", (h, m))
+    np.multiply(ex, dy, out=t)
+    np.multiply(ey, dx, out=u)
+    np.subtract(t, u, out=t)
+    back_out = np.greater(t, 0, out=ws.get("sweep_out", (h, m), bool))  # edge k -> k+1
+    back_in = ws.get("sweep_in", (h, m), bool)  # edge k-1 -> k
+    back_in[1:] = back_out[:-1]
+    back_in[:1] = back_out[-1:]
+    for rows, back in ((slice(0, None, 2), back_in), (slice(1, None, 2), back_out)):
+        np.multiply(dx, back, out=t)
+        np.subtract(vx, t, out=ox[rows])
+        np.multiply(dy, back, out=t)
+        np.subtract(vy, t, out=oy[rows])
     return ox, oy
 
 
@@ -331,8 +333,12 @@ def pose_checked(shapes: ArmatureSet, armature: np.ndarray, positions: np.ndarra
             obj = idx[cols]
             assert prev_positions is not None  # swept objects have them (arguments.frame)
             # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
-            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2)
-            x[:, cols], y[:, cols] = _sweep(hx, hy, px[obj], py[obj], prev_positions[obj, 0], prev_positions[obj, 1])
+            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2, ws)
+            dx, dy = px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1]
+            if len(cols) == len(idx):  # every object of the class is swept (a bullet pool): in place
+                _sweep(hx, hy, dx, dy, x, y, ws)
+            else:
+                x[:, cols], y[:, cols] = _sweep(hx, hy, dx, dy, ws=ws)
         xs[k], ys[k], members[k] = x, y, idx
     return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
 
@@ -368,17 +374,30 @@ def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=N
     return x, y
 
 
-def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
-    """Current-pose convex shape of each swept object as offsets from its position, (rows, m)
-    arrays: its hull (padded with its last vertex), or the circumscribed octagon if it turned."""
+def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Workspace | None = None):
+    """Current-pose convex shape of each swept object, as (rows, m) arrays: its hull
+    (padded with its last vertex), or the circumscribed octagon if it turned. With one
+    armature for all (a bullet pool) the hull is broadcast, not gathered; the arrays come
+    from ``ws`` when given (same arithmetic, same bits)."""
     arm = armature[obj]
     one = arm.min() == arm.max()
     cols = arm[:1] if one else arm  # one armature: a single (rows, 1) column, broadcast
     hx = _pad_rows(shapes._hx[:rows, cols], rows)
     hy = _pad_rows(shapes._hy[:rows, cols], rows)
     c, s = cos[obj], sin[obj]
-    x = hx * c - hy * s
-    y = hx * s + hy * c
+    m = len(obj)
+    if ws is None:
+        x, y, t = np.empty((len(hx), m)), np.empty((len(hx), m)), np.empty((len(hx), m))
+    else:
+        x, y, t = (ws.get(f"swept_{name}", (len(hx), m)) for name in ("x", "y", "t"))
+    np.multiply(hx, c, out=t)  # x = px + hx c - hy s
+    np.add(px[obj], t, out=x)
+    np.multiply(hy, s, out=t)
+    x -= t
+    np.multiply(hx, s, out=t)  # y = py + hx s + hy c
+    np.add(py[obj], t, out=y)
+    np.multiply(hy, c, out=t)
+    y += t
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
@@ -387,6 +406,8 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows):
         slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
         r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
         ts, tc = detmath.sincos_deg(t)
-        x[:, turning] = _pad_rows(tc[:, None] * r, h)  # offsets from the position
-        y[:, turning] = _pad_rows(ts[:, None] * r, h)
+        ox = cx + tc[:, None] * r
+        oy = cy + ts[:, None] * r
+        x[:, turning] = _pad_rows(ox, h)
+        y[:, turning] = _pad_rows(oy, h)
     return x, y
