@@ -206,7 +206,7 @@ def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray, ox: n
     """
     ws = ws or Workspace()
     h, m = vx.shape
-    if ox is None:
+    if ox is None or oy is None:
         ox, oy = np.empty((2 * h, m)), np.empty((2 * h, m))
     ex, ey = ws.get("sweep_ex", (h, m)), ws.get("sweep_ey", (h, m))
     np.subtract(vx[1:], vx[:-1], out=ex[:-1])  # edge k -> k+1 (the last wraps to the first)
@@ -401,11 +401,11 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Wor
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
-        t = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)  # degrees
+        deg = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)
         cx, cy = px[obj][turning], py[obj][turning]
         slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
         r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
-        ts, tc = detmath.sincos_deg(t)
+        ts, tc = detmath.sincos_deg(deg)
         ox = cx + tc[:, None] * r
         oy = cy + ts[:, None] * r
         x[:, turning] = _pad_rows(ox, h)
