@@ -7,7 +7,6 @@ import subprocess
 import sys
 
 import numpy as np
-import pytest
 
 from broadsword.authoring.armature_tools import check, generate, strip_warning
 from broadsword.data import DataError, data_dir, load_armature_file

@@ -577,3 +577,25 @@ def test_main__a_corrupt_or_empty_png_prints_only_our_line(tmp_path, capfd, kind
     assert cli_main(["edit", str(png)]) == 2
     err = capfd.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"broadsword: {png}: cannot load image: "), err
+
+
+def test_as_a_scene__drawn_on_a_given_surface_driven_by_handle_event(tmp_path):
+    """The scene protocol: no window of its own; events in, draw on the host's surface."""
+    pygame.display.init()
+    host = pygame.Surface((900, 640))
+    ed = Editor(copy_pair(tmp_path, "scout"), surface=host)
+    assert not ed.owns_window and ed.view.size == (900 - editor_module.theme.PANEL_W, 640)
+    before = ed.points
+    ed.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_RIGHT, mod=pygame.KMOD_LSHIFT, unicode="",
+                                       scancode=0))
+    assert ed.points == tuple((x + 1, y) for x, y in before)
+    ed.handle_event(pygame.event.Event(pygame.MOUSEMOTION, pos=at(ed, 0.0, 0.0), rel=(0, 0), buttons=(0, 0, 0)))
+    ed.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_b, mod=0, unicode="b", scancode=0))
+    ed.update()
+    assert ed.probe_hit is True
+    ed.draw(host)
+    assert tuple(host.get_at(at(ed, *ed.probe_pos)))[:3] == PROBE_HIT
+    ed.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE, mod=0, unicode="", scancode=0))
+    ed.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE, mod=0, unicode="", scancode=0))
+    assert not ed.running  # the host pops the scene
+    pygame.quit()
