@@ -1,6 +1,7 @@
 """Test setup shared by every test.
 
-* Headless: SDL's dummy video and audio drivers, set before anything imports pygame.
+* Headless: SDL's dummy video and audio drivers, set before anything imports pygame, and
+  a scratch cache for rendered music.
 * Hypothesis profiles, in one place: ``dev`` (the default: random, as hypothesis is meant to
   run) and ``ci`` (derandomised, no example database: the same examples on every run and
   machine, so CI never fails by luck). ``HYPOTHESIS_PROFILE=ci`` selects it; ``.ci/run`` does.
@@ -12,9 +13,12 @@
 """
 
 import os
+import tempfile
 
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+# rendered music goes to a scratch cache, never the user's (games started by tests inherit it)
+os.environ.setdefault("BROADSWORD_CACHE_DIR", tempfile.mkdtemp(prefix="broadsword-test-cache-"))
 
 import pytest  # noqa: E402  (the drivers must be set first)
 from hypothesis import HealthCheck, settings  # noqa: E402

@@ -26,9 +26,10 @@ from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..sim import FIELD, World
-from ..sim.replay import Playback, Recorder
+from ..sim.replay import Playback
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
+from .mute_icon import draw_mute_indicator
 from .options import Options, load_options, save_options
 from .overlay import Overlay
 from .render import Renderer
@@ -39,6 +40,7 @@ from .scenes.play import ReplayInput
 from .scenes.play import MAX_CATCH_UP  # noqa: F401  (the loop's limit, named where the app is)
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
+from .soundtrack import follow
 from .sprites import SpriteBank
 from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
 from .ui import Painter
@@ -115,7 +117,7 @@ class App:
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
         # One line for the title: a set-aside scores file, an unusable options or controls file.
         self.message = "; ".join(w for w in (self.scores.warning, options_warning, bindings_warning) if w) or None
-        self.recorder: Recorder | None = None  # the stage in play (or last played), as a recording
+        self.recorder = None  # the stage in play (or last played), as a recording
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -170,9 +172,8 @@ class App:
             dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
-        top = self.stack.top
-        assert top is not None  # the app always shows a scene (the title at least)
-        steps = top.update(dt) if self.running else 0
+        steps = self.stack.top.update(dt) if self.running else 0
+        follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
         return steps
 
@@ -189,9 +190,7 @@ class App:
             self.focused |= t == pygame.WINDOWFOCUSGAINED
         if t == pygame.KEYDOWN and self.overlay.visible and self.overlay.handle_key(event.key):
             return  # F5-F7: the overlay's own keys (swept outlines, panel place, lens)
-        top = self.stack.top
-        assert top is not None  # the app always shows a scene (the title at least)
-        if top.handle(event):
+        if self.stack.top.handle(event):
             return
         actions = self.controls.actions(event)
         if Action.MUTE in actions:
@@ -215,6 +214,8 @@ class App:
     def render(self) -> None:
         self.painter.drawn.clear()
         self.stack.draw(self.screen)
+        if self.audio.muted:
+            draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
         self.window.present(self.screen)
 
     # ------------------------------------------------------------------ runs and stages

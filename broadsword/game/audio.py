@@ -1,7 +1,9 @@
-"""Sound effects synthesised in code (numpy), played through ``pygame.mixer``.
+"""Sound effects synthesised in code (numpy), and the game's music, played through ``pygame.mixer``.
 
 There are no audio files: :func:`synth` builds every effect from sines, sweeps and seeded
-noise, and :class:`Audio` turns them into cached ``pygame.mixer.Sound`` objects.
+noise, and :class:`Audio` turns them into cached ``pygame.mixer.Sound`` objects. Music
+(:mod:`broadsword.game.music`) is synthesised too; :class:`Audio` fronts it
+(``play_music(Track.TITLE)``), with separate music and effect volumes and one mute.
 
 ``synth(name, rate)`` is pure and deterministic. It returns mono ``int16`` samples of shape
 ``(n,)`` with ``0 < n <= 1.2 * rate``, peak ``|x| <= 0.8 * 32767``, and raised-cosine fades at
@@ -16,13 +18,15 @@ from __future__ import annotations
 
 import sys
 import time
-import zlib
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 
 import numpy as np
 import pygame
 
+from .dsp import FULL_SCALE, fade, fft_filter, noise, times, to_mixer_format
+from .music import MusicCache, MusicPlayer, Track
+from .music.tracks import PLAY_ORDER
 from .quiet import filtered_stderr
 
 __all__ = ["Audio", "synth", "NAMES"]
@@ -38,18 +42,11 @@ NAMES: tuple[str, ...] = (
     "pause",
 )
 
-_FULL_SCALE = 32767.0
 _MIN_RATE = 8000
+DEFAULT_MUSIC_VOLUME = 0.8
 
 
 # --------------------------------------------------------------------------- helpers
-
-
-def _times(seconds: float, rate: int) -> np.ndarray:
-    """Sample times ``k / rate`` for ``k = 0 .. round(seconds * rate) - 1`` (at least one)."""
-    n = max(1, int(round(seconds * rate)))
-    return np.arange(n, dtype=np.float64) / rate
-
 
 def _phase(freq: np.ndarray, rate: int) -> np.ndarray:
     """Running phase (radians) of a tone whose instantaneous frequency is ``freq`` (Hz)."""
@@ -61,47 +58,13 @@ def _cap(freq, rate: int):
     return np.minimum(freq, 0.42 * rate)
 
 
-def _noise(name: str, n: int) -> np.ndarray:
-    """Seeded white noise in [-1, 1): the same ``name`` always gives the same samples."""
-    rng = np.random.default_rng(zlib.crc32(name.encode("utf-8")))
-    return rng.uniform(-1.0, 1.0, n)
-
-
-def _filter(x: np.ndarray, rate: int, low: float | None = None, high: float | None = None,
-            order: int = 2) -> np.ndarray:
-    """Zero-phase Butterworth-shaped filter done in the frequency domain.
-
-    ``low`` is a high-pass corner and ``high`` a low-pass corner (Hz); either may be None.
-    The FFT makes this circular, which is harmless on stationary noise filtered before an
-    envelope is applied.
-    """
-    spectrum = np.fft.rfft(x)
-    f = np.fft.rfftfreq(x.size, 1.0 / rate)
-    gain = np.ones_like(f)
-    if high is not None:
-        gain /= np.sqrt(1.0 + (f / high) ** (2 * order))
-    if low is not None:
-        with np.errstate(divide="ignore"):
-            ratio = np.where(f > 0, low / np.maximum(f, 1e-12), np.inf)
-        gain /= np.sqrt(1.0 + ratio ** (2 * order))
-    return np.fft.irfft(spectrum * gain, n=x.size)
-
-
-def _fade(n: int, rate: int, seconds: float) -> np.ndarray:
-    """Raised-cosine ramp from exactly 0 up towards 1 over ``seconds`` (at most n samples)."""
-    m = min(n, max(2, int(round(seconds * rate))))
-    ramp = np.ones(n)
-    ramp[:m] = 0.5 - 0.5 * np.cos(np.pi * np.arange(m) / m)
-    return ramp
-
-
 def _finish(x: np.ndarray, rate: int, peak: float, attack: float, release: float) -> np.ndarray:
     """Fade both ends to exactly zero, normalise to ``peak`` of full scale, quantise to int16."""
     n = x.size
-    x = x * _fade(n, rate, attack) * _fade(n, rate, release)[::-1]
+    x = x * fade(n, rate, attack) * fade(n, rate, release)[::-1]
     top = float(np.max(np.abs(x))) if n else 0.0
     if top > 0.0:
-        x = x * (np.floor(peak * _FULL_SCALE) / top)  # floor: rounding can't overshoot
+        x = x * (np.floor(peak * FULL_SCALE) / top)  # floor: rounding can't overshoot
     return np.round(x).astype(np.int16)
 
 
@@ -109,7 +72,7 @@ def _finish(x: np.ndarray, rate: int, peak: float, attack: float, release: float
 
 
 def _shot(rate: int) -> np.ndarray:
-    t = _times(0.070, rate)
+    t = times(0.070, rate)
     freq = _cap(520.0 + 1700.0 * np.exp(-t / 0.018), rate)
     ph = _phase(freq, rate)
     tone = np.tanh(2.5 * np.sin(ph)) + 0.25 * np.sin(2.0 * ph)
@@ -117,13 +80,13 @@ def _shot(rate: int) -> np.ndarray:
 
 
 def _hit(rate: int) -> np.ndarray:
-    t = _times(0.045, rate)
+    t = times(0.045, rate)
     partials = ((1870.0, 1.0, 0.012), (2983.0, 0.7, 0.009), (4411.0, 0.45, 0.007),
                 (6229.0, 0.3, 0.005))
     x = np.zeros_like(t)
     for f, a, tau in partials:
         x += a * np.sin(2.0 * np.pi * float(_cap(f, rate)) * t) * np.exp(-t / tau)
-    click = _filter(_noise("hit", t.size), rate, low=min(3000.0, 0.3 * rate))
+    click = fft_filter(noise("hit", t.size), rate, low=min(3000.0, 0.3 * rate))
     x += 0.6 * click / max(1e-12, float(np.max(np.abs(click)))) * np.exp(-t / 0.002)
     return _finish(x, rate, 0.40, attack=0.001, release=0.008)
 
@@ -132,10 +95,10 @@ def _boom(name: str, rate: int, seconds: float, bright_hz: float, dark_hz: float
           bright_tau: float, dark_tau: float,
           thump: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
     """Noise that darkens as it decays, over a sine 'thump' sweeping down in pitch."""
-    t = _times(seconds, rate)
-    noise = _noise(name, t.size)
-    bright = _filter(noise, rate, high=min(bright_hz, 0.4 * rate))
-    dark = _filter(noise, rate, high=dark_hz, order=3)
+    t = times(seconds, rate)
+    hiss = noise(name, t.size)
+    bright = fft_filter(hiss, rate, high=min(bright_hz, 0.4 * rate))
+    dark = fft_filter(hiss, rate, high=dark_hz, order=3)
     bright /= max(1e-12, float(np.max(np.abs(bright))))
     dark /= max(1e-12, float(np.max(np.abs(dark))))
     f_end, f_span, f_tau, amp_tau = thump
@@ -154,7 +117,7 @@ def _big_explosion(rate: int) -> np.ndarray:
     x, t = _boom("big_explosion", rate, 1.10, 1600.0, 190.0, 0.09, 0.40,
                  (30.0, 60.0, 0.08, 0.30))
     # a second, later crackle so it reads as a bigger, collapsing blast
-    late = _filter(_noise("big_explosion/late", t.size), rate, high=900.0)
+    late = fft_filter(noise("big_explosion/late", t.size), rate, high=900.0)
     late /= max(1e-12, float(np.max(np.abs(late))))
     onset = np.clip((t - 0.14) / 0.03, 0.0, 1.0)
     x = x + 0.6 * late * onset * np.exp(-np.maximum(t - 0.14, 0.0) / 0.22)
@@ -162,7 +125,7 @@ def _big_explosion(rate: int) -> np.ndarray:
 
 
 def _graze(rate: int) -> np.ndarray:
-    t = _times(0.060, rate)
+    t = times(0.060, rate)
     x = np.zeros_like(t)
     for f, a in ((5200.0, 1.0), (6930.0, 0.6), (8310.0, 0.4)):
         wobble = 1.0 + 0.004 * np.sin(2.0 * np.pi * 90.0 * t)
@@ -172,20 +135,20 @@ def _graze(rate: int) -> np.ndarray:
 
 
 def _player_hit(rate: int) -> np.ndarray:
-    t = _times(0.45, rate)
+    t = times(0.45, rate)
     freq = 95.0 + 700.0 * np.exp(-t * 4.0)
     saw = 2.0 * np.mod(np.cumsum(freq) / rate, 1.0) - 1.0
     square = np.sign(np.sin(_phase(freq * 1.013, rate)))
-    grit = _filter(_noise("player_hit", t.size), rate, high=min(4000.0, 0.4 * rate))
+    grit = fft_filter(noise("player_hit", t.size), rate, high=min(4000.0, 0.4 * rate))
     grit /= max(1e-12, float(np.max(np.abs(grit))))
     x = saw + 0.6 * square + 0.35 * grit
     x *= 1.0 - 0.35 * (0.5 + 0.5 * np.sin(2.0 * np.pi * 28.0 * t))  # rough tremolo
-    x = _filter(np.tanh(2.0 * x), rate, high=min(6000.0, 0.4 * rate))
+    x = fft_filter(np.tanh(2.0 * x), rate, high=min(6000.0, 0.4 * rate))
     return _finish(x * np.exp(-t / 0.22), rate, 0.60, attack=0.003, release=0.060)
 
 
 def _select(rate: int) -> np.ndarray:
-    t = _times(0.26, rate)
+    t = times(0.26, rate)
     x = np.zeros_like(t)
     for f, start, tau in ((1318.5, 0.0, 0.06), (1760.0, 0.075, 0.09)):
         local = np.maximum(t - start, 0.0)
@@ -198,7 +161,7 @@ def _select(rate: int) -> np.ndarray:
 
 
 def _pause(rate: int) -> np.ndarray:
-    t = _times(0.14, rate)
+    t = times(0.14, rate)
     ph = _phase(300.0 - 80.0 * t / t[-1] if t.size > 1 else np.full(1, 300.0), rate)
     x = np.sin(ph) + 0.15 * np.sin(2.0 * ph)
     return _finish(x * np.exp(-t / 0.05), rate, 0.30, attack=0.008, release=0.030)
@@ -235,39 +198,24 @@ def synth(name: str, rate: int = 44100) -> np.ndarray:
 # --------------------------------------------------------------------------- playback
 
 
-def _to_mixer_format(mono: np.ndarray, size: int, channels: int) -> np.ndarray:
-    """int16 mono -> a C-contiguous array in the mixer's sample format and channel count.
-
-    ``size`` is pygame's signed bit size: -16 int16, 16 uint16, -8 int8, 8 uint8, -32
-    float32 (pygame's 32-bit mixer format is floating point). Shape is ``(n,)`` for one
-    channel, otherwise ``(n, channels)`` with the mono signal copied to every channel.
-    """
-    x = mono.astype(np.float64) / 32768.0
-    if size == -16:
-        out = mono
-    elif size == 16:
-        out = np.round(x * 32768.0 + 32768.0).clip(0, 65535).astype(np.uint16)
-    elif size == -8:
-        out = np.round(x * 128.0).clip(-128, 127).astype(np.int8)
-    elif size == 8:
-        out = np.round(x * 128.0 + 128.0).clip(0, 255).astype(np.uint8)
-    elif abs(size) == 32:
-        out = x.astype(np.float32)
-    else:
-        raise ValueError(f"unsupported mixer sample size {size}")
-    if channels > 1:
-        out = np.repeat(out[:, None], channels, axis=1)
-    return np.ascontiguousarray(out)
-
-
 class Audio:
-    """Sound effects made in code. Never raises for a missing audio device: it goes silent.
+    """Sound effects and music made in code. Never raises for a missing audio device: it goes silent.
 
     ``available`` -- a mixer device (even SDL's dummy driver) could be opened and every
-    sound built. ``muted`` starts False. ``play(name)`` is a no-op when muted or unavailable,
-    raises ValueError for a name not in ``NAMES`` (always, so typos surface even when
-    silent), and plays each sound at most once per ``MIN_INTERVAL[name]`` seconds of the
-    ``clock`` (``time.monotonic`` by default) so a 60 Hz fire rate does not stack into noise.
+    sound built; if none could, ``problem`` says why (also printed once, as one line).
+    ``muted`` (settable; starts False) silences effects and music alike. ``play(name)`` is
+    a no-op when muted or unavailable, raises ValueError for a name not in ``NAMES``
+    (always, so typos surface even when silent), and plays each sound at most once per
+    ``MIN_INTERVAL[name]`` seconds of the ``clock`` (``time.monotonic`` by default) so a
+    60 Hz fire rate does not stack into noise.
+
+    Music: ``play_music(Track.stage(2))`` (the same track again is a no-op, so it may be
+    called every frame), ``stop_music()``, ``prepare_music(tracks)``. A track is rendered
+    in the background and fades in as soon as it is ready; ``update()`` (optional, cheap)
+    starts it if that has not happened yet. The first
+    ``play_music`` also warms the disk cache (``music_cache``, default the user cache) with every
+    other track, in play order, at low priority. ``music_volume`` (default 0.8) and
+    ``sound_volume`` (default 1.0) are 0..1; values outside are clamped.
     """
 
     NAMES = NAMES
@@ -283,10 +231,17 @@ class Audio:
         "pause": 0.100,
     })
 
-    def __init__(self, enabled: bool = True, *, clock: Callable[[], float] = time.monotonic):
+    def __init__(self, enabled: bool = True, *, clock: Callable[[], float] = time.monotonic,
+                 music_cache: MusicCache | None = None, music_in_background: bool = True):
         self.available: bool = False
         self.problem: str | None = None  # why there is no sound, when a device was wanted
-        self.muted: bool = False
+        self._muted = False
+        self._music_volume = DEFAULT_MUSIC_VOLUME
+        self._sound_volume = 1.0
+        self._music_cache = music_cache
+        self._music_in_background = music_in_background
+        self._music: MusicPlayer | None = None  # made on first use
+        self._warmed = False
         self._clock = clock
         self._spec: tuple[int, int, int] | None = None  # mixer (frequency, size, channels)
         self._sounds: dict[str, pygame.mixer.Sound] = {}
@@ -316,26 +271,117 @@ class Audio:
             frequency, size, channels = spec
             sounds = {}
             for name in NAMES:
-                samples = _to_mixer_format(synth(name, max(_MIN_RATE, int(frequency))), size,
+                samples = to_mixer_format(synth(name, max(_MIN_RATE, int(frequency))), size,
                                            channels)
                 sounds[name] = pygame.sndarray.make_sound(samples)
         except (pygame.error, NotImplementedError, ImportError, ValueError):
             # e.g. a mixer sample format we cannot feed
             self._sounds, self._spec = {}, None
             return False
-        self._sounds, self._spec = sounds, (spec[0], spec[1], spec[2])
+        for sound in sounds.values():
+            sound.set_volume(self._sound_volume)
+        self._sounds, self._spec = sounds, tuple(spec)
         return True
 
-    def toggle_mute(self) -> bool:
-        """Flip ``muted`` and return the new value; muting also stops our sounds now playing."""
-        self.muted = not self.muted
-        if self.muted:
+    # ------------------------------------------------------------------ volume and mute
+    @property
+    def muted(self) -> bool:
+        return self._muted
+
+    @muted.setter
+    def muted(self, value: bool) -> None:
+        """Muting stops the effects now playing and silences the music (which keeps its place)."""
+        self._muted = bool(value)
+        if self._muted:
             for sound in self._sounds.values():
                 try:
                     sound.stop()
                 except pygame.error:
                     pass
+        self._apply_music_volume()
+
+    def toggle_mute(self) -> bool:
+        """Flip ``muted`` and return the new value."""
+        self.muted = not self.muted
         return self.muted
+
+    @property
+    def music_volume(self) -> float:
+        return self._music_volume
+
+    @music_volume.setter
+    def music_volume(self, value: float) -> None:
+        volume = _volume(value, "music_volume")
+        if volume != self._music_volume:  # cheap to set every frame
+            self._music_volume = volume
+            self._apply_music_volume()
+
+    @property
+    def sound_volume(self) -> float:
+        return self._sound_volume
+
+    @sound_volume.setter
+    def sound_volume(self, value: float) -> None:
+        volume = _volume(value, "sound_volume")
+        if volume == self._sound_volume:  # cheap to set every frame
+            return
+        self._sound_volume = volume
+        for sound in self._sounds.values():
+            try:
+                sound.set_volume(self._sound_volume)
+            except pygame.error:
+                pass
+
+    def _apply_music_volume(self) -> None:
+        if self._music is not None:
+            try:
+                self._music.set_volume(self._music_volume, self._muted)
+            except pygame.error:
+                pass
+
+    # ------------------------------------------------------------------ music
+    def play_music(self, track: Track) -> None:
+        """Make ``track`` the music (see the class doc). ValueError for a non-Track, always."""
+        if not isinstance(track, Track):
+            raise ValueError(f"play_music: expected a Track, got {track!r}")
+        player = self._player()
+        if player is not None:
+            player.play(track)
+            if not self._warmed:  # fill the disk cache with the rest, behind the wanted track
+                self._warmed = True
+                player.prepare([t for t in PLAY_ORDER if t != track], keep=False)
+
+    def stop_music(self) -> None:
+        """Fade the music out."""
+        if self._music is not None:
+            self._music.stop()
+
+    def prepare_music(self, tracks) -> None:
+        """Render ``tracks`` in the background now, so they start at once when asked for."""
+        tracks = list(tracks)
+        for track in tracks:
+            if not isinstance(track, Track):
+                raise ValueError(f"prepare_music: expected Tracks, got {track!r}")
+        player = self._player()
+        if player is not None:
+            player.prepare(tracks)
+
+    def update(self) -> None:
+        """Start music whose render has finished, if the worker has not already. Optional; cheap; never raises."""
+        if self._music is not None:
+            try:
+                self._music.update()
+            except (pygame.error, NotImplementedError):
+                pass
+
+    def _player(self) -> MusicPlayer | None:
+        if not self.available:
+            return None
+        if self._music is None:
+            cache = self._music_cache if self._music_cache is not None else MusicCache()
+            self._music = MusicPlayer(cache, background=self._music_in_background)
+            self._apply_music_volume()
+        return self._music
 
     def play(self, name: str) -> None:
         """Start sound ``name`` unless muted, unavailable or rate-limited (see class doc)."""
@@ -360,3 +406,10 @@ class Audio:
             self._sounds[name].play()
         except (pygame.error, NotImplementedError):
             pass  # the device went away under us: stay silent
+
+
+def _volume(value: float, name: str) -> float:
+    """``value`` clamped to 0..1; ValueError (naming ``name``) for a non-number or NaN."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or value != value:
+        raise ValueError(f"{name} must be a number from 0 to 1, got {value!r}")
+    return min(1.0, max(0.0, float(value)))
