@@ -30,7 +30,7 @@ from ..sim.replay import Playback
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
 from .mute_icon import draw_mute_indicator
-from .options import Options, load_options, save_options
+from .options import load_options, save_options
 from .overlay import Overlay
 from .render import Renderer
 from .run import Run, Stage, load_stage, replay_stage
@@ -266,7 +266,7 @@ class App:
     # ------------------------------------------------------------------ settings
     def set_options(self, **changes) -> None:
         """Change options and save them (atomically); a failed save is said on screen."""
-        self.options = Options(**{**self.options.__dict__, **changes})
+        self.options = dataclasses.replace(self.options, **changes)
         try:
             save_options(self.options, self.data / "options.json")
         except OSError as exc:

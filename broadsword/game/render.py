@@ -19,6 +19,7 @@ from ..sim.bombs import FRAMES as BOMB_FRAMES
 from ..data.levels import Theme
 from .backdrop import Backdrop
 from .bullets import BulletSprites
+from .hud import draw_boss_bar
 from .sprites import SpriteBank
 
 LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
@@ -195,10 +196,7 @@ class Renderer:
         surf.blit(bombs, bombs.get_rect(topright=(FIELD[0] - 10, 30)))
         power = self.font.render(f"POWER {world.player.power / 100:.2f}", True, (255, 150, 140))
         surf.blit(power, (10, 48))
-        if world.boss is not None and world.boss.fighting:
-            frac = max(world.boss.hp, 0) / world.boss.phase_hp[world.boss.phase]
-            pygame.draw.rect(surf, (60, 20, 30), (90, FIELD[1] - 14, FIELD[0] - 180, 6))
-            pygame.draw.rect(surf, (255, 70, 90), (90, FIELD[1] - 14, (FIELD[0] - 180) * frac, 6))
+        draw_boss_bar(surf, world.boss, self.font)  # one segment per phase, and the phase's timer
         if world.time < 3.0:  # the level's title fades in and out
             fade = min(1.0, world.time, 3.0 - world.time)
             title = self.big.render(world.level.title, True, (255, 230, 170))

@@ -43,7 +43,10 @@ class GameOver:
     def draw(self, surf: pygame.Surface) -> None:
         p = self.app.painter
         p.veil()
-        if self.victory:
+        if self.victory and self.play.run.custom is not None:  # a level file played on its own
+            p.text("STAGE CLEARED", 250, ui.BIG, ui.GOLD)
+            p.text(f"{self.play.world.level.title} on {self.play.run.difficulty.title}", 300, colour=ui.CREAM)
+        elif self.victory:
             p.text("BROADSWORD FALLS", 250, ui.BIG, ui.GOLD)
             p.text(f"Every stage cleared on {self.play.run.difficulty.title}", 300, colour=ui.CREAM)
         else:

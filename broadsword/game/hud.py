@@ -1,0 +1,47 @@
+"""The boss's part of the HUD: a health bar in one segment per phase, and the phase's timer.
+
+Segments left of the current phase are spent (drawn empty), the current one shows what is
+left of its hit points, the ones after it are whole. The timer counts the current phase's
+seconds down; under ``TIMER_WARN`` seconds it turns red.
+"""
+
+from __future__ import annotations
+
+import pygame
+
+#: The bar's place at the bottom of the field: margins at either side, height, gap between segments.
+BAR_MARGIN, BAR_HEIGHT, BAR_GAP, BAR_BOTTOM = 60, 6, 4, 10
+TIMER_WARN = 10.0
+FULL = (255, 70, 90)
+WHOLE = (200, 60, 110)  # phases still to come
+SPENT = (60, 20, 30)
+TEXT = (255, 200, 210)
+WARN = (255, 90, 90)
+
+
+def segments(width: float, phases: int, gap: float = BAR_GAP) -> list[tuple[float, float]]:
+    """``(x, w)`` of each phase's segment across ``width`` px, ``gap`` px apart, left to right."""
+    w = (width - gap * (phases - 1)) / phases
+    return [(i * (w + gap), w) for i in range(phases)]
+
+
+def draw_boss_bar(surf: pygame.Surface, boss, font: pygame.font.Font) -> None:
+    """Draw ``boss``'s bar and timer (nothing unless it is fighting)."""
+    if boss is None or not boss.fighting:
+        return
+    fw, fh = surf.get_size()
+    x0, y = BAR_MARGIN, fh - BAR_BOTTOM - BAR_HEIGHT
+    n = len(boss.phase_hp)
+    for i, (x, w) in enumerate(segments(fw - 2 * BAR_MARGIN, n)):
+        rect = pygame.Rect(round(x0 + x), y, max(1, round(w)), BAR_HEIGHT)
+        pygame.draw.rect(surf, SPENT, rect)
+        if i == boss.phase:
+            frac = max(boss.hp, 0) / boss.phase_hp[i]
+            pygame.draw.rect(surf, FULL, (rect.x, y, round(rect.w * frac), BAR_HEIGHT))
+        elif i > boss.phase:
+            pygame.draw.rect(surf, WHOLE, rect)
+    label = font.render(f"PHASE {boss.phase + 1}/{n}", True, TEXT)
+    surf.blit(label, label.get_rect(midleft=(x0, y - 10)))
+    left = boss.time_left
+    timer = font.render(f"{left:4.1f}", True, WARN if left < TIMER_WARN else TEXT)
+    surf.blit(timer, timer.get_rect(midright=(fw - x0, y - 10)))
