@@ -48,7 +48,7 @@ def play(job: Job) -> dict:
     from .headless import make_world
     from .sim import Input, Pilot, Settings
 
-    world, _ = make_world(job.level, job.seed, Settings(difficulty=job.difficulty))
+    world, _ = make_world(job.level, job.seed, Settings(difficulty=Difficulty(job.difficulty)))
     pilot = Pilot()
     hold = Input(fire=True)
     peak = 0

@@ -19,7 +19,7 @@ from pathlib import Path
 try:  # POSIX; on Windows there is no fcntl and locked() degrades to no lock
     import fcntl
 except ImportError:  # pragma: no cover - exercised only off POSIX
-    fcntl = None
+    fcntl = None  # type: ignore[assignment]  # the module or None, checked before use
 
 
 def write_atomic(path: str | Path, data: bytes) -> None:

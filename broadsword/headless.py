@@ -91,6 +91,7 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
             m = playback.mismatch
             summary["first_mismatch"] = {"frame": m.frame, "expected": m.expected, "got": m.got}
         elif final is False:
+            assert replay is not None  # a playback plays a recording
             summary["first_mismatch"] = {"frame": world.frame, "expected": replay.state_hash,
                                          "got": world.state_hash()}
     return summary, recorder.recording()

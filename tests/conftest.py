@@ -1,4 +1,16 @@
-"""Test setup: every test runs headless (SDL's dummy video and audio drivers), with a scratch cache."""
+"""Test setup shared by every test.
+
+* Headless: SDL's dummy video and audio drivers, set before anything imports pygame, and
+  a scratch cache for rendered music.
+* Hypothesis profiles, in one place: ``dev`` (the default: random, as hypothesis is meant to
+  run) and ``ci`` (derandomised, no example database: the same examples on every run and
+  machine, so CI never fails by luck). ``HYPOTHESIS_PROFILE=ci`` selects it; ``.ci/run`` does.
+  Each test's own ``@settings(max_examples=...)`` still applies on top of the profile.
+* The ``quick`` marker: ``python -m pytest -m quick`` runs the modules in :data:`QUICK`, a
+  subset of every layer that finishes in seconds.
+* Fixtures: ``armatures`` (the sprite bank, loaded once per process; see shipped.py
+  for the helpers behind it).
+"""
 
 import os
 import tempfile
@@ -7,3 +19,41 @@ os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
 # rendered music goes to a scratch cache, never the user's (games started by tests inherit it)
 os.environ.setdefault("BROADSWORD_CACHE_DIR", tempfile.mkdtemp(prefix="broadsword-test-cache-"))
+
+import pytest  # noqa: E402  (the drivers must be set first)
+from hypothesis import HealthCheck, settings  # noqa: E402
+
+import shipped  # noqa: E402
+
+settings.register_profile("dev", deadline=None)
+settings.register_profile("ci", deadline=None, derandomize=True, database=None, print_blob=True,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "dev"))
+
+#: Test modules (paths under tests/) marked ``quick``: fast and covering each layer.
+QUICK = (
+    "collision/test_armature.py",
+    "collision/test_posing.py",
+    "collision/test_arguments.py",
+    "data/test_data.py",
+    "sim/test_player.py",
+    "sim/test_waves.py",
+    "test_packaging.py",
+    "game/test_userdata.py",
+    "game/test_scores.py",
+)
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def pytest_collection_modifyitems(config, items):
+    quick = {os.path.join(_HERE, *m.split("/")) for m in QUICK}
+    for item in items:
+        if str(item.path) in quick:
+            item.add_marker(pytest.mark.quick)
+
+
+@pytest.fixture(scope="session")
+def armatures():
+    """The shipped sprite bank (``assets/sprites``), loaded once per process."""
+    return shipped.armatures()

@@ -26,11 +26,6 @@ FRAMES = 300  # 5 s of play: every level has ships and bullets by then, the thir
 CHECK_EVERY = 30
 
 
-@pytest.fixture(scope="module")
-def armatures():
-    return load_armatures(data_dir("assets") / "sprites")
-
-
 def level_with(name: str, rotation: str):
     level = load_level(resolve_level(name))
     return dataclasses.replace(level, scene=dataclasses.replace(level.scene, rotation=rotation))

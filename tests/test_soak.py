@@ -37,11 +37,6 @@ FIELDS = {"level", "seed", "frames", "frames_requested", "warmup", "games", "res
 
 
 @pytest.fixture(scope="module")
-def armatures():
-    return load_armatures(data_dir("assets") / "sprites")
-
-
-@pytest.fixture(scope="module")
 def broadsword_level():
     return load_level(resolve_level("3-broadsword"))
 

@@ -57,29 +57,29 @@ def generate(sprite: str | Path, read_alpha: AlphaReader, max_vertices: int = 8,
     alpha = read_alpha(sprite)
     old = load_armature_file(out) if out.exists() else None
     given = frames is not None
-    frames = frames if given else len(old.drawn) if old is not None else 1
-    alphas = split_frames(alpha, frames, sprite)
-    made = []
+    count: int = frames if frames is not None else len(old.drawn) if old is not None else 1
+    alphas = split_frames(alpha, count, sprite)
+    made: list[tuple[tuple[float, float], ...]] = []
     for i, a in enumerate(alphas):
         try:
             arm = generate_armature(opaque_mask(a), max_vertices, inset, name=f"{sprite.stem}.{shape}")
         except ValueError as exc:
-            raise DataError(sprite, f"frame[{i}]" if frames > 1 else "", str(exc)) from None
-        made.append([tuple(v) for v in arm.vertices.tolist()])  # clockwise on screen, as the shipped files
+            raise DataError(sprite, f"frame[{i}]" if count > 1 else "", str(exc)) from None
+        made.append(tuple((x, y) for x, y in arm.vertices.tolist()))  # clockwise on screen, as the shipped files
     if old is not None:
-        if len(old.drawn) != frames:
-            raise DataError(out, "frames", f"has {len(old.drawn)} frames; --frames {frames} was asked for")
+        if len(old.drawn) != count:
+            raise DataError(out, "frames", f"has {len(old.drawn)} frames; --frames {count} was asked for")
         sets = [dict(d) for d in old.drawn]
         name, header, frame_time, sprite_name = old.name, old.header, old.frame_time, old.sprite
     else:
-        sets = [{} for _ in range(frames)]
+        sets = [{} for _ in range(count)]
         name, header, frame_time, sprite_name = sprite.stem, "", 0.1, sprite.name
     for s, pts in zip(sets, made, strict=True):
         s[shape] = pts
         s.setdefault("hit", pts)
     f = save_armature_file(out, name, sprite_name, sets, frame_time, header)
     fits = tuple(fit_of(shapes[shape].vertices, a) for shapes, a in zip(f.frames, alphas, strict=True))
-    strip = detect_frames(alpha) if frames == 1 and not given else None
+    strip = detect_frames(alpha) if count == 1 and not given else None
     return Generated(f, fits, strip)
 
 

@@ -66,7 +66,7 @@ def detect_frames(alpha: np.ndarray) -> StripGuess | None:
     """
     opaque = opaque_mask(alpha)
     h, w = opaque.shape
-    columns = opaque.any(axis=0)  # (W,) a column holds an opaque pixel
+    columns = np.asarray(opaque.any(axis=0))  # (W,) a column holds an opaque pixel
     if columns.sum() == 0:
         return None
     per_column = opaque.sum(axis=0)

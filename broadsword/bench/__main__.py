@@ -122,7 +122,7 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=seed)
     methods = _methods(scene)
     truth = {r: Pipeline(scene.shapes, scene.table, tiers=("bins", "armature"), rotation=r) for r in ("lut", "exact")}
-    ms = {name: [] for name in methods}
+    ms: dict[str, list[float]] = {name: [] for name in methods}
     fp = {name: 0 for name in methods}
     fn = {name: 0 for name in methods}
     own_fp = {name: 0 for name in methods}
@@ -130,7 +130,7 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     pfp = {name: 0 for name in methods}
     pfn = {name: 0 for name in methods}
     exact_hits = pixel_hits = 0
-    tier_ms = {name: [] for name in methods}
+    tier_ms: dict[str, list[dict[str, float]]] = {name: [] for name in methods}
     for f in range(warmup + frames):
         pos, ang = scene.advance()
         measured = f >= warmup
@@ -167,7 +167,8 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     swept_pipe = Pipeline(scene.shapes, scene.table, tiers=DEFAULT, rotation="lut")
     names = list(scene.table.names)
     bullet = np.isin(scene.layer, [names.index(n) for n in ("enemy_bullet", "player_bullet") if n in names])
-    solo, swept = [], []
+    solo: list[float] = []
+    swept: list[float] = []
     for f in range(warmup + frames):
         pos, ang = scene.advance()
         prev = pos - scene.vel * scene.dt
@@ -187,12 +188,13 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
                      "false_positives": fp[name], "false_negatives": fn[name],
                      "pose_false_positives": own_fp[name], "pose_false_negatives": own_fn[name],
                      "pixel_false_positives": pfp[name], "pixel_false_negatives": pfn[name]}
-    solo, swept = np.array(solo), np.array(swept)
+    solo_ms, swept_ms = np.array(solo), np.array(swept)
     return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits,
             "pixel_frames": min(pixel_frames, frames), "pixel_hits": pixel_hits, "methods": out,
-            "default_alone": {"median_ms": float(np.median(solo)), "min_ms": float(solo.min()), "max_ms": float(solo.max())},
-            "default_alone_swept": {"median_ms": float(np.median(swept)), "min_ms": float(swept.min()),
-                                    "max_ms": float(swept.max())}}
+            "default_alone": {"median_ms": float(np.median(solo_ms)), "min_ms": float(solo_ms.min()),
+                              "max_ms": float(solo_ms.max())},
+            "default_alone_swept": {"median_ms": float(np.median(swept_ms)), "min_ms": float(swept_ms.min()),
+                                    "max_ms": float(swept_ms.max())}}
 
 
 def _progress(label: str):

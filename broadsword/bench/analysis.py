@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
+from typing import Any
 from functools import partial
 
 import numpy as np
@@ -155,7 +156,7 @@ def scaling(quick: bool = False, seed: int = SEED, brute_budget_ms: float = 2000
         pts = [(r["n"], r[f"{m}_ms"]) for r in rows if r[f"{m}_ms"] is not None]
         fits[m] = {"all": _fit_power(pts), "n_ge_1000": _fit_power([p for p in pts if p[0] >= 1000]),
                    "two_largest": _fit_power(pts[-2:])}
-    exponents = {f"exponent{suffix}": {m: f[key] and f[key]["k"] for m, f in fits.items()}
+    exponents = {f"exponent{suffix}": {m: (f[key] or {}).get("k") for m, f in fits.items()}
                  for key, suffix in (("all", ""), ("n_ge_1000", "_n_ge_1000"), ("two_largest", "_two_largest"))}
     return {"frames": frames, "warmup": warmup, "brute_budget_ms": brute_budget_ms, "brute_skipped_n": skipped,
             **exponents, "fit": fits, "table": rows}
@@ -185,7 +186,8 @@ def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
     ref = float(np.median(extent))
     layer_ext = {name: float(np.median(extent[scene.layer == k]))
                  for k, name in enumerate(scene.table.names) if np.any(scene.layer == k)}
-    pipes = {f: Pipeline(scene.shapes, scene.table, tiers=DEFAULT, bin_size=f * ref) for f in factors}
+    pipes: dict[float | str, Pipeline] = {f: Pipeline(scene.shapes, scene.table, tiers=DEFAULT, bin_size=f * ref)
+                                          for f in factors}
     pipes["auto"] = Pipeline(scene.shapes, scene.table, tiers=DEFAULT)
 
     def jobs():
@@ -197,10 +199,10 @@ def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
         return bins.pairs_out, bins.ms, result.broad.layout.size
 
     ms, kept = _interleave(frames, warmup, jobs, summary)
-    rows = []
+    rows: list[dict[str, Any]] = []
     for key in pipes:
-        out, tier_ms, size = zip(*kept[key])
-        size = _median(size)
+        out, tier_ms, sizes = zip(*kept[key])
+        size = _median(sizes)
         rows.append({"setting": "auto" if key == "auto" else "fixed", "factor": size / ref if key == "auto" else key,
                      "bin_px": size,
                      "median_ms": _median(ms[key]), "bins_ms": _median(tier_ms), "bins_pairs": int(np.median(out))})
@@ -367,7 +369,7 @@ def _mixed(rng, n):
 
 
 #: (family, generator); each generator (rng, n) -> (n, 4, 2) float64 points a, b, c, d.
-FAMILIES = (
+FAMILIES: tuple[tuple[str, Callable[..., np.ndarray]], ...] = (
     ("generic", _uniform),
     ("collinear_overlap", partial(_collinear, touching=False)),
     ("collinear_touching", partial(_collinear, touching=True)),
@@ -423,7 +425,7 @@ def stability(quick: bool = False, seed: int = SEED) -> dict:
     for index, (family, make) in enumerate(FAMILIES):
         rng = np.random.default_rng([seed, index])
         pts = _shuffle_roles(rng, make(rng, count)).tolist()
-        row = {"family": family, "cases": count, "exact_true": 0, "disagreements": 0, "false_negatives": 0,
+        row: dict[str, Any] = {"family": family, "cases": count, "exact_true": 0, "disagreements": 0, "false_negatives": 0,
                "false_positives": 0, "degenerate": 0, "degenerate_disagreements": 0}
         for a, b, c, d in pts:
             want, got = segments_intersect(a, b, c, d), paper_segments_intersect(a, b, c, d)

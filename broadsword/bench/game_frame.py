@@ -37,6 +37,7 @@ def _present(screen) -> None:
     import pygame
 
     win = pygame.display.get_surface()
+    assert win is not None  # the bench opened the display
     ww, wh = win.get_size()
     fw, fh = screen.get_size()
     k = min(ww / fw, wh / fh)

@@ -212,7 +212,7 @@ class PymunkPeer(Peer):
         self._setup_table(scene)
         pm = self._pm
         batch = pm.batch
-        mask = {}
+        mask: dict[int, int] = {}
         for a, b in self.entries:
             mask[a] = mask.get(a, 0) | (1 << b)
             mask[b] = mask.get(b, 0) | (1 << a)
@@ -222,16 +222,16 @@ class PymunkPeer(Peer):
         space = pm.Space()
         space.use_spatial_hash(float(np.median(extent[self.armature])), 2 * self.n)
         space.collision_persistence = 1
-        filters = {l: pm.ShapeFilter(categories=1 << l, mask=mask.get(l, 0)) for l in np.unique(self.layer).tolist()}
+        filters = {k: pm.ShapeFilter(categories=1 << k, mask=mask.get(k, 0)) for k in np.unique(self.layer).tolist()}
         self._bodies = []
         ids = np.empty(self.n, dtype=np.uint64)
-        for i, (a, l) in enumerate(zip(self.armature.tolist(), self.layer.tolist())):
+        for i, (a, k) in enumerate(zip(self.armature.tolist(), self.layer.tolist())):
             body = pm.Body(body_type=pm.Body.KINEMATIC)
             shapes = []
             for p in pieces[a]:
                 s = pm.Poly(body, p)
                 s.sensor = True
-                s.filter = filters[l]
+                s.filter = filters[k]
                 shapes.append(s)
             space.add(body, *shapes)
             self._bodies.append(body)  # the space holds them too; keep the order

@@ -14,11 +14,18 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from . import detmath
-from .predicates import _segments_intersect, orient
+from . import arguments, detmath
+from .predicates import orient
+from .simplicity import first_defect
 
-__all__ = ["Armature", "convex_hull"]
+__all__ = ["Armature", "MAX_VERTICES", "convex_hull"]
+
+#: Most vertices an armature may have. Building one checks that it is simple, exactly; for
+#: the worst case (every edge's box overlapping every other's, a many-pointed star) that is
+#: n^2 / 2 exact edge-pair tests, about a second at this size. Files are capped lower (256).
+MAX_VERTICES = 4096
 
 
 def _signed_area2(v: np.ndarray) -> Fraction:
@@ -55,7 +62,7 @@ def convex_hull(points: np.ndarray) -> np.ndarray:
     return np.array(lower[:-1] + upper[:-1], dtype=np.float64)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class Armature:
     """A validated hit polygon in its object's local frame.
 
@@ -83,8 +90,11 @@ class Armature:
     Raises
     ------
     ValueError
-        Saying what is wrong and where: too few vertices, a non-finite coordinate, a
-        repeated vertex, zero area, or two edges that cross, touch or fold back.
+        Saying what is wrong and where: too few or too many (over ``MAX_VERTICES``)
+        vertices, a non-finite coordinate, a repeated vertex, zero area, or two edges that
+        cross, touch or fold back. Vertices that are not real numbers (complex, bool,
+        str) raise :class:`~broadsword.collision.arguments.ArgumentTypeError`, a ValueError
+        too.
     """
 
     vertices: np.ndarray
@@ -94,22 +104,22 @@ class Armature:
     convex: bool = field(init=False)
     local_box: np.ndarray = field(init=False)
 
+    def __init__(self, vertices: ArrayLike, name: str = "armature") -> None:
+        object.__setattr__(self, "name", name)
+        object.__setattr__(self, "vertices", vertices)
+        self.__post_init__()
+
     def __post_init__(self) -> None:
         label = f"armature {self.name!r}"
-        try:
-            v = np.array(self.vertices, dtype=np.float64)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"{label}: vertices must be a list of [x, y] numbers") from exc
-        if v.ndim != 2 or v.shape[1] != 2:
-            raise ValueError(f"{label}: vertices must be a list of [x, y] pairs, got shape {v.shape}")
+        # Real numbers that are finite doubles, shape (n, 2) (arguments.py has the rules).
+        v = np.array(arguments.real_array(self.vertices, f"{label}: vertices", (None, 2), "vertex"))
         if len(v) >= 2 and np.array_equal(v[0], v[-1]):
             v = v[:-1]  # a repeated closing vertex
         n = len(v)
         if n < 3:
             raise ValueError(f"{label}: needs at least 3 vertices, got {n}")
-        bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
-        if bad.size:
-            raise ValueError(f"{label}: vertex {bad[0]} is not finite: {v[bad[0]].tolist()}")
+        if n > MAX_VERTICES:
+            raise ValueError(f"{label}: {n:,} vertices; an armature has at most {MAX_VERTICES:,}")
         nxt = np.roll(v, -1, axis=0)
         same = np.flatnonzero((v == nxt).all(axis=1))
         if same.size:
@@ -160,26 +170,20 @@ def _is_convex(v: np.ndarray) -> bool:
 def _check_simple(v: np.ndarray, label: str) -> None:
     """Raise ``ValueError`` naming the first pair of edges that makes ``v`` non-simple.
 
-    Exact: uses the exact segment predicate. Adjacent edges may only share their common
-    vertex; an adjacent edge that folds back along its neighbour overlaps it.
+    Exact, and O(n log n) for the polygons people draw (:mod:`.simplicity`). Adjacent edges
+    may only share their common vertex; an adjacent edge that folds back along its neighbour
+    overlaps it.
     """
+    defect = first_defect(v)
+    if defect is None:
+        return
+    kind, i, j = defect
     n = len(v)
-    pts = [(float(x), float(y)) for x, y in v]
-    for i in range(n):
-        a, b = pts[i], pts[(i + 1) % n]
-        c = pts[(i + 2) % n]
-        # Edge i+1 folds back onto edge i: collinear turn that reverses direction.
-        if orient(*a, *b, *c) == 0 and (b[0] - a[0]) * (c[0] - b[0]) + (b[1] - a[1]) * (c[1] - b[1]) < 0:
-            raise ValueError(f"{label}: edge {(i + 1) % n} folds back onto edge {i} at vertex {(i + 1) % n} {list(b)}")
-        for j in range(i + 2, n):
-            if i == 0 and j == n - 1:
-                continue  # adjacent through the closing vertex
-            c, d = pts[j], pts[(j + 1) % n]
-            if _segments_intersect(*a, *b, *c, *d):
-                raise ValueError(
-                    f"{label}: edge {i} {list(a)}-{list(b)} meets edge {j} {list(c)}-{list(d)}; "
-                    "an armature must be a simple polygon"
-                )
+    a, b = v[i].tolist(), v[(i + 1) % n].tolist()
+    if kind == "fold":
+        raise ValueError(f"{label}: edge {j} folds back onto edge {i} at vertex {j} {b}")
+    c, d = v[j].tolist(), v[(j + 1) % n].tolist()
+    raise ValueError(f"{label}: edge {i} {a}-{b} meets edge {j} {c}-{d}; an armature must be a simple polygon")
 
 
 def lut_max_displacement(radius: float) -> float:

@@ -18,6 +18,12 @@ from ._indexing import selector
 from .posing import Posed
 from .tolerance import BOUND_SLACK
 
+#: The largest finite double.
+_MAX = float(np.finfo(np.float64).max)
+
+#: Oriented boxes are built in units of 1 / OBB_SCALE px, so nothing in them overflows.
+OBB_SCALE = 2.0**-4
+
 __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriented_boxes", "oriented_boxes_overlap"]
 
 
@@ -35,9 +41,15 @@ def aabbs(posed: Posed) -> np.ndarray:
 
 
 def circle_boxes(posed: Posed) -> np.ndarray:
-    """Axis-aligned boxes of the bounding circles, (n, 4) float64: needs no vertex, only centres."""
+    """Axis-aligned boxes of the bounding circles, (n, 4) float64: needs no vertex, only centres.
+
+    Clamped to the finite doubles: a circle around a sweep across the whole range reaches
+    past them, but every point of every pose is a finite double, so the clamped box still
+    holds the object.
+    """
     c, r = posed.centre, posed.radius
-    return np.column_stack([c[:, 0] - r, c[:, 1] - r, c[:, 0] + r, c[:, 1] + r])
+    boxes = np.column_stack([c[:, 0] - r, c[:, 1] - r, c[:, 0] + r, c[:, 1] + r])
+    return np.clip(boxes, -_MAX, _MAX, out=boxes)
 
 
 def boxes_overlap(boxes: np.ndarray, pairs: np.ndarray) -> np.ndarray:
@@ -55,14 +67,15 @@ def circles_overlap(posed: Posed, pairs: np.ndarray) -> np.ndarray:
     """(m,) bool: the bounding circles of each pair overlap (closed, with slack)."""
     i, j = pairs[:, 0], pairs[:, 1]
     cx, cy = posed.centre[:, 0], posed.centre[:, 1]
-    dx = np.take(cx, i) - np.take(cx, j)
-    dy = np.take(cy, i) - np.take(cy, j)
-    r = np.take(posed.radius, i) + np.take(posed.radius, j)
-    dx *= dx
-    dy *= dy
-    dx += dy
-    r *= r
-    r *= 1.0 + BOUND_SLACK
+    with np.errstate(over="ignore"):  # past the doubles is inf: inf <= inf keeps the pair
+        dx = np.take(cx, i) - np.take(cx, j)
+        dy = np.take(cy, i) - np.take(cy, j)
+        r = np.take(posed.radius, i) + np.take(posed.radius, j)
+        dx *= dx
+        dy *= dy
+        dx += dy
+        r *= r
+        r *= 1.0 + BOUND_SLACK
     return dx <= r
 
 
@@ -73,12 +86,18 @@ def oriented_boxes(posed: Posed) -> np.ndarray:
     ``v = (-uy, ux)``, and half-extents ``hu``, ``hv`` along them, inflated by the bound
     slack. It is the tightest box in the object's own axes around the posed (or swept)
     polygon, computed from its vertices.
+
+    Centres and half-extents are in units of ``1 / OBB_SCALE`` (16) px: scaled by a power
+    of two, which is exact, so that no projection, extent or separation of
+    :func:`oriented_boxes_overlap` overflows for any finite pose (at |position| = 1.7e308
+    a projection ``x ux + y uy`` would). The slack's absolute term stays 1 in these units:
+    larger in px, so still conservative.
     """
     out = np.empty((posed.n, 6))
     norm = detmath.norm(posed.cos, posed.sin)
     ux, uy = posed.cos / norm, posed.sin / norm
     for k, idx in posed.members.items():
-        x, y = posed.xs[k], posed.ys[k]
+        x, y = posed.xs[k] * OBB_SCALE, posed.ys[k] * OBB_SCALE
         cu, cv = ux[idx], uy[idx]
         u = x * cu + y * cv  # (K, n_k) projections on u
         v = y * cu - x * cv  # ... and on v = (-uy, ux)

@@ -24,7 +24,7 @@ __all__ = ["RGB", "Colours", "DebugDraw", "FrameColours", "draw_frame", "draw_la
 
 RGB = tuple[int, int, int]
 #: One colour for the whole batch, or one per item.
-Colours = Union[RGB, Sequence[RGB]]
+Colours = RGB | Sequence[RGB]
 
 
 @runtime_checkable
@@ -32,13 +32,13 @@ class DebugDraw(Protocol):
     """What :func:`draw_frame` needs from a renderer. ``width`` is a line width in pixels;
     ``width=0`` fills. ``alpha`` (0..255) blends a batch over what is already drawn."""
 
-    def polygons(self, polygons: Sequence[np.ndarray], colours: Colours, width: int = 1) -> None:
+    def polygons(self, polygons: Sequence[np.ndarray] | np.ndarray, colours: Colours, width: int = 1) -> None:
         """Closed polygons, each a (k, 2) float array (a (m, k, 2) array is a sequence of them)."""
 
     def segments(self, starts: np.ndarray, ends: np.ndarray, colour: RGB, width: int = 1) -> None:
         """Segments from ``starts`` (m, 2) to ``ends`` (m, 2)."""
 
-    def boxes(self, boxes: np.ndarray, colours: Colours, width: int = 1, alpha: int = 255) -> None:
+    def boxes(self, boxes: np.ndarray | Sequence[Sequence[float]], colours: Colours, width: int = 1, alpha: int = 255) -> None:
         """Axis-aligned boxes, (m, 4) rows ``(xmin, ymin, xmax, ymax)``."""
 
     def circles(self, centres: np.ndarray, radii: np.ndarray, colours: Colours, width: int = 1) -> None:
@@ -134,7 +134,7 @@ def draw_frame(draw: DebugDraw, result: FrameResult, colours: FrameColours) -> N
         who = owners[start:start + len(batch)]
         start += len(batch)
         tint = colours.of_layer(layer[who])
-        swept = objects.swept[who].tolist()
+        swept = objects.swept[who].tolist() if objects.swept is not None else [False] * len(who)
         draw.polygons(batch, [colours.swept if s else c for s, c in zip(swept, tint)])
     pos = objects.positions
     if len(result.candidates):

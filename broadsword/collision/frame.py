@@ -14,6 +14,7 @@ from typing import Mapping
 
 import numpy as np
 
+from . import arguments
 from .broadphase.base import BroadPhaseStats
 from .layers import LayerTable
 from .posing import Posed
@@ -21,24 +22,16 @@ from .posing import Posed
 __all__ = ["FrameObjects", "FrameResult", "TierStats"]
 
 
-def _array(value, dtype, shape: tuple, what: str) -> np.ndarray:
-    a = np.asarray(value, dtype=dtype)
-    if a.ndim == len(shape) and all(want in (-1, got) for want, got in zip(shape, a.shape)):
-        return a  # already right: the caller's array itself
-    try:
-        return a.reshape(shape)
-    except ValueError:
-        want = "(n, 2)" if len(shape) == 2 else "(n,)"
-        raise ValueError(f"{what} must have shape {want}; got {a.shape}") from None
-
-
 @dataclass(frozen=True, eq=False)
 class FrameObjects:
     """The objects of one frame, after all movement (the paper's update-order rule, 1.4).
 
-    Built from anything array-like; the constructor converts to the dtypes below (no copy
-    when the input already has them, so the arrays are the caller's: they stay valid as long
-    as the caller leaves them alone) and checks that the lengths agree.
+    Built from anything array-like; the constructor checks every argument by the rules of
+    :mod:`broadsword.collision.arguments` (exact shapes, real finite numbers, integer ids,
+    boolean flags; a ``ValueError`` or ``ArgumentTypeError`` naming the argument), converts
+    to the dtypes below (no copy when the input already has them, so the arrays are the
+    caller's: they stay valid as long as the caller leaves them alone) and checks that the
+    lengths agree.
 
     Attributes
     ----------
@@ -68,22 +61,26 @@ class FrameObjects:
     swept: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        # The library's boundary: types, shapes and finiteness by arguments.py's rules (ids
+        # in range are the pipeline's to check: it knows the armatures and the layers).
         put = object.__setattr__
-        put(self, "armature", _array(self.armature, np.int64, (-1,), "armature"))
-        put(self, "layer", _array(self.layer, np.int64, (-1,), "layer"))
-        put(self, "positions", _array(self.positions, np.float64, (-1, 2), "positions"))
-        put(self, "angles", _array(self.angles, np.float64, (-1,), "angles"))
+        put(self, "armature", arguments.ids(self.armature, "armature", None))
+        put(self, "layer", arguments.ids(self.layer, "layer", None))
+        put(self, "positions", arguments.points(self.positions, "positions"))
+        put(self, "angles", arguments.reals(self.angles, "angles"))
         n = len(self.layer)
         if self.prev_positions is not None:
-            put(self, "prev_positions", _array(self.prev_positions, np.float64, (-1, 2), "prev_positions"))
+            put(self, "prev_positions", arguments.points(self.prev_positions, "prev_positions"))
         if self.prev_angles is not None:
-            put(self, "prev_angles", _array(self.prev_angles, np.float64, (-1,), "prev_angles"))
-        swept = np.zeros(n, dtype=bool) if self.swept is None else _array(self.swept, bool, (-1,), "swept")
+            put(self, "prev_angles", arguments.reals(self.prev_angles, "prev_angles"))
+        swept = np.zeros(n, dtype=bool) if self.swept is None else arguments.flags(self.swept, "swept", None)
         put(self, "swept", swept)
         for name in ("armature", "positions", "angles", "prev_positions", "prev_angles", "swept"):
             a = getattr(self, name)
             if a is not None and len(a) != n:
-                raise ValueError(f"{n} layer ids but {len(a)} {name}")
+                raise ValueError(f"{name}: {n} layer ids but {len(a)} {name} (nothing is broadcast)")
+        if swept.any() and (self.prev_positions is None or self.prev_angles is None):
+            raise ValueError("prev_positions and prev_angles (last frame's poses) are needed for swept objects")
 
     @property
     def n(self) -> int:

@@ -36,7 +36,9 @@ def kdops(posed: Posed) -> np.ndarray:
     out = np.empty((8, posed.n))  # built row-wise, as bounds.aabbs does
     for k, idx in posed.members.items():
         x, y, sel = posed.xs[k], posed.ys[k], selector(idx)
-        for row, v in enumerate((x, y, x + y, x - y)):
+        with np.errstate(over="ignore"):  # +-inf past the doubles: rounding is monotonic, so still a bound
+            s, d = x + y, x - y
+        for row, v in enumerate((x, y, s, d)):
             if isinstance(sel, slice):  # a pool: reduce straight into place
                 np.min(v, axis=0, out=out[row, sel])
                 np.max(v, axis=0, out=out[row + 4, sel])

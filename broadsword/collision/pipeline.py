@@ -20,14 +20,14 @@ from typing import Sequence
 
 import numpy as np
 
-from . import bounds
+from . import arguments, bounds
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
 from .layers import LayerTable
 from .narrow import collide_pairs
 from .pixels import MaskCache
-from .posing import ROTATION_MODES, ArmatureSet, pose
+from .posing import ROTATION_MODES, ArmatureSet, pose_checked
 from .tiers import BOUND_TIERS, EXACT_TIERS, LAST_TIERS, TIERS, Tier, TierInput, check_tiers
 from .workspace import Workspace
 
@@ -113,24 +113,31 @@ class Pipeline:
             Last frame's poses, for the objects in ``swept``.
         swept : (n,) bool, optional
             Objects to sweep from their previous pose (fast movers: the "quick gun" fix).
+
+        Raises
+        ------
+        ValueError, ArgumentTypeError
+            Naming the argument: a wrong shape or length (nothing is broadcast or reshaped),
+            a non-finite or non-real value, an id that is not an integer or is out of range
+            (:mod:`broadsword.collision.arguments` has the rules).
         """
         return self.run(FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept))
 
     def run(self, objects: FrameObjects) -> FrameResult:
         """Run every tier on ``objects`` (one frame, after all movement); see :meth:`step`."""
         layer = objects.layer
-        if len(layer) and (layer.min() < 0 or layer.max() >= len(self.layers.names)):
-            raise ValueError(f"layer ids must lie in 0..{len(self.layers.names) - 1}")
+        arguments.in_range(objects.armature, "armature", len(self.armatures), f"the pipeline has {len(self.armatures)} armatures")
+        arguments.in_range(layer, "layer", len(self.layers.names), f"the layer table has {len(self.layers.names)} layers")
         n = len(layer)
         stats = [TierStats("layers", n * (n - 1) // 2, self.layers.possible_pairs(layer), 0.0)]
         tier_pairs = {}
         clock = time.perf_counter
 
         t0 = clock()
-        swept = objects.swept if objects.swept.any() else None
-        posed = pose(self.armatures, objects.armature, objects.positions, objects.angles, self.rotation,
-                     objects.prev_positions, objects.prev_angles, swept, vertices=self.needs_vertices,
-                     workspace=self.workspace)
+        swept = objects.swept if objects.swept is not None and objects.swept.any() else None
+        posed = pose_checked(self.armatures, objects.armature, objects.positions, objects.angles, self.rotation,
+                             objects.prev_positions, objects.prev_angles, swept, vertices=self.needs_vertices,
+                             workspace=self.workspace)
         if self.needs_vertices:
             # Posing every object at once and boxing the polygons tightly beats posing only
             # the survivors of cheap tiers: measured, the tighter boxes save the broad phase
@@ -150,7 +157,9 @@ class Pipeline:
         for tier in self.tiers[1:]:
             t0 = clock()
             n_in = len(pairs)
-            pairs = pairs[TIERS[tier].keep(inp, pairs)]
+            keep = TIERS[tier].keep
+            assert keep is not None  # check_tiers: only the first tier is a broad phase
+            pairs = pairs[keep(inp, pairs)]
             stats.append(TierStats(tier.value, n_in, len(pairs), (clock() - t0) * 1e3))
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs

@@ -40,13 +40,13 @@ from typing import Sequence
 
 import numpy as np
 
+from . import arguments, detmath
 from .armature import Armature
-from . import detmath
 from ._indexing import pick, selector
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
-__all__ = ["ArmatureSet", "Posed", "pose", "rotation_table", "ROTATION_MODES"]
+__all__ = ["ArmatureSet", "Posed", "pose", "pose_checked", "rotation_table", "ROTATION_MODES"]
 
 ROTATION_MODES = ("exact", "lut")
 
@@ -106,7 +106,7 @@ class ArmatureSet:
         self.count = counts
         self.size_class = _size_class(counts)
         self.swept_class = _size_class(2 * hulls)
-        self.rotating_swept_class = int(_size_class(2 * _OCTAGON))
+        self.rotating_swept_class = int(_size_class(np.array(2 * _OCTAGON)))
         self.radius = np.array([a.radius for a in self.armatures])
         self.local_box = np.array([a.local_box for a in self.armatures])
         self._lx, self._ly = _padded([a.vertices for a in self.armatures], kmax)
@@ -206,7 +206,7 @@ def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray, ox: n
     """
     ws = ws or Workspace()
     h, m = vx.shape
-    if ox is None:
+    if ox is None or oy is None:
         ox, oy = np.empty((2 * h, m)), np.empty((2 * h, m))
     ex, ey = ws.get("sweep_ex", (h, m)), ws.get("sweep_ey", (h, m))
     np.subtract(vx[1:], vx[:-1], out=ex[:-1])  # edge k -> k+1 (the last wraps to the first)
@@ -272,39 +272,45 @@ def pose(
     -------
     Posed
     """
-    armature = np.asarray(armature, dtype=np.int64)
-    positions = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
-    angles = np.asarray(angles, dtype=np.float64).reshape(-1)
+    if rotation not in ROTATION_MODES:
+        raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
+    f = arguments.frame(armature, None, positions, angles, prev_positions, prev_angles, swept,
+                        armatures=len(shapes), layers=None)
+    return pose_checked(shapes, f.armature, f.positions, f.angles, rotation, f.prev_positions, f.prev_angles,
+                        f.swept, vertices, workspace)
+
+
+def pose_checked(shapes: ArmatureSet, armature: np.ndarray, positions: np.ndarray, angles: np.ndarray,
+                 rotation: str, prev_positions: np.ndarray | None, prev_angles: np.ndarray | None,
+                 swept: np.ndarray | None, vertices: bool = True, workspace: Workspace | None = None) -> Posed:
+    """:func:`pose` of arguments already checked (what :meth:`Pipeline.run` calls: its
+    :class:`FrameObjects` checked them once): int64 ids in range, float64 ``(n, 2)`` and
+    ``(n,)`` finite arrays, ``swept`` a bool array with a True entry, or ``None``."""
     n = len(armature)
-    if positions.shape[0] != n or angles.shape[0] != n:
-        raise ValueError(f"pose: {n} armature ids but {positions.shape[0]} positions and {angles.shape[0]} angles")
-    if n and (armature.min() < 0 or armature.max() >= len(shapes)):
-        raise ValueError(f"pose: armature ids must lie in 0..{len(shapes) - 1}")
-    if not np.isfinite(positions).all() or not np.isfinite(angles).all():
-        raise ValueError("pose: positions and angles must be finite")
     ws = workspace or Workspace()
     cos, sin = shapes.rotations(angles, rotation)
     px, py = positions[:, 0], positions[:, 1]
     radius = np.take(shapes.radius, armature)
     centre = positions
     klass = np.take(shapes.size_class, armature)
-    if swept is None or not np.any(swept):
+    if swept is None:
         swept = np.zeros(n, dtype=bool)
         turning = swept
     else:
-        swept = np.asarray(swept, dtype=bool)
-        if prev_positions is None or prev_angles is None:
-            raise ValueError("pose: swept objects need prev_positions and prev_angles")
-        prev_positions = np.asarray(prev_positions, dtype=np.float64).reshape(-1, 2)
-        pcos, psin = shapes.rotations(np.asarray(prev_angles, dtype=np.float64), rotation)
+        assert prev_positions is not None and prev_angles is not None  # arguments.frame saw to it
+        pcos, psin = shapes.rotations(prev_angles, rotation)
         turning = swept & ((pcos != cos) | (psin != sin))
         klass[swept] = shapes.swept_class[armature[swept]]
         klass[turning] = shapes.rotating_swept_class
         # Bounding circle of a sweep: around the path's midpoint, radius grown by half the path.
-        half = 0.5 * (positions - prev_positions)
+        # Halves first: p - q overflows for p, q near +-1.7e308, p/2 - q/2 never does.
+        half = 0.5 * positions - 0.5 * prev_positions
         centre = np.where(swept[:, None], positions - half, positions)
         radius = np.where(swept, radius / _OCTAGON_COS + detmath.norm(half[:, 0], half[:, 1]), radius)
-    radius = radius * (1.0 + BOUND_SLACK) + BOUND_SLACK * (np.abs(centre[:, 0]) + np.abs(centre[:, 1]) + 1.0)
+    # Term by term: |cx| + |cy| overflows at 1.7e308 (an infinite radius is still a bound; a nan would not be).
+    with np.errstate(over="ignore"):  # a radius past the doubles is inf: still a bound
+        radius = radius * (1.0 + BOUND_SLACK) + (BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1])
+                                                 + BOUND_SLACK)
 
     slot = np.zeros(n, dtype=np.int64)
     xs, ys, members = {}, {}, {}
@@ -325,6 +331,7 @@ def pose(
                 x[:, cols], y[:, cols] = _pose_plain(shapes, k, idx[cols], armature, px, py, cos, sin)
             cols = np.flatnonzero(~plain)
             obj = idx[cols]
+            assert prev_positions is not None  # swept objects have them (arguments.frame)
             # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
             hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2, ws)
             dx, dy = px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1]
@@ -394,11 +401,11 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Wor
     if turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
-        t = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)  # degrees
+        deg = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)
         cx, cy = px[obj][turning], py[obj][turning]
-        slack = BOUND_SLACK * (np.abs(cx) + np.abs(cy) + 1.0)
+        slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
         r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
-        ts, tc = detmath.sincos_deg(t)
+        ts, tc = detmath.sincos_deg(deg)
         ox = cx + tc[:, None] * r
         oy = cy + ts[:, None] * r
         x[:, turning] = _pad_rows(ox, h)

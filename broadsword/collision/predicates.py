@@ -1,8 +1,9 @@
 """Exact scalar geometric predicates on float64 input, and the paper's Figure 8 test.
 
 Every predicate here treats its shapes as *closed* sets: touching counts. The answer is
-what exact real arithmetic gives on the float64 values passed in (inputs are converted to
-float64 first, as numpy would). Each orientation is first decided by a floating-point filter
+what exact real arithmetic gives on the float64 values passed in. Inputs are checked by
+:mod:`.arguments` first: real numbers whose values are finite doubles (a ``bool``, a
+``complex``, a string or an integer that is not a double is refused, never converted). Each orientation is first decided by a floating-point filter
 with a proven error bound (``tolerance.py``); only the cases it cannot decide -- collinear
 or within rounding of it, products that overflow or underflow -- are recomputed with
 ``fractions.Fraction``, which represents every double exactly.
@@ -12,10 +13,10 @@ The vectorised narrow phase (``narrow.py``) uses these functions as its exact fa
 
 from __future__ import annotations
 
-import math
 from fractions import Fraction
 from typing import Iterable, Sequence
 
+from . import arguments
 from .tolerance import ORIENT_EPS, UNDERFLOW_GUARD
 
 __all__ = [
@@ -30,27 +31,13 @@ Point = tuple[float, float]
 
 
 def _as_point(p: Sequence[float], what: str = "point") -> Point:
-    """Return ``p`` as a float64 pair; ``ValueError`` if it is not two finite numbers."""
-    try:
-        x, y = p
-        x = float(x)
-        y = float(y)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise ValueError(f"{what} must be an (x, y) pair of real numbers, got {p!r}") from exc
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"{what} has a non-finite coordinate: {p!r}")
-    return x, y
+    """``p`` as a pair of doubles (:func:`arguments.point`: real, exactly doubles, finite)."""
+    return arguments.point(p, what)
 
 
 def _as_polygon(polygon: Iterable[Sequence[float]], what: str = "polygon") -> list[Point]:
-    """Return the vertices as float64 pairs; ``ValueError`` for < 3 vertices or bad values."""
-    try:
-        vertices = [_as_point(v, f"{what} vertex {i}") for i, v in enumerate(polygon)]
-    except TypeError as exc:
-        raise ValueError(f"{what} must be a sequence of (x, y) vertices") from exc
-    if len(vertices) < 3:
-        raise ValueError(f"{what} needs at least 3 vertices, got {len(vertices)}")
-    return vertices
+    """The vertices as pairs of doubles; at least 3 (:func:`arguments.polygon`)."""
+    return arguments.polygon(polygon, what)
 
 
 def _orient_exact(ax: float, ay: float, bx: float, by: float, cx: float, cy: float) -> int:

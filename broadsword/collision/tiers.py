@@ -98,6 +98,7 @@ class TierSpec:
 
 def _pixel(inp: TierInput, pairs: np.ndarray) -> np.ndarray:
     o = inp.objects
+    assert inp.masks is not None  # the pipeline builds them when "pixel" is a tier
     return inp.masks.collide(o.armature, o.positions, o.angles, pairs)
 
 

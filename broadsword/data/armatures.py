@@ -207,7 +207,7 @@ def _parse(doc: dict, path: Path, header: str) -> ArmatureFile:
 
 def load_armatures(folder: str | Path) -> dict[str, ArmatureFile]:
     """Every ``*.armature.toml`` in ``folder``, by name."""
-    out = {}
+    out: dict[str, ArmatureFile] = {}
     for path in sorted(Path(folder).glob(f"*{SUFFIX}")):
         f = load_armature_file(path)
         if f.name in out:

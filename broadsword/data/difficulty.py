@@ -18,7 +18,7 @@ class Difficulty(str, Enum):
     LUNATIC = "lunatic"
 
     @property
-    def title(self) -> str:
+    def title(self) -> str:  # type: ignore[override]  # a display name, not str.title()
         return self.value.capitalize()
 
 

@@ -29,6 +29,7 @@ import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TypeGuard
 
 from .. import __version__
 from ..fileio import write_atomic
@@ -110,7 +111,7 @@ def save_recording(path: str | Path, rec: Recording) -> None:
 
 
 # ---------------------------------------------------------------------- reading
-def _whole(v) -> bool:
+def _whole(v) -> TypeGuard[int]:
     return type(v) is int
 
 

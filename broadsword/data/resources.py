@@ -1,9 +1,9 @@
 """Where the shipped levels and assets live, installed or in a source checkout.
 
 A wheel carries the repository's top-level ``levels/`` and ``assets/`` folders as the
-packages ``broadsword.levels`` and ``broadsword.assets`` (see pyproject.toml). An
-editable install or a plain checkout has no such packages, so the folders beside the
-``broadsword`` package are used instead.
+packages ``broadsword.levels`` and ``broadsword.assets`` (see pyproject.toml), found with
+:mod:`importlib.resources`. An editable install or a plain checkout has no such folders in
+the package, so the ones beside the ``broadsword`` package are used instead.
 
 :func:`read_text` and :func:`read_toml` are how every data file is read: bytes, checked
 for size and UTF-8, then parsed by :mod:`tomllib` (or :mod:`json`, for recordings).
@@ -12,6 +12,7 @@ Nothing read is ever executed.
 
 from __future__ import annotations
 
+import importlib.resources
 import os
 import re
 import stat
@@ -20,19 +21,24 @@ from pathlib import Path
 
 from .errors import DataError
 
-_PACKAGE = Path(__file__).resolve().parents[1]  # .../broadsword
-_ROOT = _PACKAGE.parent  # the repository, in a source checkout
+_ROOT = Path(__file__).resolve().parents[2]  # the repository, in a source checkout
 
 
 def data_dir(kind: str) -> Path:
-    """The folder of shipped ``"levels"`` or ``"assets"``: inside the installed package,
-    else beside it in a source checkout (an editable install)."""
+    """The folder of shipped ``"levels"`` or ``"assets"``.
+
+    Installed (a wheel), it is found through :mod:`importlib.resources` inside the
+    ``broadsword`` package; in a source checkout or an editable install, beside the package.
+    The installed package must be on a file system (not zipped): levels and sprites are
+    opened as files.
+    """
     if kind not in ("levels", "assets"):
         raise ValueError(f"kind must be 'levels' or 'assets', got {kind!r}")
-    for path in (_PACKAGE / kind, _ROOT / kind):
-        if path.is_dir():
+    shipped = importlib.resources.files("broadsword").joinpath(kind)
+    for path in (shipped, _ROOT / kind):
+        if isinstance(path, Path) and path.is_dir():
             return path
-    raise FileNotFoundError(f"shipped {kind} not found in {_PACKAGE / kind} or {_ROOT / kind}")
+    raise FileNotFoundError(f"shipped {kind} not found in {shipped} or {_ROOT / kind}")
 
 
 def read_text(path: str | Path, max_bytes: int, kind: str) -> str:

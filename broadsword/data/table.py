@@ -8,6 +8,8 @@ expected. :meth:`Table.done` refuses keys nobody read, so a typo is never ignore
 
 from __future__ import annotations
 
+import builtins
+
 import math
 import re
 from pathlib import Path
@@ -32,7 +34,8 @@ class Table:
     def __init__(self, doc, path: Path, where: str):
         if not isinstance(doc, dict):
             raise DataError(path, where, f"must be a table, got {shown(doc)}")
-        self.doc, self.path, self.where, self.used = doc, path, where, set()
+        self.doc, self.path, self.where = doc, path, where
+        self.used: set[str] = set()
 
     def name_of(self, key):
         """The dotted field name of ``key`` in this table, for messages."""
@@ -84,7 +87,7 @@ class Table:
             raise self.error(key, f"must be one line of at most {TEXT_MAX_CHARS} printable characters, got {shown(v)}")
         return v
 
-    def sprite(self, key, default) -> str:
+    def sprite(self, key, default) -> builtins.str:  # builtins: this class has a method named str
         """A sprite's name (an armature in assets/sprites): a name, never a path."""
         v = self.str(key, default)
         if not SPRITE_NAME.match(v):

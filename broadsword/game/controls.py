@@ -234,7 +234,7 @@ class Controls:
     def __init__(self, bindings: Bindings | None = None):
         self.bindings = bindings or Bindings()
         self.held: set[int] = set()
-        self.pad = None
+        self.pad: pygame.joystick.JoystickType | None = None
         self.connect_pad()
 
     def connect_pad(self) -> None:
@@ -297,8 +297,8 @@ class Controls:
             try:
                 ax, ay = pad.get_axis(0), pad.get_axis(1)
                 hx, hy = pad.get_hat(0) if pad.get_numhats() else (0, 0)
-                dx += (ax > STICK_DEAD_ZONE) - (ax < -STICK_DEAD_ZONE) + hx
-                dy += (ay > STICK_DEAD_ZONE) - (ay < -STICK_DEAD_ZONE) - hy
+                dx += (ax > STICK_DEAD_ZONE) - (ax < -STICK_DEAD_ZONE) + int(hx)
+                dy += (ay > STICK_DEAD_ZONE) - (ay < -STICK_DEAD_ZONE) - int(hy)
             except pygame.error:
                 self.pad = None
         return Input(_clamp(dx), _clamp(dy), h(Action.FIRE), h(Action.SLOW), h(Action.BOMB))

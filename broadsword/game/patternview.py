@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from ..collision import LayerTable, Pipeline
+from ..collision import FrameResult, LayerTable, Pipeline
 from ..collision.debugdraw import posed_polygons
 from ..data import data_dir, load_armatures
 from ..patterns import bulletml
@@ -60,7 +60,7 @@ class PatternView:
         # the game's own enemy-bullet store: bullets face where they fly, as in play
         self.engine = bulletml.Engine(rank=self.rank, seed=self.seed, bullets=EnemyBullets(256, bulletml.limits.MAX_LIVE_BULLETS))
         self.engine.add_emitter(self.pattern, EMITTER, self.params, tag=1 + self.bullet)
-        self.record = None
+        self.record: FrameResult | None = None
         self.hits = 0
 
     # -- input ----------------------------------------------------------------------------

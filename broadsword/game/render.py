@@ -174,12 +174,12 @@ class Renderer:
                     surf.blit(img, img.get_rect(center=(fx.x, fx.y)), special_flags=pygame.BLEND_RGBA_ADD)
                     keep.append(fx)
             elif fx.kind == "spark" and age < 8:
-                img = self.bank.images.get("spark")
-                if img is not None:
+                spark = self.bank.images.get("spark")
+                if spark is not None:
                     for k in range(4):
                         ang = k * math.pi / 2 + fx.born
                         r = 2 + age * 2.5
-                        surf.blit(img, img.get_rect(center=(fx.x + r * math.cos(ang), fx.y + r * math.sin(ang))),
+                        surf.blit(spark, spark.get_rect(center=(fx.x + r * math.cos(ang), fx.y + r * math.sin(ang))),
                                   special_flags=pygame.BLEND_RGBA_ADD)
                 keep.append(fx)
         self.effects = keep

@@ -39,13 +39,13 @@ import json
 import operator
 import os
 import re
-import sys
 from dataclasses import dataclass
 from datetime import date as _date
 from datetime import datetime, timezone
 from pathlib import Path
 
 from ..fileio import locked, remove_stale_temps, write_atomic
+from .userdata import user_data_dir
 
 __all__ = ["Entry", "HighScores", "data_home", "sanitise_name", "FORMAT_VERSION", "NAME_MAX"]
 
@@ -70,25 +70,10 @@ class Entry:
 
 
 def data_home() -> Path:
-    """Directory for Broadsword's saved data.
-
-    Precedence: ``$BROADSWORD_DATA_DIR`` (used as given, ``~`` expanded); else
-    ``$XDG_DATA_HOME/broadsword``; else on Windows ``%APPDATA%/broadsword`` (falling back
-    to ``~/AppData/Roaming/broadsword``); else ``~/.local/share/broadsword``. A variable that
-    is set but empty counts as unset; a relative ``XDG_DATA_HOME`` is ignored, as the XDG
-    Base Directory spec requires.
-    """
-    override = os.environ.get("BROADSWORD_DATA_DIR")
-    if override:
-        return Path(override).expanduser()
-    xdg = os.environ.get("XDG_DATA_HOME")
-    if xdg and Path(xdg).is_absolute():
-        return Path(xdg) / "broadsword"
-    if sys.platform == "win32":
-        appdata = os.environ.get("APPDATA")
-        base = Path(appdata) if appdata else Path.home() / "AppData" / "Roaming"
-        return base / "broadsword"
-    return Path.home() / ".local" / "share" / "broadsword"
+    """Directory for Broadsword's saved data: :func:`broadsword.game.userdata.user_data_dir`
+    (``$BROADSWORD_DATA_DIR``, ``$XDG_DATA_HOME/broadsword``, else the platform's own data
+    directory)."""
+    return user_data_dir()
 
 
 def sanitise_name(name: object) -> str:
@@ -278,7 +263,7 @@ class HighScores:
         if isinstance(score, bool) or type(score).__name__ == "bool_":
             raise TypeError(f"score must be an integer, got {type(score).__name__}")
         try:
-            score = operator.index(score)
+            score = operator.index(score)  # type: ignore[arg-type]  # a TypeError here is the check
         except TypeError:
             raise TypeError(f"score must be an integer, got {type(score).__name__}") from None
         if score < 0:

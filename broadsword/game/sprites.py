@@ -28,7 +28,7 @@ class SpriteBank:
         # Animated sprites are horizontal strips: ``frames[name][i]`` is frame i, and
         # ``images[name]`` frame 0, so still and animated sprites are used alike.
         self.frames: dict[str, list[pygame.Surface]] = {}
-        for name, f in self.armatures.items():
+        for f in self.armatures.values():
             stem = f.sprite.removesuffix(".png")
             if stem not in self.images:
                 raise DataError(f.path, "sprite", f"no image {f.sprite} beside it")

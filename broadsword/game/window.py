@@ -58,7 +58,8 @@ class Window:
         if on == self.fullscreen:
             return
         if on:
-            self.size = pygame.display.get_surface().get_size() if pygame.display.get_surface() else self.size
+            shown = pygame.display.get_surface()
+            self.size = shown.get_size() if shown else self.size
             self.surface = pygame.display.set_mode((0, 0), pygame.FULLSCREEN)
         else:
             self.surface = pygame.display.set_mode(self.size, pygame.RESIZABLE)

@@ -77,6 +77,7 @@ class Pilot:
                 cost += self._preference(path[-1], target, world)
                 if cost < best_cost:
                     best, best_cost, best_min = (int(d[0]), int(d[1]), slow), cost, closest
+        assert best is not None  # the first candidate always beats inf
         dx, dy, slow = best
         bomb = BOMB_WHEN_TRAPPED and best_min < HIT and p.bombs > 0 and not world.bomb.active
         return Input(dx, dy, fire=True, slow=slow, bomb=bomb)
@@ -94,10 +95,8 @@ class Pilot:
     def _threats(self, world, at) -> tuple[np.ndarray, np.ndarray]:
         """Positions (m, 2) and velocities (m, 2, px/frame) of the bullets and ships seen near
         where the ship will be (ships count as bigger threats: twice each)."""
-        pos = [world.enemy_bullets.pos, world.ships.pool.pos, world.parts.pos]
-        vel = [world.enemy_bullets.vel, world.ships.pool.vel, world.parts.vel]
-        pos = np.concatenate(pos)
-        vel = np.concatenate(vel) * DT
+        pos = np.concatenate([world.enemy_bullets.pos, world.ships.pool.pos, world.parts.pos])
+        vel = np.concatenate([world.enemy_bullets.vel, world.ships.pool.vel, world.parts.vel]) * DT
         if not len(pos):
             return pos, vel
         d = pos - at

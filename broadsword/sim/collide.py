@@ -63,8 +63,8 @@ class CollisionRecord:
         return self.result.objects.positions
 
     @property
-    def prev_positions(self) -> np.ndarray:
-        """(n, 2) float64: last frame's positions."""
+    def prev_positions(self) -> np.ndarray | None:
+        """(n, 2) float64: last frame's positions (None if the frame gave none)."""
         return self.result.objects.prev_positions
 
     @property
@@ -80,7 +80,9 @@ class CollisionRecord:
     @property
     def swept(self) -> np.ndarray:
         """(n,) bool: the objects swept from their last pose."""
-        return self.result.objects.swept
+        swept = self.result.objects.swept
+        assert swept is not None  # FrameObjects always sets it
+        return swept
 
     def hits_from(self, *groups: Group) -> np.ndarray:
         """(h, 2) hit pairs whose first object belongs to one of ``groups``."""

@@ -159,7 +159,7 @@ class World:
     def set_rotation(self, mode: str) -> None:
         """Switch the rotation mode live (F4), before the next step; recorded in ``toggles``."""
         if mode != self.pipeline.rotation:
-            self.pipeline.rotation = Settings(rotation=mode).rotation
+            self.pipeline.rotation = Settings(rotation=mode).rotation or mode  # validated; never None here
             self.toggles.append(ToggleEvent(self.frame, Toggle.ROTATION, mode))
 
     def continue_game(self) -> None:
@@ -218,6 +218,7 @@ class World:
 
     def damage_boss(self, amount: int, ev: Events) -> None:
         """Hurt the boss; a phase that ends goes through :meth:`Progress.phase_ended`."""
+        assert self.boss is not None  # only a level with a boss has boss parts to hit
         how = self.boss.damage(amount)
         if how is not None:
             self.progress.phase_ended(how, ev)

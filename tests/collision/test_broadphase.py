@@ -73,8 +73,8 @@ def slow_pairs(boxes, layers, table):
     layers = [int(v) for v in layers]
     out = set()
     for a, b in table.entries:
-        ia = [i for i, l in enumerate(layers) if l == a]
-        ib = [i for i, l in enumerate(layers) if l == b]
+        ia = [i for i, k in enumerate(layers) if k == a]
+        ib = [i for i, k in enumerate(layers) if k == b]
         for i in ia:
             for j in ib:
                 if a == b and i >= j:
@@ -341,7 +341,7 @@ def test_find_pairs__empty_layers_and_tiny_inputs():
                 check_contract(pairs, b, np.zeros(n, int), table, exact=name.startswith("brute"), label=f"n={n} {name}")
     # An empty table.
     empty = LayerTable(["a"], [])
-    for name, phase in phases():
+    for _, phase in phases():
         pairs = phase.find_pairs(boxes, np.zeros(80, int), empty)
         assert pairs.shape == (0, 2) and pairs.dtype == np.int64
 
@@ -423,7 +423,7 @@ def test_find_pairs__input_types():
     """Lists and int boxes are accepted; the call does not modify its inputs."""
     boxes = [[0, 0, 2, 2], [1, 1, 3, 3], [5, 5, 6, 6]]
     layers = [0, 0, 0]
-    for name, phase in phases():
+    for _, phase in phases():
         got = phase.find_pairs(boxes, layers, SELF)
         assert set(map(tuple, got.tolist())) >= {(0, 1)}
     arr = np.array(boxes, float)
@@ -634,7 +634,7 @@ def test_query__tree_layout_names_each_objects_node():
         assert len(level) == 200 and level.min() >= 0 and level.max() <= lay.depth
         assert lay.nodes[:, 3].sum() == 200
         nodes = lay.node_boxes()
-        for (lv, x, y, _), (x0, y0, x1, y1) in zip(lay.nodes.tolist(), nodes.tolist()):
+        for (lv, x, _, _), (x0, _, x1, _) in zip(lay.nodes.tolist(), nodes.tolist()):
             side = 2 * lay.half / 2**lv
             assert np.isclose(x1 - x0, side) and np.isclose(x0, lay.origin[0] + x * side)
         assert sorted(lay.members.tolist()) == list(range(200))
@@ -664,8 +664,8 @@ def test_query__keeps_no_state_between_frames():
         frames.append((random_boxes(rng, n, -100 * k, 400, 1, 20 + 20 * k), rng.integers(0, 4, n)))
     for name, phase in phases():
         before = {k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in vars(phase).items()}
-        alone = [phase.query(b, l, MIXED) for b, l in frames]
-        again = [phase.query(b, l, MIXED) for b, l in reversed(frames)][::-1]
+        alone = [phase.query(b, ly, MIXED) for b, ly in frames]
+        again = [phase.query(b, ly, MIXED) for b, ly in reversed(frames)][::-1]
         assert vars(phase).keys() == before.keys(), name
         assert all(vars(phase)[k] == v for k, v in before.items()), name
         for (p1, s1), (p2, s2) in zip(alone, again):

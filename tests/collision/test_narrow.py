@@ -34,19 +34,12 @@ from broadsword.collision import polygons_collide, polygons_collide_padded
 from broadsword.collision import narrow
 from broadsword.collision.workspace import Workspace
 from star_polygons import star
+from shipped import dn, up
 
 M = 1.7976931348623157e308
 
 
 # --------------------------------------------------------------------------- helpers
-
-
-def up(x):
-    return math.nextafter(x, math.inf)
-
-
-def dn(x):
-    return math.nextafter(x, -math.inf)
 
 
 def pad(polys, k=None):

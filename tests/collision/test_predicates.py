@@ -44,19 +44,10 @@ from broadsword.collision import (
     polygons_collide,
     segments_intersect,
 )
+from shipped import dn, up
 
 M = sys.float_info.max  # 1.7976931348623157e308
 T = math.ulp(0.0)  # 5e-324, the smallest subnormal
-
-
-def up(x):
-    """The next double above x."""
-    return math.nextafter(x, math.inf)
-
-
-def dn(x):
-    """The next double below x."""
-    return math.nextafter(x, -math.inf)
 
 
 def hyp(max_examples):

@@ -47,11 +47,6 @@ def folder(tmp_path_factory) -> Path:
     return tmp_path_factory.mktemp("fuzz")
 
 
-@pytest.fixture(scope="module")
-def armatures():
-    return load_armatures(SPRITES)
-
-
 # ---------------------------------------------------------------------- what "valid" means
 def finite_numbers(obj) -> bool:
     """Every float in a (nested) dataclass, tuple or dict is finite."""

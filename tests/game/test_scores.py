@@ -17,8 +17,8 @@ Rules under test:
   corrupt file aside) leaves the sidecar lock file ``highscores.json.lock``. Merging with
   other instances, the lock, kills and read-only directories: test_scores_merge.py,
   test_scores_processes.py, test_scores_readonly.py.
-* ``data_home``: ``$BROADSWORD_DATA_DIR`` > ``$XDG_DATA_HOME/broadsword`` >
-  (Windows ``%APPDATA%/broadsword``) > ``~/.local/share/broadsword``.
+* the default path is ``data_home() / "highscores.json"``; where ``data_home`` points on
+  each platform is tested in tests/game/test_userdata.py.
 """
 
 from __future__ import annotations
@@ -31,15 +31,11 @@ from pathlib import Path
 import pytest
 
 from broadsword.game import scores as scores_mod
-from broadsword.game.scores import Entry, HighScores, data_home, sanitise_name
+from broadsword.game.scores import Entry, HighScores, sanitise_name
+from score_rows import DAY, entry
 
-DAY = "2024-05-17"
 CORRUPT_RE = re.compile(r"^highscores\.json\.corrupt-\d{8}T\d{6}Z(-\d+)?$")
 LOCK = "highscores.json.lock"  # the sidecar save() (and a corrupt-file load) locks
-
-
-def entry(name="ACE", score=100, level="1-picket", date=DAY) -> Entry:
-    return Entry(name, score, level, date)
 
 
 def write_doc(path: Path, scores: list, version=1) -> None:
@@ -452,59 +448,14 @@ def test_load__clean_load_clears_previous_warning(tmp_path):
 
 
 # --------------------------------------------------------------------------- data_home
-
-
-ENV_VARS = ("BROADSWORD_DATA_DIR", "XDG_DATA_HOME", "APPDATA")
+# The rules themselves, on every platform: tests/game/test_userdata.py.
 
 
 @pytest.fixture
-def clean_env(monkeypatch, tmp_path):
-    for var in ENV_VARS:
+def clean_env(monkeypatch):
+    for var in ("BROADSWORD_DATA_DIR", "XDG_DATA_HOME", "APPDATA"):
         monkeypatch.delenv(var, raising=False)
-    monkeypatch.setenv("HOME", str(tmp_path / "home"))
-    monkeypatch.setattr(scores_mod.sys, "platform", "linux")
     return monkeypatch
-
-
-def test_data_home__default_is_local_share(clean_env, tmp_path):
-    assert data_home() == tmp_path / "home" / ".local" / "share" / "broadsword"
-
-
-def test_data_home__xdg_data_home_beats_default(clean_env, tmp_path):
-    clean_env.setenv("XDG_DATA_HOME", str(tmp_path / "xdg"))
-    assert data_home() == tmp_path / "xdg" / "broadsword"
-
-
-def test_data_home__override_beats_xdg(clean_env, tmp_path):
-    clean_env.setenv("XDG_DATA_HOME", str(tmp_path / "xdg"))
-    clean_env.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "mine"))
-    assert data_home() == tmp_path / "mine"  # used as given: no "broadsword" appended
-
-
-def test_data_home__empty_vars_count_as_unset(clean_env, tmp_path):
-    clean_env.setenv("BROADSWORD_DATA_DIR", "")
-    clean_env.setenv("XDG_DATA_HOME", "")
-    assert data_home() == tmp_path / "home" / ".local" / "share" / "broadsword"
-
-
-def test_data_home__relative_xdg_is_ignored(clean_env, tmp_path):
-    clean_env.setenv("XDG_DATA_HOME", "relative/dir")
-    assert data_home() == tmp_path / "home" / ".local" / "share" / "broadsword"
-
-
-def test_data_home__override_expands_tilde(clean_env, tmp_path):
-    clean_env.setenv("BROADSWORD_DATA_DIR", "~/saves")
-    assert data_home() == tmp_path / "home" / "saves"
-
-
-def test_data_home__windows_uses_appdata(clean_env, tmp_path):
-    clean_env.setattr(scores_mod.sys, "platform", "win32")
-    clean_env.setenv("APPDATA", str(tmp_path / "roaming"))
-    assert data_home() == tmp_path / "roaming" / "broadsword"
-    clean_env.delenv("APPDATA")
-    assert data_home() == tmp_path / "home" / "AppData" / "Roaming" / "broadsword"
-    clean_env.setenv("XDG_DATA_HOME", str(tmp_path / "xdg"))  # still beats the platform default
-    assert data_home() == tmp_path / "xdg" / "broadsword"
 
 
 def test_highscores__default_path_follows_data_home(clean_env, tmp_path):

@@ -31,17 +31,13 @@ from broadsword import fileio
 from broadsword.fileio import locked, remove_stale_temps, write_atomic
 from broadsword.game import scores as scores_mod
 from broadsword.game.scores import Entry, HighScores
+from score_rows import DAY, entry
 
-DAY = "2024-05-17"
 LOCK = "highscores.json.lock"
 try:
     import fcntl
 except ImportError:  # not POSIX: the lock tests that need flock skip
     fcntl = None
-
-
-def entry(name="ACE", score=100, level="1-picket", date=DAY) -> Entry:
-    return Entry(name, score, level, date)
 
 
 def listing(directory: Path) -> list[str]:

@@ -28,15 +28,11 @@ import pygame
 import pytest
 
 from broadsword.game.scores import Entry, HighScores
+from score_rows import DAY, entry
 
-DAY = "2024-05-17"
 LOCK = "highscores.json.lock"
 EROFS = errno.EROFS
 _WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_TRUNC | os.O_APPEND
-
-
-def entry(name="ACE", score=100, level="1-picket", date=DAY) -> Entry:
-    return Entry(name, score, level, date)
 
 
 def tree(directory: Path) -> dict[str, bytes | None]:

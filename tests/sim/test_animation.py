@@ -16,11 +16,6 @@ WASPS = WaveSpec(at=3000.0, enemy="wasp", count=1, every=0.0, hp=1, score=0,
                  path=PathSpec(), fire=FireSpec(pattern="none", bullet="needle"), mirror=False)
 
 
-@pytest.fixture(scope="module")
-def armatures():
-    return load_armatures(data_dir("assets") / "sprites")
-
-
 @pytest.fixture()
 def world(armatures):
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=(WASPS,), boss=None)

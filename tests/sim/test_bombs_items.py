@@ -13,7 +13,9 @@ from broadsword.sim.player import POWER_LOSS, POWER_MAX, POWER_MIN, POWER_STEP
 from broadsword.sim.weapons import volley
 from sim_bullets import add_bullets
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 PICKET = load_level(resolve_level("1-picket"))
 
 
@@ -88,7 +90,7 @@ def test_items_fall_and_the_graze_shape_collects_them():
     w.items.drop(p + (0.0, -100.0), [ItemKind.POINT, ItemKind.POWER])
     points, power = w.score.points, w.player.power
     for _ in range(120):
-        ev = w.step(IDLE)
+        w.step(IDLE)
         if w.items.pool.n == 0:
             break
     assert w.items.pool.n == 0 and w.score.items == 2

@@ -11,7 +11,9 @@ from broadsword.sim.items import ItemKind
 from broadsword.sim.layers import game_layer_table
 from sim_bullets import add_bullets
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 
 
 def test_layer_table__bullets_never_test_bullets_and_graze_is_optional():

@@ -9,7 +9,9 @@ from broadsword.sim import IDLE, Events, World
 from broadsword.sim.combat import CLEAR_RADIUS
 from sim_bullets import add_bullets
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 BROADSWORD = load_level(resolve_level("3-broadsword"))
 
 

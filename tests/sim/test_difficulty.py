@@ -10,7 +10,9 @@ from broadsword.data import DataError, data_dir, load_armatures, load_level, res
 from broadsword.data.difficulty import DEFAULT_SPECS, Difficulty
 from broadsword.sim import IDLE, Settings, World
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 
 LEVEL = '''
 [player]

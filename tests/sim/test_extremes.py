@@ -18,7 +18,9 @@ from broadsword.sim import DT, FIELD, IDLE, Pilot, World
 from broadsword.sim.boss import BossState
 from sim_bullets import add_bullets
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 PICKET = load_level(resolve_level("1-picket"))
 BROADSWORD = load_level(resolve_level("3-broadsword"))
 NEVER = 1e9  # a wave time no test reaches

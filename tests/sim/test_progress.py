@@ -14,7 +14,9 @@ from broadsword.sim.progress import CONTINUES
 from broadsword.sim.scoring import EXTENDS
 from sim_bullets import add_bullets
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 BROADSWORD = load_level(resolve_level("3-broadsword"))
 PHASES = (BossPhaseSpec(40, time=20.0, bonus=5000), BossPhaseSpec(60, time=20.0, bonus=7000))
 

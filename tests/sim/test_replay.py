@@ -9,7 +9,9 @@ from broadsword.data.recordings import CHECKPOINT_EVERY
 from broadsword.sim import Carry, Input, Pilot, Settings, World
 from broadsword.sim.replay import Playback, Recorder
 
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+import shipped
+
+ARMATURES = shipped.armatures()
 LEVEL = load_level(resolve_level("3-broadsword"))
 FRAMES = 2 * CHECKPOINT_EVERY + 150
 

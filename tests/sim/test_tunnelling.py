@@ -43,9 +43,11 @@ from broadsword.sim.bullets import move_bullets
 from broadsword.sim.layers import game_layer_table
 from sim_bullets import add_bullets
 
+import shipped
+
 _IDS = LayerIds.of(game_layer_table())  # layer ids come from the table, by name
 ENEMY, ENEMY_BULLET, PLAYER, PLAYER_BULLET = _IDS.enemy_ship, _IDS.enemy_bullet, _IDS.player, _IDS.player_bullet
-ARMATURES = load_armatures(data_dir("assets") / "sprites")
+ARMATURES = shipped.armatures()
 LEVELS = [load_level(resolve_level(n)) for n in list_levels()]
 #: Sprites of ships the player's bullets can hit, and of the bullets enemies fire.
 SHIPS = sorted({w.enemy for lv in LEVELS for w in lv.waves}

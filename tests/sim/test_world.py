@@ -19,11 +19,6 @@ from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim.scoring import CLEAR_BONUS, GRAZE_SCORE, NO_BOMB_BONUS, NO_MISS_BONUS
 
 
-@pytest.fixture(scope="module")
-def armatures():
-    return load_armatures(data_dir("assets") / "sprites")
-
-
 LATE = WaveSpec(at=3000.0, enemy="scout", count=1, every=0.0, hp=1, score=0,
                 path=PathSpec(), fire=FireSpec(pattern="aimed", bullet="needle"), mirror=False)
 
@@ -123,7 +118,7 @@ def test_world__enemy_bullet_costs_a_life_on_the_expected_frame(quiet_level, arm
     expected = first_contact_frame(w, start, vel)
     add_bullet(w, *start, *vel)
     lives = w.player.lives
-    for k in range(1, expected + 5):
+    for k in range(1, expected + 5):  # noqa: B007 (k is read after the loop)
         ev = w.step(IDLE)
         if ev.player_struck:
             break

@@ -63,7 +63,7 @@ class TreeFrame(Frame):
 
     def leaf_coords(self, boxes):
         """Leaf-level integer coordinates of each box's corners, clipped to the root."""
-        ox, oy, d = *self.origin, self.depth
+        (ox, oy), d = self.origin, self.depth
         return (self.node(boxes[:, 0], ox, d), self.node(boxes[:, 1], oy, d),
                 self.node(boxes[:, 2], ox, d), self.node(boxes[:, 3], oy, d))
 

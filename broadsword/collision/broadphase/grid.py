@@ -82,7 +82,7 @@ class _GridFrame(Frame):
         self.ranges = cell_ranges(boxes, size, origin, shape)
         x0, y0, x1, y1 = self.ranges
         self.multi = (x0 != x1) | (y0 != y1)  # objects spanning more than one bin
-        self.entries = {}
+        self.entries: dict = {}
 
     def layout(self) -> GridLayout:
         return GridLayout(self.origin, self.size, self.shape, self.ranges, self.sel)
@@ -156,7 +156,8 @@ class _GridFrame(Frame):
         return pq[keep], pi[keep]
 
 
-def cell_ranges(boxes: np.ndarray, size: float, origin: tuple, shape: tuple) -> tuple[np.ndarray, ...]:
+def cell_ranges(boxes: np.ndarray, size: float, origin: tuple, shape: tuple
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Inclusive bin ranges ``(ix0, iy0, ix1, iy1)`` of each box (n, 4), clamped to the grid."""
     inv = 1.0 / size
     cols, rows = shape

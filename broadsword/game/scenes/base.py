@@ -9,7 +9,7 @@ and updates; drawing starts at the highest ``opaque`` scene and goes up.
 
 from __future__ import annotations
 
-from typing import Protocol, runtime_checkable
+from typing import Protocol, TypeVar, runtime_checkable
 
 import pygame
 
@@ -28,6 +28,9 @@ class Scene(Protocol):
 
     def draw(self, surf: pygame.Surface) -> None:
         """Draw onto the field surface."""
+
+
+_S = TypeVar("_S")
 
 
 class SceneStack:
@@ -56,7 +59,7 @@ class SceneStack:
         """Drop every scene; ``scene`` alone."""
         self.scenes = [scene]
 
-    def find(self, kind: type) -> Scene | None:
+    def find(self, kind: type[_S]) -> _S | None:
         """The highest scene of type ``kind``, or None."""
         for s in reversed(self.scenes):
             if isinstance(s, kind):

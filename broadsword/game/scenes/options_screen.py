@@ -64,6 +64,7 @@ class OptionsScene:
 
     def change(self, option: str, step: int) -> None:
         o = self.app.options
+        value: object
         if option == "difficulty":
             value = DIFFICULTIES[(DIFFICULTIES.index(o.difficulty) + step) % len(DIFFICULTIES)]
         elif option in ("music", "sound"):
@@ -89,6 +90,7 @@ class OptionsScene:
 
     def _rebind(self, event: pygame.event.Event) -> bool:
         action, b = self.waiting, self.app.controls.bindings
+        assert action is not None  # rebinding happens only while an action waits for its key
         if event.type == pygame.KEYDOWN:
             if event.key == pygame.K_ESCAPE:
                 self.note = "not changed"

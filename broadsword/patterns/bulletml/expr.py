@@ -92,6 +92,7 @@ class _Parser:
                 bad = stripped[pos:].lstrip()[:12]
                 raise ValueError(f"expression {_short(text)}: unexpected {bad!r}")
             kind = m.lastgroup
+            assert kind is not None  # every alternative of _TOKEN is a named group
             self.tokens.append((kind, m.group(kind)))
             pos = m.end()
         self.i = 0
@@ -111,8 +112,9 @@ class _Parser:
         if not self.tokens:
             raise ValueError("expression is empty")
         node = self.expr(0)
-        if self.peek() is not None:
-            raise ValueError(f"expression {_short(self.text)}: unexpected {self.peek()[1]!r}")
+        extra = self.peek()
+        if extra is not None:
+            raise ValueError(f"expression {_short(self.text)}: unexpected {extra[1]!r}")
         return node
 
     def expr(self, depth: int):
@@ -222,5 +224,6 @@ def compile_expression(text: str) -> Expr:
     parser = _Parser(text)
     const, fn = parser.parse()
     if const is not None:
-        return Expr(text, clamp(const), lambda s, c=clamp(const): c, 0)
+        value = clamp(const)
+        return Expr(text, value, lambda s: value, 0)
     return Expr(text, None, fn, parser.max_param)

@@ -10,6 +10,7 @@ than ``MAX_REF_CHAIN`` hops (or ``MAX_RUN_DEPTH`` nested actions). A bad file ra
 from __future__ import annotations
 
 import os
+from typing import Any, Literal, NoReturn, overload
 
 from .expr import Expr, compile_expression
 from .limits import MAX_PARAMS, MAX_REF_CHAIN, MAX_REPEAT
@@ -30,7 +31,7 @@ class _Builder:
         self.name = name
         self.labels: dict[str, dict[str, Element]] = {"actions": {}, "bullets": {}, "fires": {}}
 
-    def fail(self, el: Element, what: str):
+    def fail(self, el: Element, what: str) -> NoReturn:
         raise ValueError(f"{self.name}: {el.where()}: {what}")
 
     # -- shape checks -------------------------------------------------------------------
@@ -48,6 +49,12 @@ class _Builder:
                 self.fail(child, what + (f" (allowed: {', '.join(allowed)})" if allowed else " (it holds no elements)"))
         if not text and el.text.strip():
             self.fail(el, f"text {el.text.strip()[:20]!r} is not allowed inside <{el.tag}>")
+
+    @overload
+    def one(self, el: Element, tags: tuple[str, ...], required: Literal[True]) -> Element: ...
+
+    @overload
+    def one(self, el: Element, tags: tuple[str, ...], required: bool) -> Element | None: ...
 
     def one(self, el: Element, tags: tuple[str, ...], required: bool) -> Element | None:
         found = [c for c in el.children if c.tag in tags]
@@ -74,10 +81,22 @@ class _Builder:
             self.fail(el, f"type {value[:30]!r} is not one of {', '.join(k.value for k in enum)}")
 
     # -- elements -----------------------------------------------------------------------
+    @overload
+    def direction(self, el: Element) -> Direction: ...
+
+    @overload
+    def direction(self, el: Element | None) -> Direction | None: ...
+
     def direction(self, el: Element | None) -> Direction | None:
         if el is None:
             return None
         return Direction(self.kind(el, DirKind, DirKind.AIM), self.expr(el))
+
+    @overload
+    def speed(self, el: Element) -> Speed: ...
+
+    @overload
+    def speed(self, el: Element | None) -> Speed | None: ...
 
     def speed(self, el: Element | None) -> Speed | None:
         if el is None:
@@ -172,10 +191,10 @@ class _Builder:
         self.check(root, ("type",), ("bullet", "action", "fire"))
         orientation = self.kind(root, Orientation, Orientation.NONE)
         self.collect_labels(root)
-        built = {"actions": {}, "bullets": {}, "fires": {}}
-        top = []
+        built: dict[str, dict[str, Any]] = {"actions": {}, "bullets": {}, "fires": {}}
+        top: list[Action] = []
         for el in root.children:
-            obj = {"action": self.action, "bullet": self.bullet, "fire": self.fire}[el.tag](el)
+            obj: Any = {"action": self.action, "bullet": self.bullet, "fire": self.fire}[el.tag](el)
             if obj.label is not None:
                 built[_LABELLED[el.tag]][obj.label] = obj
             if el.tag == "action" and obj.label is not None and obj.label.startswith("top"):
@@ -201,7 +220,7 @@ class _RefCheck:
         self.depth: dict[str, tuple[int, int]] = {}  # action label -> (ref hops, nesting)
 
     def run(self, root: Element) -> None:
-        for label, action in self.p.actions.items():
+        for label in self.p.actions:
             self.action_ref(label, (), root)
         for bullet in self.p.bullets.values():
             for act in bullet.actions:

@@ -82,6 +82,11 @@ class Thread:
         return NEVER
 
     # -- helpers ------------------------------------------------------------------------
+    def _turn(self) -> int:
+        """The frame the running action started on (set by :meth:`run` before any command)."""
+        assert self.act_turn is not None
+        return self.act_turn
+
     def _enter(self, eng, node, params) -> None:
         if type(node) is ActionRef:
             params = eng.eval_params(node.params, params)
@@ -128,7 +133,7 @@ class Thread:
         elif kind is Wait:
             frames = int(eng.eval(cmd.frames, params))
             if frames > 0:
-                self.act_turn += frames
+                self.act_turn = self._turn() + frames
         elif kind is Repeat:
             times = min(int(eng.eval(cmd.times, params)), MAX_REPEAT)
             if times > 0:  # the specification's count; libBulletML would run the body once (docs/PATTERNS.md)
@@ -145,7 +150,7 @@ class Thread:
                 space = target - first
                 other = space - 360.0 if space > 0 else space + 360.0
                 final = first + (space if abs(space) < abs(other) else other)  # the shorter way round
-            movers.set_channel(row, DIR, self.act_turn, self.act_turn + term, first, final)
+            movers.set_channel(row, DIR, self._turn(), self._turn() + term, first, final)
         elif kind is ChangeSpeed:
             term = self._term(eng, cmd.term, params)
             first = float(movers.state[row, SPD])
@@ -153,7 +158,7 @@ class Thread:
                 final = eng.eval(cmd.speed.expr, params) * term + first
             else:
                 final = self._speed(eng, cmd.speed, params, movers, row)
-            movers.set_channel(row, SPD, self.act_turn, self.act_turn + term, first, final)
+            movers.set_channel(row, SPD, self._turn(), self._turn() + term, first, final)
         elif kind is Accel:
             self._accel(eng, movers, row, cmd, params)
         elif kind is Vanish:
@@ -176,7 +181,7 @@ class Thread:
                 final = first + v
             else:
                 final = v
-            movers.set_channel(row, ch, self.act_turn, self.act_turn + term, first, final)
+            movers.set_channel(row, ch, self._turn(), self._turn() + term, first, final)
 
     def _fire(self, eng, movers: Movers, row: int, cmd, params) -> None:
         pattern = self.pattern

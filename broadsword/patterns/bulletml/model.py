@@ -134,7 +134,7 @@ class Repeat:
     body: Union[Action, ActionRef]
 
 
-Command = Union[Action, ActionRef, Fire, FireRef, ChangeDirection, ChangeSpeed, Accel, Wait, Vanish, Repeat]
+Command = Action | ActionRef | Fire | FireRef | ChangeDirection | ChangeSpeed | Accel | Wait | Vanish | Repeat
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,241 @@
+"""Arguments of the library's public entry points, checked once, at the boundary.
+
+:meth:`Pipeline.step <broadsword.collision.Pipeline.step>`, :func:`~broadsword.collision.pose`,
+:class:`~broadsword.collision.Armature` and the scalar predicates pass what they are given
+through these functions before any arithmetic, so the kernels behind them never meet a value
+they were not written for. Every message names the argument.
+
+The rules, everywhere:
+
+* **Coordinates and angles** are real numbers: Python ``int`` and ``float``, numpy integer
+  and floating types. ``bool``, ``complex``, strings and other objects are refused with an
+  :class:`ArgumentTypeError`, never silently truncated or converted. A number that is not
+  exactly a double (an integer beyond 2**53 that doubles skip, a ``longdouble`` with extra
+  bits) is refused with a ``ValueError``: "exact" is defined on the doubles passed in
+  (DESIGN.md), and rounding the input first would answer another question.
+* **Finite**: nan and +-inf are refused (``ValueError``). Every finite double is accepted, up
+  to +-1.7976931348623157e308, and gets the exact answer.
+* **Ids** (armature indices, layer ids) are integers -- an integer array or Python ``int``
+  values -- in their range. ``0.7`` and ``True`` are refused (:class:`ArgumentTypeError`),
+  not truncated; ``-1`` or an id past the end is a ``ValueError``.
+* **Shapes** are exact: ``positions`` is ``(n, 2)``; a ``(2, n)`` or flat array is refused,
+  not reshaped; every per-object array has the ``n`` of ``armature``. Nothing is broadcast:
+  a ``prev_angles`` of length 1 for 2 objects is a ``ValueError``.
+* **Flags** (``swept``) are booleans: a bool array or Python ``bool`` values.
+
+:class:`ArgumentTypeError` is both a ``TypeError`` and a ``ValueError``: the right kind for a
+wrong type, still caught by code written when every refusal was a ``ValueError``.
+"""
+
+
+import math
+import numbers
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = ["ArgumentTypeError", "Frame", "flags", "frame", "ids", "point", "points", "polygon", "real_array", "reals"]
+
+_KINDS = {"b": "booleans", "c": "complex numbers", "U": "strings", "S": "bytes", "O": "Python objects",
+          "M": "datetimes", "m": "timedeltas", "V": "records"}
+
+
+class ArgumentTypeError(TypeError, ValueError):
+    """An argument of the wrong type: complex, bool, str, a float where an id belongs..."""
+
+
+def _array(value, name: str) -> np.ndarray:
+    """``np.asarray(value)``; ragged nesting and the like are refused naming ``name``.
+
+    Python sequences are scanned for ``bool`` first: numpy would turn ``[True, 2]`` into
+    integers. (Arrays are typed already: a bool array says so by its dtype.)
+    """
+    try:
+        a = np.asarray(value)
+        if not isinstance(value, np.ndarray) and a.dtype.kind in "iuf" and a.size:
+            if any(isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).reshape(-1).tolist()):
+                raise ArgumentTypeError(f"{name} must hold numbers, not booleans")
+        return a
+    except ArgumentTypeError:
+        raise
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise ValueError(f"{name} must be an array of numbers ({exc})") from None
+
+
+def _shape_name(shape: tuple[int | None, ...]) -> str:
+    dims = ["n" if s is None else str(s) for s in shape]
+    return "(" + ", ".join(dims) + ("," if len(dims) == 1 else "") + ")"
+
+
+def _shaped(a: np.ndarray, name: str, shape: tuple[int | None, ...]) -> np.ndarray:
+    """``a`` if it has ``shape`` exactly (``None``: any length); an empty ``[]`` takes the shape."""
+    if a.size == 0 and a.ndim == 1 and shape[0] in (0, None):
+        return a.reshape(tuple(0 if s is None else s for s in shape))
+    if a.ndim != len(shape) or any(s is not None and got != s for got, s in zip(a.shape, shape, strict=True)):
+        raise ValueError(f"{name} must have shape {_shape_name(shape)}, got {a.shape}")
+    return a
+
+
+def _is_real(v) -> bool:
+    return isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_))
+
+
+def real_array(value, name: str, shape: tuple[int | None, ...], item: str = "object") -> np.ndarray:
+    """``value`` as float64 of ``shape`` (``None``: any length), every entry a finite double.
+
+    ``item`` names a row in the message for a non-finite value ("object 3", "vertex 2").
+    """
+    a = _array(value, name)
+    kind = a.dtype.kind
+    if kind == "O":  # mixed Python numbers numpy could not type (ints beyond int64, ...)
+        flat = a.reshape(-1).tolist()
+        bad = next((v for v in flat if not _is_real(v)), None)
+        if bad is not None:
+            raise ArgumentTypeError(f"{name} must hold real numbers, got {type(bad).__name__} {bad!r}")
+        a = np.array([_exact_double(v, name) for v in flat], dtype=np.float64).reshape(a.shape)
+    elif kind not in "iuf" and a.size:
+        raise ArgumentTypeError(f"{name} must hold real numbers, got {_KINDS.get(kind, str(a.dtype))}")
+    a = _shaped(a, name, shape)
+    if kind in "iu" and a.dtype.itemsize == 8 and a.size:
+        big = np.abs(a.astype(np.float64)) >= 2.0**53
+        for v in a[big].tolist():
+            _exact_double(int(v), name)
+    out = a.astype(np.float64, copy=False)
+    if kind == "f" and a.dtype.itemsize > 8 and not np.array_equal(out, a):
+        raise ValueError(f"{name} holds {a.dtype} values that are not doubles; round them with .astype(float)")
+    ok = np.isfinite(out)
+    if not ok.all():
+        row = int(np.argwhere(~ok)[0][0])
+        raise ValueError(f"{name}: {item} {row} is not finite: {out[row].tolist()}")
+    return out
+
+
+def _exact_double(v, name: str) -> float:
+    """``float(v)`` when that is exactly ``v``; else a ``ValueError`` naming ``name``."""
+    if isinstance(v, (int, np.integer)):
+        i = int(v)
+        try:
+            f = float(i)
+        except OverflowError:
+            f = math.inf
+        if f != i:
+            raise ValueError(f"{name}: {i} is not a double (it would round); pass float({i}) to round it")
+        return f
+    return float(v)
+
+
+def reals(value, name: str, n: int | None = None) -> np.ndarray:
+    """``(n,)`` float64, finite: angles."""
+    return real_array(value, name, (n,), "object")
+
+
+def points(value, name: str, n: int | None = None) -> np.ndarray:
+    """``(n, 2)`` float64, finite: positions. A ``(2, n)`` array is refused, not transposed."""
+    return real_array(value, name, (n, 2), "object")
+
+
+def ids(value, name: str, n: int | None, limit: int | None = None, what: str = "") -> np.ndarray:
+    """``(n,)`` int64 ids, in ``0..limit-1`` when ``limit`` is given (:func:`in_range`).
+
+    Integer arrays or Python ints only: ``0.7`` and ``True`` are refused, not truncated.
+    """
+    a = _array(value, name)
+    if a.dtype.kind not in "iu" and a.size:
+        got = _KINDS.get(a.dtype.kind, str(a.dtype))
+        if a.dtype.kind == "f":
+            flat = a.reshape(-1)
+            odd = flat[~np.isfinite(flat) | (flat != np.round(flat))]
+            got = f"{a.dtype} values such as {odd[0].item()!r}" if odd.size else f"{a.dtype} values (pass integers)"
+        raise ArgumentTypeError(f"{name} must hold integer indices, got {got}")
+    a = _shaped(a, name, (n,)).astype(np.int64, copy=False)
+    if limit is not None:
+        in_range(a, name, limit, what)
+    return a
+
+
+def in_range(a: np.ndarray, name: str, limit: int, what: str) -> None:
+    """Every id of the int array ``a`` lies in ``0..limit-1``; ``what`` says why ("the pipeline has 2 armatures")."""
+    if a.size and (a.min() < 0 or a.max() >= limit):
+        bad = a[(a < 0) | (a >= limit)][0]
+        raise ValueError(f"{name} ids must lie in 0..{limit - 1} ({what}), got {bad}")
+
+
+def flags(value, name: str, n: int | None) -> np.ndarray:
+    """``(n,)`` bool: a bool array or Python bools; ``0`` and ``1`` are refused, not converted."""
+    a = _array(value, name)
+    if a.dtype.kind != "b" and a.size:
+        raise ArgumentTypeError(f"{name} must hold booleans, got {_KINDS.get(a.dtype.kind, str(a.dtype))}")
+    return _shaped(a, name, (n,)).astype(bool, copy=False)
+
+
+class Frame(NamedTuple):
+    """One frame's arguments of :meth:`Pipeline.step` and :func:`pose`, checked."""
+
+    armature: np.ndarray  #: (n,) int64
+    layer: np.ndarray | None  #: (n,) int64; None for pose()
+    positions: np.ndarray  #: (n, 2) float64
+    angles: np.ndarray  #: (n,) float64
+    prev_positions: np.ndarray | None  #: (n, 2) float64
+    prev_angles: np.ndarray | None  #: (n,) float64
+    swept: np.ndarray | None  #: (n,) bool; None when nothing is swept
+
+
+def frame(armature, layer, positions, angles, prev_positions, prev_angles, swept, *,
+          armatures: int, layers: int | None) -> Frame:
+    """Check one frame's arguments (``layer`` and ``layers`` ``None`` for :func:`pose`).
+
+    ``n`` is the length of ``armature``; every other per-object argument must have it.
+    ``prev_positions`` and ``prev_angles`` are checked whenever given, and required when
+    ``swept`` marks an object; a ``swept`` with no True entry becomes ``None``.
+    """
+    arm = ids(armature, "armature", None, armatures, f"the pipeline has {armatures} armatures")
+    n = len(arm)
+    lay = None if layers is None else ids(layer, "layer", n, layers, f"the layer table has {layers} layers")
+    pos = points(positions, "positions", n)
+    ang = reals(angles, "angles", n)
+    sw = None if swept is None else flags(swept, "swept", n)
+    if sw is not None and not sw.any():
+        sw = None
+    if sw is not None and (prev_positions is None or prev_angles is None):
+        raise ValueError("prev_positions and prev_angles (last frame's poses) are needed for swept objects")
+    prev_pos = None if prev_positions is None else points(prev_positions, "prev_positions", n)
+    prev_ang = None if prev_angles is None else reals(prev_angles, "prev_angles", n)
+    return Frame(arm, lay, pos, ang, prev_pos, prev_ang, sw)
+
+
+# ----------------------------------------------------------------- the scalar predicates
+def coordinate(v, name: str) -> float:
+    """One coordinate: a real number whose value is a finite double."""
+    if not _is_real(v):
+        raise ArgumentTypeError(f"{name} must be a real number, got {type(v).__name__} {v!r}")
+    if isinstance(v, np.floating) and np.dtype(type(v)).itemsize > 8 and float(v) != v:
+        raise ValueError(f"{name}: {v!r} is not a double; round it with float()")
+    f = _exact_double(v, name)
+    if not math.isfinite(f):
+        raise ValueError(f"{name} is {f}: coordinates must be finite")
+    return f
+
+
+def point(p, name: str) -> tuple[float, float]:
+    """An ``(x, y)`` pair of real numbers, each a finite double."""
+    if isinstance(p, (str, bytes)):
+        raise ArgumentTypeError(f"{name} must be an (x, y) pair of real numbers, got {p!r}")
+    try:
+        x, y = p
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an (x, y) pair of real numbers, got {p!r}") from None
+    return coordinate(x, f"{name} x"), coordinate(y, f"{name} y")
+
+
+def polygon(vs, name: str) -> list[tuple[float, float]]:
+    """At least 3 ``(x, y)`` vertices, each checked by :func:`point`."""
+    if isinstance(vs, (str, bytes)):
+        raise ArgumentTypeError(f"{name} must be a sequence of (x, y) vertices, got {vs!r}")
+    try:
+        items = list(vs)
+    except TypeError:
+        raise ArgumentTypeError(f"{name} must be a sequence of (x, y) vertices, got {type(vs).__name__}") from None
+    out = [point(v, f"{name} vertex {i}") for i, v in enumerate(items)]
+    if len(out) < 3:
+        raise ValueError(f"{name} needs at least 3 vertices, got {len(out)}")
+    return out

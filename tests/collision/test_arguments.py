@@ -1,0 +1,281 @@
+"""Library arguments are checked once, at the boundary (broadsword.collision.arguments), and every
+finite input gets the exact answer, checked against rational arithmetic at the extremes.
+
+* bad arguments of Pipeline.step, pose, Armature and the predicates: ValueError or
+  ArgumentTypeError (a TypeError and a ValueError) naming the argument; nothing is
+  truncated, reshaped, broadcast or silently converted;
+* every tier mix (obb, circle, aabb, each broad phase) keeps every pair the exact test keeps at
+  |position| = 1.7e308, and those hits equal a Fraction oracle on the posed polygons;
+* the simplicity test (sweep and prune) finds exactly the first defect brute force finds.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from broadsword.collision import (
+    Armature,
+    ArmatureSet,
+    LayerTable,
+    Pipeline,
+    point_in_polygon,
+    polygons_collide,
+    pose,
+    segments_intersect,
+)
+from broadsword.collision.arguments import ArgumentTypeError
+from broadsword.collision.armature import MAX_VERTICES
+from broadsword.collision.simplicity import first_defect
+
+M = 1.7e308
+SHIP = Armature([(0, -12), (14, 12), (5, 6), (0, 9), (-5, 6), (-14, 12)], name="ship")
+BULLET = Armature.box(4, 10, name="bullet")
+TABLE = LayerTable.shmup()
+P, B = TABLE.id("player"), TABLE.id("enemy_bullet")
+FRAME = dict(armature=[0, 1], layer=[P, B], positions=[[0.0, 0.0], [5.0, 0.0]], angles=[0.0, 0.0])
+SWEPT = dict(prev_positions=[[0.0, 0.0], [0.0, 0.0]], prev_angles=[0.0, 0.0], swept=[False, True])
+
+
+def step(rotation="lut", **changes):
+    return Pipeline([SHIP, BULLET], TABLE, rotation=rotation).step(**{**FRAME, **changes})
+
+
+# --------------------------------------------------------------------------- refusals
+BAD_STEPS = [
+    # (changes to FRAME, the argument the message names, the error type)
+    ({**SWEPT, "prev_angles": [0.0, math.nan]}, "prev_angles", ValueError),
+    ({**SWEPT, "prev_angles": [0.0, math.inf]}, "prev_angles", ValueError),
+    ({**SWEPT, "prev_angles": [0.0]}, "prev_angles", ValueError),  # not broadcast
+    ({**SWEPT, "prev_positions": [[0.0, 0.0]]}, "prev_positions", ValueError),
+    ({**SWEPT, "swept": [True]}, "swept", ValueError),
+    ({**SWEPT, "swept": [0, 1]}, "swept", ArgumentTypeError),
+    (dict(swept=[False, True]), "prev_positions", ValueError),
+    (dict(armature=[0, 0.7]), "armature", ArgumentTypeError),  # not truncated
+    (dict(armature=[0.0, 1.0]), "armature", ArgumentTypeError),
+    (dict(armature=[True, False]), "armature", ArgumentTypeError),
+    (dict(armature=[0, 2]), "armature", ValueError),
+    (dict(armature=[0, -1]), "armature", ValueError),
+    (dict(armature=[0, 1, 1]), "armature", ValueError),
+    (dict(layer=[P, 2.5]), "layer", ArgumentTypeError),
+    (dict(layer=[P, 99]), "layer", ValueError),
+    (dict(layer=[P]), "armature", ValueError),  # the lengths disagree
+    (dict(positions=[[0, 0], [5 + 1j, 0]]), "positions", ArgumentTypeError),  # imaginary part not dropped
+    (dict(positions=np.array([[0.0, 5.0, 9.0], [0.0, 0.0, 0.0]])), "positions", ValueError),  # (2, n): not reshaped
+    (dict(positions=[0.0, 0.0, 5.0, 0.0]), "positions", ValueError),  # flat: not reshaped
+    (dict(positions=[[0, 0], [math.nan, 0]]), "positions", ValueError),
+    (dict(positions=[[0, 0], ["5", 0]]), "positions", ArgumentTypeError),
+    (dict(positions=[[0, 0], [True, 0]]), "positions", ArgumentTypeError),
+    (dict(positions=[[0, 0], [5]]), "positions", ValueError),  # ragged
+    (dict(positions=[[0, 0], [2**53 + 1, 0]]), "positions", ValueError),  # not a double: would round
+    (dict(angles=[0.0, -math.inf]), "angles", ValueError),
+    (dict(angles=[0.0]), "angles", ValueError),
+    (dict(angles=[[0.0, 0.0]]), "angles", ValueError),
+    (dict(angles=["0", "0"]), "angles", ArgumentTypeError),
+    (dict(angles=np.array([0.0, 1.0], dtype=np.longdouble) + np.longdouble(2.0) ** -60), "angles", ValueError),
+]
+
+
+@pytest.mark.parametrize("rotation", ["lut", "exact"])
+@pytest.mark.parametrize("changes, name, error", BAD_STEPS)
+def test_pipeline_step__refuses_naming_the_argument(changes, name, error, rotation):
+    with pytest.raises(error) as info:
+        step(rotation, **changes)
+    assert str(info.value).startswith(name), str(info.value)
+
+
+@pytest.mark.parametrize("changes, name, error", BAD_STEPS)
+def test_pose__refuses_the_same(changes, name, error):
+    if "layer" in changes or changes.get("armature") == [0, 1, 1]:
+        return  # pose takes no layers; its lengths follow armature (test_pose__lengths_follow_armature)
+    changes = {k: v for k, v in {**FRAME, **changes}.items() if k != "layer"}
+    with pytest.raises(error, match=f"^{name}"):
+        pose(ArmatureSet([SHIP, BULLET]), **changes)
+
+
+def test_pose__lengths_follow_armature():
+    with pytest.raises(ValueError, match="^positions must have shape"):
+        pose(ArmatureSet([SHIP, BULLET]), [0, 1, 1], FRAME["positions"], FRAME["angles"])
+
+
+def test_argument_type_error_is_both_kinds():
+    assert issubclass(ArgumentTypeError, TypeError) and issubclass(ArgumentTypeError, ValueError)
+
+
+def test_good_arguments_of_every_accepted_type_give_one_answer():
+    want = step().hits.tolist()
+    assert want == [[0, 1]]
+    for kinds in [(np.int32, np.float32), (np.uint8, np.int64), (int, float)]:
+        ids, real = kinds
+        got = step(armature=np.array([0, 1], dtype=ids), layer=np.array([P, B], dtype=ids),
+                   positions=np.array([[0, 0], [5, 0]], dtype=real), angles=np.array([0, 0], dtype=real))
+        assert got.hits.tolist() == want
+    assert step(armature=[], layer=[], positions=[], angles=[]).hits.shape == (0, 2)
+    # A swept list with no True entry needs no previous pose.
+    assert step(swept=[False, False]).hits.tolist() == want
+
+
+@pytest.mark.parametrize("call", [
+    lambda: segments_intersect((0, 0), (1, 1 + 1j), (0, 1), (1, 0)),
+    lambda: segments_intersect((0, True), (1, 1), (0, 1), (1, 0)),
+    lambda: segments_intersect("ab", (1, 1), (0, 1), (1, 0)),
+    lambda: point_in_polygon(("1", 0), [(0, 0), (1, 0), (0, 1)]),
+    lambda: polygons_collide([(0, 0), (1, 0), (0, 1)], "abc"),
+])
+def test_predicates__wrong_types_are_type_errors(call):
+    with pytest.raises(TypeError):
+        call()
+
+
+def test_predicates__an_integer_that_is_not_a_double_is_refused():
+    with pytest.raises(ValueError, match="not a double"):
+        segments_intersect((0, 0), (2**53 + 1, 0), (0, 1), (1, 0))
+    assert segments_intersect((0, 0), (2**60, 0), (1, 1), (1, -1))  # 2**60 is a double
+
+
+def test_armature__vertex_types_and_the_cap():
+    with pytest.raises(ArgumentTypeError, match="fake"):
+        Armature([(0, 0), (1, 0), (0, 1j)], name="fake")
+    with pytest.raises(ArgumentTypeError, match="fake"):
+        Armature([(0, 0), (True, 0), (0, 1)], name="fake")
+    ring = [(math.cos(2 * math.pi * k / 100_000), math.sin(2 * math.pi * k / 100_000)) for k in range(100_000)]
+    t0 = time.perf_counter()
+    with pytest.raises(ValueError, match=f"100,000 vertices; an armature has at most {MAX_VERTICES:,}"):
+        Armature(ring, name="huge")
+    assert time.perf_counter() - t0 < 5.0  # refused by its size, not after a quadratic check
+
+
+# --------------------------------------------------------------------------- the rational oracle
+def q_orient(a, b, c):
+    d = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    return (d > 0) - (d < 0)
+
+
+def q_on_box(p, a, b):
+    return min(a[0], b[0]) <= p[0] <= max(a[0], b[0]) and min(a[1], b[1]) <= p[1] <= max(a[1], b[1])
+
+
+def q_segments(a, b, c, d):
+    o1, o2, o3, o4 = q_orient(a, b, c), q_orient(a, b, d), q_orient(c, d, a), q_orient(c, d, b)
+    if o1 * o2 < 0 and o3 * o4 < 0:
+        return True
+    return ((o1 == 0 and q_on_box(c, a, b)) or (o2 == 0 and q_on_box(d, a, b))
+            or (o3 == 0 and q_on_box(a, c, d)) or (o4 == 0 and q_on_box(b, c, d)))
+
+
+def q_inside(p, poly):
+    n, inside = len(poly), False
+    for k in range(n):
+        a, b = poly[k], poly[(k + 1) % n]
+        if q_orient(a, b, p) == 0 and q_on_box(p, a, b):
+            return True
+        if (a[1] > p[1]) != (b[1] > p[1]):
+            x = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1])
+            inside ^= p[0] < x
+    return inside
+
+
+def q_collide(p, q):
+    edges = lambda poly: [(poly[k], poly[(k + 1) % len(poly)]) for k in range(len(poly))]  # noqa: E731
+    if any(q_segments(a, b, c, d) for (a, b), (c, d) in itertools.product(edges(p), edges(q))):
+        return True
+    return q_inside(p[0], q) or q_inside(q[0], p)
+
+
+def q_hull(points):
+    pts = sorted(set(points))
+    def chain(seq):
+        out = []
+        for p in seq:
+            while len(out) >= 2 and q_orient(out[-2], out[-1], p) <= 0:
+                out.pop()
+            out.append(p)
+        return out
+    return chain(pts)[:-1] + chain(pts[::-1])[:-1]
+
+
+def q_poly(vertices, at=(0.0, 0.0)):
+    return [(Fraction(x) + Fraction(at[0]), Fraction(y) + Fraction(at[1])) for x, y in vertices]
+
+
+WALL = Armature.box(2, 40, name="wall")
+
+
+TIER_MIXES = [("bins", "obb", "armature"), ("bins", "circle", "armature"), ("bins", "aabb", "armature"),
+              ("quadtree", "aabb", "obb", "armature"), ("loose_quadtree", "circle", "obb", "armature"),
+              ("brute", "aabb", "obb", "circle", "armature"), ("bins", "kdop", "armature"),
+              ("brute", "kdop", "obb", "armature")]
+
+
+def extreme_scenes():
+    """Pairs of 4 x 10 boxes touching or nearly so at |position| up to 1.7e308."""
+    for x, y in [(M, M), (-M, M), (M, 0.0), (1.7976931348623157e308, -1.7976931348623157e308), (9e307, 9e307)]:
+        for angle in (0.0, 90.0, 180.0, 270.0):
+            for gap in (0.0, 1.0):
+                dy = 10.0 + gap if angle in (0.0, 180.0) else 4.0 + gap
+                yield [[x, y], [x, y - dy if y > 0 else y + dy]], [angle, angle]
+
+
+@pytest.mark.parametrize("tiers", TIER_MIXES)
+def test_every_tier_keeps_every_exact_pair_at_the_extremes(tiers):
+    table = LayerTable(("a", "b"), [("a", "b")])
+    exact = Pipeline([BULLET], table, tiers=("brute", "armature"), rotation="lut", keep_tier_pairs=True)
+    mixed = Pipeline([BULLET], table, tiers=tiers, rotation="lut")
+    touching = 0
+    for positions, angles in extreme_scenes():
+        args = dict(armature=[0, 0], layer=[0, 1], positions=positions, angles=angles)
+        want = exact.step(**args)
+        polygons = [[(Fraction(x), Fraction(y)) for x, y in p.tolist()] for p in want.posed.polygons()]
+        assert (want.hits.tolist() == [[0, 1]]) is q_collide(*polygons)  # the exact tier is exact
+        assert mixed.step(**args).hits.tolist() == want.hits.tolist(), (tiers, positions, angles)
+        touching += len(want.hits)
+    assert touching >= 10  # the scenes do hold touching pairs
+
+
+# --------------------------------------------------------------------------- simplicity
+def brute_first_defect(v):
+    """The definition: the first fold-back, else the first (i, j) of non-adjacent edges that meet."""
+    n = len(v)
+    pts = [(Fraction(x), Fraction(y)) for x, y in v.tolist()]
+    for k in range(n):
+        a, b, c = pts[k - 1], pts[k], pts[(k + 1) % n]
+        if q_orient(a, b, c) == 0 and (b[0] - a[0]) * (c[0] - b[0]) + (b[1] - a[1]) * (c[1] - b[1]) < 0:
+            return ("fold", (k - 1) % n, k)
+    for i in range(n):
+        for j in range(i + 2, n):
+            if i == 0 and j == n - 1:
+                continue
+            if q_segments(pts[i], pts[(i + 1) % n], pts[j], pts[(j + 1) % n]):
+                return ("meet", i, j)
+    return None
+
+
+@settings(max_examples=150)
+@given(st.lists(st.tuples(st.integers(-4, 4), st.integers(-4, 4)), min_size=3, max_size=9, unique=True),
+       st.sampled_from([1.0, 2.0**-1000, 2.0**1000, 0.1]))
+def test_first_defect__equals_brute_force(points, scale):
+    v = np.array(points, dtype=np.float64) * scale
+    assert first_defect(v) == brute_first_defect(v)
+
+
+def test_first_defect__large_polygons():
+    n = MAX_VERTICES
+    t = 2 * np.pi * np.arange(n) / n
+    star = np.column_stack([np.cos(t), np.sin(t)]) * np.where(np.arange(n) % 2, 1.0, 1000.0)[:, None]
+    assert first_defect(star) is None
+    Armature(star, name="star")  # the worst case for the sweep: every edge near the centre
+    crossed = star.copy()
+    crossed[[10, 12]] = crossed[[12, 10]]  # swap two outer points: edges 9 to 12 change
+    # The star was simple, so every defect now involves a changed edge: brute force over those.
+    pts = [(Fraction(x), Fraction(y)) for x, y in crossed.tolist()]
+    edge = lambda k: (pts[k % n], pts[(k + 1) % n])  # noqa: E731
+    meets = sorted((min(i, j), max(i, j)) for i in (9, 10, 11, 12) for j in range(n)
+                   if 1 < abs(i - j) < n - 1 and q_segments(*edge(i), *edge(j)))
+    assert meets and first_defect(crossed) == ("meet", *meets[0])
