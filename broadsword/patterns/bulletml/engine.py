@@ -67,14 +67,14 @@ class Engine:
         return self.emitters.add_one(float(pos[0]), float(pos[1]), direction, 0.0, runner, wake, tag, owner)
 
     # -- what the machine calls ---------------------------------------------------------
-    def eval(self, expr: Expr, params) -> float:
+    def evaluate(self, expr: Expr, params) -> float:
         if expr.const is not None:
             return expr.const
         self.scope.params = params
         return expr.value(self.scope)
 
     def eval_params(self, exprs: tuple[Expr, ...], params) -> tuple[float, ...]:
-        return tuple(self.eval(e, params) for e in exprs)
+        return tuple(self.evaluate(e, params) for e in exprs)
 
     def aim(self, movers: Movers, row: int) -> float:
         """Direction from ``row`` to the target (degrees, 0 = up, clockwise)."""

@@ -94,7 +94,7 @@ class Thread:
         self.stack.append(_Seq(node.commands, params))
 
     def _speed(self, eng, spd: Speed, params, movers: Movers, row: int) -> float:
-        v = eng.eval(spd.expr, params)
+        v = eng.evaluate(spd.expr, params)
         if spd.kind is SpeedKind.RELATIVE:
             v += float(movers.state[row, SPD])
         elif spd.kind is SpeedKind.SEQUENCE:
@@ -103,7 +103,7 @@ class Thread:
         return v
 
     def _direction(self, eng, d: Direction, params, movers: Movers, row: int, remember: bool) -> float:
-        v = eng.eval(d.expr, params)
+        v = eng.evaluate(d.expr, params)
         aim = d.kind is DirKind.AIM
         if d.kind is DirKind.ABSOLUTE:
             if self.pattern.orientation is Orientation.HORIZONTAL:
@@ -123,7 +123,7 @@ class Thread:
         return v
 
     def _term(self, eng, expr, params) -> int:
-        return int(eng.eval(expr, params))
+        return int(eng.evaluate(expr, params))
 
     # -- commands -----------------------------------------------------------------------
     def _do(self, eng, movers: Movers, row: int, cmd, params) -> None:
@@ -131,11 +131,11 @@ class Thread:
         if kind is Fire or kind is FireRef:
             self._fire(eng, movers, row, cmd, params)
         elif kind is Wait:
-            frames = int(eng.eval(cmd.frames, params))
+            frames = int(eng.evaluate(cmd.frames, params))
             if frames > 0:
                 self.act_turn = self._turn() + frames
         elif kind is Repeat:
-            times = min(int(eng.eval(cmd.times, params)), MAX_REPEAT)
+            times = min(int(eng.evaluate(cmd.times, params)), MAX_REPEAT)
             if times > 0:  # the specification's count; libBulletML would run the body once (docs/PATTERNS.md)
                 self.stack.append(_Rep(cmd.body, times, params))
         elif kind is Action or kind is ActionRef:
@@ -144,7 +144,7 @@ class Thread:
             term = self._term(eng, cmd.term, params)
             first = float(movers.state[row, DIR]) % 360.0
             if cmd.direction.kind is DirKind.SEQUENCE:
-                final = first + eng.eval(cmd.direction.expr, params) * term
+                final = first + eng.evaluate(cmd.direction.expr, params) * term
             else:
                 target = self._direction(eng, cmd.direction, params, movers, row, remember=False)
                 space = target - first
@@ -155,7 +155,7 @@ class Thread:
             term = self._term(eng, cmd.term, params)
             first = float(movers.state[row, SPD])
             if cmd.speed.kind is SpeedKind.SEQUENCE:
-                final = eng.eval(cmd.speed.expr, params) * term + first
+                final = eng.evaluate(cmd.speed.expr, params) * term + first
             else:
                 final = self._speed(eng, cmd.speed, params, movers, row)
             movers.set_channel(row, SPD, self._turn(), self._turn() + term, first, final)
@@ -173,7 +173,7 @@ class Thread:
         for spd, ch, sign in axes:
             if spd is None:
                 continue
-            v = sign * eng.eval(spd.expr, params)
+            v = sign * eng.evaluate(spd.expr, params)
             first = float(movers.state[row, ch])
             if spd.kind is SpeedKind.SEQUENCE:
                 final = first + v * term
