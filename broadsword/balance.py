@@ -55,25 +55,42 @@ def play(job: Job) -> dict:
     while not (world.over or world.complete) and world.frame < FRAME_LIMIT:
         world.step(hold if job.still else pilot(world))
         peak = max(peak, world.enemy_bullets.n)
-    return {"level": job.level, "difficulty": job.difficulty, "seed": job.seed, "still": job.still,
-            "cleared": world.complete, "frames": world.frame, "deaths": world.player.misses,
-            "bombs": world.progress.bombs_used, "peak_bullets": peak, "score": world.score.points}
+    return {
+        "level": job.level,
+        "difficulty": job.difficulty,
+        "seed": job.seed,
+        "still": job.still,
+        "cleared": world.complete,
+        "frames": world.frame,
+        "deaths": world.player.misses,
+        "bombs": world.progress.bombs_used,
+        "peak_bullets": peak,
+        "score": world.score.points,
+    }
 
 
 def summarise(runs: list[dict]) -> list[dict]:
     """One row per (stage, difficulty): clears, mean deaths and bombs, peak bullets, length."""
     rows = []
-    keys = sorted({(r["level"], r["difficulty"]) for r in runs if not r["still"]},
-                  key=lambda k: (k[0], list(Difficulty).index(Difficulty(k[1]))))
+    keys = sorted(
+        {(r["level"], r["difficulty"]) for r in runs if not r["still"]},
+        key=lambda k: (k[0], list(Difficulty).index(Difficulty(k[1]))),
+    )
     for level, diff in keys:
         mine = [r for r in runs if r["level"] == level and r["difficulty"] == diff and not r["still"]]
         still = [r for r in runs if r["level"] == level and r["difficulty"] == diff and r["still"]]
         n = len(mine)
-        row = {"stage": level, "difficulty": diff, "seeds": n, "clears": sum(r["cleared"] for r in mine),
-               "deaths": round(sum(r["deaths"] for r in mine) / n, 2), "bombs": round(sum(r["bombs"] for r in mine) / n, 2),
-               "peak_bullets": max(r["peak_bullets"] for r in mine),
-               "length_s": round(sum(r["frames"] for r in mine) / n / 60.0, 1),
-               "cleared_length_s": round(max((r["frames"] for r in mine if r["cleared"]), default=0) / 60.0, 1)}
+        row = {
+            "stage": level,
+            "difficulty": diff,
+            "seeds": n,
+            "clears": sum(r["cleared"] for r in mine),
+            "deaths": round(sum(r["deaths"] for r in mine) / n, 2),
+            "bombs": round(sum(r["bombs"] for r in mine) / n, 2),
+            "peak_bullets": max(r["peak_bullets"] for r in mine),
+            "length_s": round(sum(r["frames"] for r in mine) / n / 60.0, 1),
+            "cleared_length_s": round(max((r["frames"] for r in mine if r["cleared"]), default=0) / 60.0, 1),
+        }
         if still:
             row["still_survives_s"] = round(min(r["frames"] for r in still) / 60.0, 1)
         rows.append(row)
@@ -87,8 +104,10 @@ def table(rows: list[dict]) -> str:
     head += " still survives s |" if still else ""
     lines = [head, "|" + "---|" * (8 + still)]
     for r in rows:
-        line = (f"| {r['stage']} | {r['difficulty']} | {r['clears']}/{r['seeds']} | {r['deaths']} | {r['bombs']} | "
-                f"{r['peak_bullets']:,} | {r['length_s']} | {r['cleared_length_s']} |")
+        line = (
+            f"| {r['stage']} | {r['difficulty']} | {r['clears']}/{r['seeds']} | {r['deaths']} | {r['bombs']} | "
+            f"{r['peak_bullets']:,} | {r['length_s']} | {r['cleared_length_s']} |"
+        )
         if still:
             line += f" {r.get('still_survives_s', '')} |"
         lines.append(line)
@@ -104,8 +123,13 @@ def _bar(done: int, total: int, started: float, out) -> None:
     filled = width * done // max(total, 1)
     elapsed = time.monotonic() - started
     eta = elapsed / done * (total - done) if done else 0.0
-    print(f"{chr(13) if tty else ''}balance [{'#' * filled}{'.' * (width - filled)}] {done}/{total} runs, "
-          f"{elapsed:.0f} s, ETA {eta:.0f} s", end="" if tty else "\n", file=out, flush=True)
+    print(
+        f"{chr(13) if tty else ''}balance [{'#' * filled}{'.' * (width - filled)}] {done}/{total} runs, "
+        f"{elapsed:.0f} s, ETA {eta:.0f} s",
+        end="" if tty else "\n",
+        file=out,
+        flush=True,
+    )
 
 
 def run(jobs: list[Job], workers: int, out=None) -> list[dict]:
@@ -131,8 +155,11 @@ def run(jobs: list[Job], workers: int, out=None) -> list[dict]:
 
 def _parser() -> argparse.ArgumentParser:
     names = [d.value for d in Difficulty]
-    ap = argparse.ArgumentParser(prog="broadsword balance", description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        prog="broadsword balance",
+        description=__doc__.split("\n\n")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     ap.add_argument("--stages", default="", help="comma-separated stage names (default: every shipped stage)")
     ap.add_argument("--difficulties", default=",".join(names), help=f"comma-separated, of {', '.join(names)}")
     ap.add_argument("--seeds", type=int, default=10, help="seeds per stage and difficulty (default 10)")

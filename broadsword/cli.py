@@ -64,37 +64,66 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     ap.add_argument("--level", help="a shipped level's name (see --list-levels) or a path to a level file")
     ap.add_argument("--seed", type=seed, default=0, help="the run's seed, a whole number in [0, 2**63) (default 0)")
     ap.add_argument("--autopilot", action="store_true", help="let the deterministic autopilot play")
-    ap.add_argument("--headless", action="store_true",
-                    help="no window: run FRAMES steps and print a JSON summary as the last line of standard output")
-    ap.add_argument("--frames", type=natural, default=None,
-                    help="--headless: steps to run, >= 0 (default 600, or the recording's)")
+    ap.add_argument(
+        "--headless",
+        action="store_true",
+        help="no window: run FRAMES steps and print a JSON summary as the last line of standard output",
+    )
+    ap.add_argument(
+        "--frames", type=natural, default=None, help="--headless: steps to run, >= 0 (default 600, or the recording's)"
+    )
     ap.add_argument("--record", metavar="FILE", help="save the inputs of the run to FILE (a recording)")
-    ap.add_argument("--replay", metavar="FILE",
-                    help="play a recording's inputs and toggles: on screen (watch it, with pause, F2 step and the "
-                         "overlay), or with --headless check its hashes")
-    ap.add_argument("--list-levels", action="store_true", help="print the shipped stages in play order, one a line (name, then title), and exit")
+    ap.add_argument(
+        "--replay",
+        metavar="FILE",
+        help="play a recording's inputs and toggles: on screen (watch it, with pause, F2 step and the "
+        "overlay), or with --headless check its hashes",
+    )
+    ap.add_argument(
+        "--list-levels",
+        action="store_true",
+        help="print the shipped stages in play order, one a line (name, then title), and exit",
+    )
     ap.add_argument("--mute", action="store_true", help="start with sound off")
-    ap.add_argument("--lab", nargs="?", type=lab_size, const=(100, 2000), metavar="E,B",
-                    help="show the benchmark's reference scene (E >= 1 ships, B >= 0 bullets; default 100,2000) "
-                         "live with the overlay")
-    ap.add_argument("--difficulty", choices=[d.value for d in Difficulty], default=None,
-                    help="easy, normal (default), hard or lunatic: sets the patterns' rank and the stage's values")
-    ap.add_argument("--rotation", choices=("lut", "exact"), default=None,
-                    help="--headless only: pose armatures with this rotation mode instead of the level's scene.rotation")
+    ap.add_argument(
+        "--lab",
+        nargs="?",
+        type=lab_size,
+        const=(100, 2000),
+        metavar="E,B",
+        help="show the benchmark's reference scene (E >= 1 ships, B >= 0 bullets; default 100,2000) "
+        "live with the overlay",
+    )
+    ap.add_argument(
+        "--difficulty",
+        choices=[d.value for d in Difficulty],
+        default=None,
+        help="easy, normal (default), hard or lunatic: sets the patterns' rank and the stage's values",
+    )
+    ap.add_argument(
+        "--rotation",
+        choices=("lut", "exact"),
+        default=None,
+        help="--headless only: pose armatures with this rotation mode instead of the level's scene.rotation",
+    )
 
 
 def _parser() -> argparse.ArgumentParser:
     """The whole command line: ``play`` and one entry per :data:`SUBCOMMANDS` item. The other
     subcommands' own options belong to their modules' parsers (``broadsword NAME --help``)."""
     ap = argparse.ArgumentParser(
-        prog="broadsword", description="Broadsword: a polygon-armature shoot-'em-up and an exact 2D collision toolkit.",
+        prog="broadsword",
+        description="Broadsword: a polygon-armature shoot-'em-up and an exact 2D collision toolkit.",
         epilog="With no command, or options only, the command is 'play': 'broadsword --headless ...' is "
-               "'broadsword play --headless ...'. 'broadsword COMMAND --help' describes each command.")
-    ap.add_argument("--version", action="version", version=f"%(prog)s {__version__}",
-                    help="print the version and exit")
+        "'broadsword play --headless ...'. 'broadsword COMMAND --help' describes each command.",
+    )
+    ap.add_argument("--version", action="version", version=f"%(prog)s {__version__}", help="print the version and exit")
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
-    play = sub.add_parser(PLAY, help="play the game, or run it headless (the default command)",
-                          description="Play the game in a window, or with --headless run it with no window.")
+    play = sub.add_parser(
+        PLAY,
+        help="play the game, or run it headless (the default command)",
+        description="Play the game in a window, or with --headless run it with no window.",
+    )
     _add_play_options(play)
     for name, command in SUBCOMMANDS.items():
         # Listed for --help and usage only: main() hands the arguments to the module's own parser.
@@ -139,8 +168,11 @@ def _run_play(args: argparse.Namespace) -> int:
             return _list_levels()
         replay = load_recording(args.replay) if args.replay else None
         if replay and (args.rotation or args.level or args.difficulty):
-            print("broadsword: --replay plays the recording's own level and settings; "
-                  "drop --level, --rotation and --difficulty", file=sys.stderr)
+            print(
+                "broadsword: --replay plays the recording's own level and settings; "
+                "drop --level, --rotation and --difficulty",
+                file=sys.stderr,
+            )
             return 2
         level = args.level or (replay.level if replay else list_levels()[0])
         seed_ = replay.seed if replay and args.seed == 0 else args.seed
@@ -150,8 +182,16 @@ def _run_play(args: argparse.Namespace) -> int:
             frames = args.frames if args.frames is not None else (replay.frames if replay else 600)
             from .headless import run_headless
 
-            summary, recording = run_headless(level, frames, seed_, args.autopilot, replay, args.replay or "",
-                                              args.rotation, Difficulty(args.difficulty or Difficulty.NORMAL))
+            summary, recording = run_headless(
+                level,
+                frames,
+                seed_,
+                args.autopilot,
+                replay,
+                args.replay or "",
+                args.rotation,
+                Difficulty(args.difficulty or Difficulty.NORMAL),
+            )
             if args.record:
                 save_recording(args.record, recording)
             for warning in summary["warnings"]:
@@ -184,8 +224,14 @@ def _play(level, seed_, args, replay) -> int:
 
     try:
         with filtered_stderr():  # pygame.init() probes for audio; no sound card: 8 ALSA lines
-            app = App(start_level=level, seed=seed_, demo=args.autopilot, audio=True, lab=args.lab,
-                      difficulty=Difficulty(args.difficulty) if args.difficulty else None)
+            app = App(
+                start_level=level,
+                seed=seed_,
+                demo=args.autopilot,
+                audio=True,
+                lab=args.lab,
+                difficulty=Difficulty(args.difficulty) if args.difficulty else None,
+            )
     except NoDisplay as exc:  # no display: say so and point at --headless, never run invisibly
         print(f"broadsword: {exc}", file=sys.stderr)
         return 1

@@ -34,9 +34,16 @@ def _tally(tiers: dict, stats) -> None:
         t["ms"] += s.ms
 
 
-def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, replay: Recording | None = None,
-                 replay_path: str = "", rotation: str | None = None,
-                 difficulty: Difficulty = Difficulty.NORMAL) -> tuple[dict, Recording]:
+def run_headless(
+    level_ref: str,
+    frames: int,
+    seed: int,
+    use_autopilot: bool,
+    replay: Recording | None = None,
+    replay_path: str = "",
+    rotation: str | None = None,
+    difficulty: Difficulty = Difficulty.NORMAL,
+) -> tuple[dict, Recording]:
     """Play at most ``frames`` steps with no window; return the summary (DESIGN.md's JSON)
     and the run's :class:`Recording`.
 
@@ -80,10 +87,19 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
     for t in tiers.values():
         t["ms"] = round(t["ms"], 3)
     summary = world.summary()
-    summary.update({"seed": seed, "level": world.level.name, "tiers": tiers, "peak_bullets": peak,
-                    "collision_median_ms": round(float(np.median(ms)), 4) if ms else 0.0,
-                    "warnings": list(world.warnings), "rotation": world.rotation, "difficulty": world.settings.difficulty.value,
-                    "state_hash": world.state_hash()})
+    summary.update(
+        {
+            "seed": seed,
+            "level": world.level.name,
+            "tiers": tiers,
+            "peak_bullets": peak,
+            "collision_median_ms": round(float(np.median(ms)), 4) if ms else 0.0,
+            "warnings": list(world.warnings),
+            "rotation": world.rotation,
+            "difficulty": world.settings.difficulty.value,
+            "state_hash": world.state_hash(),
+        }
+    )
     if playback is not None:
         final = playback.final_check()
         summary["replay_matches"] = playback.mismatch is None and final is not False
@@ -92,6 +108,5 @@ def run_headless(level_ref: str, frames: int, seed: int, use_autopilot: bool, re
             summary["first_mismatch"] = {"frame": m.frame, "expected": m.expected, "got": m.got}
         elif final is False:
             assert replay is not None  # a playback plays a recording
-            summary["first_mismatch"] = {"frame": world.frame, "expected": replay.state_hash,
-                                         "got": world.state_hash()}
+            summary["first_mismatch"] = {"frame": world.frame, "expected": replay.state_hash, "got": world.state_hash()}
     return summary, recorder.recording()

@@ -40,8 +40,11 @@ def _params(text: str) -> tuple[float, ...]:
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="broadsword pattern", description="Check and view BulletML patterns.",
-                                 epilog="exit status: 0 all good; 1 a file failed to load (each is named); 2 usage")
+    ap = argparse.ArgumentParser(
+        prog="broadsword pattern",
+        description="Check and view BulletML patterns.",
+        epilog="exit status: 0 all good; 1 a file failed to load (each is named); 2 usage",
+    )
     sub = ap.add_subparsers(dest="command", required=True)
     check = sub.add_parser("check", help="validate files and report bullets fired, peak live bullets, duration")
     check.add_argument("files", nargs="+", metavar="FILE")
@@ -75,7 +78,9 @@ def check(files: list[str], frames: int, rank: float, params: tuple[float, ...] 
             bad += 1
             continue
         r = summarize(pattern, frames=frames, rank=rank, params=params)
-        duration = f"{r.duration} frames" if r.duration is not None else f"endless (still firing after {r.frames} frames)"
+        duration = (
+            f"{r.duration} frames" if r.duration is not None else f"endless (still firing after {r.frames} frames)"
+        )
         extra = f", {r.refused} refused past the live-bullet cap" if r.refused else ""
         print(f"{name}: ok: {r.fired} bullets fired, peak {r.peak} live, duration {duration}{extra}", file=out)
     if bad:
@@ -93,5 +98,6 @@ def main(argv: list[str]) -> int:
         return check(args.files, args.frames, args.rank, args.params)
     from .game.patternview import view
 
-    return view(args.file, rank=args.rank, seed=args.seed, params=args.params, frames=args.frames,
-                screenshot=args.screenshot)
+    return view(
+        args.file, rank=args.rank, seed=args.seed, params=args.params, frames=args.frames, screenshot=args.screenshot
+    )

@@ -93,8 +93,16 @@ def _duration(s: float) -> str:
     return f"{s // 3600}h{s // 60 % 60:02d}m{s % 60:02d}s" if s >= 3600 else f"{s // 60}m{s % 60:02d}s"
 
 
-def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None, sample_every: int = 600,
-         progress_every: int = 10_000, log=None) -> dict:
+def soak(
+    level,
+    armatures,
+    frames: int,
+    seed: int = 0,
+    warmup: int | None = None,
+    sample_every: int = 600,
+    progress_every: int = 10_000,
+    log=None,
+) -> dict:
     """Play ``frames`` steps of ``level`` with the autopilot, restarting after each game.
 
     Parameters
@@ -197,9 +205,13 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
                 rss = samples[-1][1] if samples else None
                 peak = max((r for _, r in samples), default=None)
                 eta = (frames - f) / fps if fps > 0 else 0.0
-                print(f"soak: {f:,}/{frames:,} frames ({100 * f / max(frames, 1):.0f}%), {fps:,.0f} fps, "
-                      f"RSS {_mib(rss)} (peak {_mib(peak)}), restarts {games - 1}, "
-                      f"elapsed {_duration(elapsed)}, ETA {_duration(eta)}", file=log, flush=True)
+                print(
+                    f"soak: {f:,}/{frames:,} frames ({100 * f / max(frames, 1):.0f}%), {fps:,.0f} fps, "
+                    f"RSS {_mib(rss)} (peak {_mib(peak)}), restarts {games - 1}, "
+                    f"elapsed {_duration(elapsed)}, ETA {_duration(eta)}",
+                    file=log,
+                    flush=True,
+                )
     except Exception:  # noqa: BLE001 -- the soak's job is to report any exception, with its traceback
         error = traceback.format_exc()
     wall = clock() - t_start
@@ -217,16 +229,36 @@ def soak(level, armatures, frames: int, seed: int = 0, warmup: int | None = None
         growth = round(100.0 * (max(after) - warm_rss) / warm_rss, 3)
     final_growth = round(100.0 * (final_rss - warm_rss) / warm_rss, 3) if warm_rss and final_rss else None
     return {
-        "level": level.name, "seed": seed, "frames": f, "frames_requested": frames, "warmup": warmup,
-        "games": games, "restarts": games - 1, "games_over": over, "levels_complete": complete,
-        "score": score, "hits": hits, "max_enemy_bullets": max_bullets, "longest_game_frames": longest,
-        "games_with_boss": boss_games, "run_hash": run_hash.hexdigest(),
-        "rss_source": source, "rss_start_bytes": rss0, "rss_warmup_bytes": warm_rss,
+        "level": level.name,
+        "seed": seed,
+        "frames": f,
+        "frames_requested": frames,
+        "warmup": warmup,
+        "games": games,
+        "restarts": games - 1,
+        "games_over": over,
+        "levels_complete": complete,
+        "score": score,
+        "hits": hits,
+        "max_enemy_bullets": max_bullets,
+        "longest_game_frames": longest,
+        "games_with_boss": boss_games,
+        "run_hash": run_hash.hexdigest(),
+        "rss_source": source,
+        "rss_start_bytes": rss0,
+        "rss_warmup_bytes": warm_rss,
         "rss_peak_bytes": max([r for _, r in samples] + ([final_rss] if final_rss else []), default=None),
-        "rss_final_bytes": final_rss, "growth_after_warmup_pct": growth, "final_growth_pct": final_growth,
-        "samples": len(samples), "gc_objects_warmup": gc_warm, "gc_objects_final": live_objects(),
-        "wall_s": round(wall, 2), "fps": round(f / wall, 1) if wall > 0 else None,
-        "step_ms_max": round(step_max * 1e3, 2), "steps_over_a_frame": slow_steps, "error": error,
+        "rss_final_bytes": final_rss,
+        "growth_after_warmup_pct": growth,
+        "final_growth_pct": final_growth,
+        "samples": len(samples),
+        "gc_objects_warmup": gc_warm,
+        "gc_objects_final": live_objects(),
+        "wall_s": round(wall, 2),
+        "fps": round(f / wall, 1) if wall > 0 else None,
+        "step_ms_max": round(step_max * 1e3, 2),
+        "steps_over_a_frame": slow_steps,
+        "error": error,
     }
 
 
@@ -240,14 +272,25 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
         prog="broadsword soak",
         description="Long headless play with the autopilot, restarting after every game; "
-                    "reports peak and final memory and fails on an exception or on memory growth after warm-up.")
-    ap.add_argument("--level", default="3-broadsword", help="a shipped level's name or a level file (default 3-broadsword)")
-    ap.add_argument("--frames", type=natural, default=HOUR_FRAMES, help="steps in all (default 216000: one hour at 60 Hz)")
+        "reports peak and final memory and fails on an exception or on memory growth after warm-up.",
+    )
+    ap.add_argument(
+        "--level", default="3-broadsword", help="a shipped level's name or a level file (default 3-broadsword)"
+    )
+    ap.add_argument(
+        "--frames", type=natural, default=HOUR_FRAMES, help="steps in all (default 216000: one hour at 60 Hz)"
+    )
     ap.add_argument("--seed", type=natural, default=0, help="seed of the first game; later games derive theirs from it")
-    ap.add_argument("--warmup", type=natural, default=None, help="frames before the memory baseline (default: a tenth of --frames)")
+    ap.add_argument(
+        "--warmup", type=natural, default=None, help="frames before the memory baseline (default: a tenth of --frames)"
+    )
     ap.add_argument("--sample-every", type=natural, default=600, help="frames between memory samples (default 600)")
-    ap.add_argument("--progress-every", type=natural, default=10_000, help="frames between progress lines on stderr (0: none)")
-    ap.add_argument("--max-growth", type=float, default=MAX_GROWTH_PCT, help="allowed RSS growth after warm-up, percent (default 5)")
+    ap.add_argument(
+        "--progress-every", type=natural, default=10_000, help="frames between progress lines on stderr (0: none)"
+    )
+    ap.add_argument(
+        "--max-growth", type=float, default=MAX_GROWTH_PCT, help="allowed RSS growth after warm-up, percent (default 5)"
+    )
     ap.add_argument("--json", metavar="FILE", help="also write the summary to FILE")
     return ap
 
@@ -270,28 +313,37 @@ def main(argv: list[str] | None = None) -> int:
     except DataError as exc:
         print(f"broadsword soak: {exc}", file=sys.stderr)
         return 2
-    summary = soak(level, armatures, args.frames, args.seed, args.warmup, args.sample_every, args.progress_every,
-                   log=sys.stderr)
+    summary = soak(
+        level, armatures, args.frames, args.seed, args.warmup, args.sample_every, args.progress_every, log=sys.stderr
+    )
     growth = summary["growth_after_warmup_pct"]
     failures = []
     if summary["error"] is not None:
         print(f"broadsword soak: exception at frame {summary['frames']}:\n{summary['error']}", file=sys.stderr)
         failures.append("exception")
     if growth is not None and growth > args.max_growth:
-        print(f"broadsword soak: memory grew {growth:.2f}% after warm-up "
-              f"({_mib(summary['rss_warmup_bytes'])} -> peak {_mib(summary['rss_peak_bytes'])}); "
-              f"the limit is {args.max_growth:g}%", file=sys.stderr)
+        print(
+            f"broadsword soak: memory grew {growth:.2f}% after warm-up "
+            f"({_mib(summary['rss_warmup_bytes'])} -> peak {_mib(summary['rss_peak_bytes'])}); "
+            f"the limit is {args.max_growth:g}%",
+            file=sys.stderr,
+        )
         failures.append("memory growth")
     if growth is None:
-        why = "no RSS source on this system" if summary["rss_source"] == "unavailable" else "no sample after the warm-up"
+        why = (
+            "no RSS source on this system" if summary["rss_source"] == "unavailable" else "no sample after the warm-up"
+        )
         print(f"broadsword soak: memory growth not checked ({why})", file=sys.stderr)
     summary["max_growth_pct"] = args.max_growth
     summary["ok"] = not failures
-    print(f"broadsword soak: {'PASS' if summary['ok'] else 'FAIL (' + ', '.join(failures) + ')'}: "
-          f"{summary['frames']:,} frames, {summary['games']} games ({summary['games_over']} over, "
-          f"{summary['levels_complete']} complete), RSS warm-up {_mib(summary['rss_warmup_bytes'])}, "
-          f"peak {_mib(summary['rss_peak_bytes'])}, final {_mib(summary['rss_final_bytes'])}, "
-          f"growth after warm-up {'n/a' if growth is None else f'{growth:.2f}%'}", file=sys.stderr)
+    print(
+        f"broadsword soak: {'PASS' if summary['ok'] else 'FAIL (' + ', '.join(failures) + ')'}: "
+        f"{summary['frames']:,} frames, {summary['games']} games ({summary['games_over']} over, "
+        f"{summary['levels_complete']} complete), RSS warm-up {_mib(summary['rss_warmup_bytes'])}, "
+        f"peak {_mib(summary['rss_peak_bytes'])}, final {_mib(summary['rss_final_bytes'])}, "
+        f"growth after warm-up {'n/a' if growth is None else f'{growth:.2f}%'}",
+        file=sys.stderr,
+    )
     text = json.dumps(summary)
     if args.json:
         write_atomic(args.json, (text + "\n").encode())

@@ -21,13 +21,13 @@ os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
 os.environ.setdefault("BROADSWORD_CACHE_DIR", tempfile.mkdtemp(prefix="broadsword-test-cache-"))
 
 import pytest  # noqa: E402  (the drivers must be set first)
+import shipped  # noqa: E402
 from hypothesis import HealthCheck, settings  # noqa: E402
 
-import shipped  # noqa: E402
-
 settings.register_profile("dev", deadline=None)
-settings.register_profile("ci", deadline=None, derandomize=True, database=None, print_blob=True,
-                          suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile(
+    "ci", deadline=None, derandomize=True, database=None, print_blob=True, suppress_health_check=[HealthCheck.too_slow]
+)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "dev"))
 
 #: Test modules (paths under tests/) marked ``quick``: fast and covering each layer.

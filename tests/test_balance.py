@@ -7,8 +7,21 @@ from broadsword import balance
 
 def test_balance__one_seed_here_writes_the_table_and_json(tmp_path, capsys):
     out = tmp_path / "b.json"
-    code = balance.main(["--stages", "1-picket", "--difficulties", "easy", "--seeds", "1", "--workers", "1",
-                         "--still", "--json", str(out)])
+    code = balance.main(
+        [
+            "--stages",
+            "1-picket",
+            "--difficulties",
+            "easy",
+            "--seeds",
+            "1",
+            "--workers",
+            "1",
+            "--still",
+            "--json",
+            str(out),
+        ]
+    )
     printed, err = capsys.readouterr()
     assert code == 0 and "| 1-picket | easy | " in printed and "2/2 runs" in err  # the autopilot and the still run
     doc = json.loads(out.read_text())
@@ -19,8 +32,21 @@ def test_balance__one_seed_here_writes_the_table_and_json(tmp_path, capsys):
 
 
 def test_summarise__counts_and_means():
-    runs = [{"level": "a", "difficulty": "normal", "seed": s, "still": False, "cleared": s < 3, "frames": 600 * (s + 1),
-             "deaths": s, "bombs": 1, "peak_bullets": 10 * s, "score": 0} for s in range(4)]
+    runs = [
+        {
+            "level": "a",
+            "difficulty": "normal",
+            "seed": s,
+            "still": False,
+            "cleared": s < 3,
+            "frames": 600 * (s + 1),
+            "deaths": s,
+            "bombs": 1,
+            "peak_bullets": 10 * s,
+            "score": 0,
+        }
+        for s in range(4)
+    ]
     (row,) = balance.summarise(runs)
     assert row["clears"] == 3 and row["deaths"] == 1.5 and row["bombs"] == 1.0 and row["peak_bullets"] == 30
     assert row["length_s"] == 25.0 and row["cleared_length_s"] == 30.0

@@ -24,12 +24,16 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
                 # ... and the truth is exact geometry at the true angles: every lut row counts the same misses
                 if m["rotation"] == "lut":
                     assert (m["false_positives"], m["false_negatives"]) == (
-                        default["false_positives"], default["false_negatives"]), name
+                        default["false_positives"],
+                        default["false_negatives"],
+                    ), name
             if m["tiers"][-1] in ("aabb", "circle", "obb", "kdop"):  # bounds alone never miss at their poses
                 assert m["pose_false_negatives"] == 0, name
     big = doc["scales"][-1]["methods"]["default (bins+aabb+armature, lut)"]
     assert big["false_positives"] + big["false_negatives"] > 0  # rounding to the degree flips some pairs
-    assert {"bins+kdop+armature, lut", "8-DOP only (bins+kdop)", "OBB only (bins+obb)"} <= set(doc["scales"][0]["methods"])
+    assert {"bins+kdop+armature, lut", "8-DOP only (bins+kdop)", "OBB only (bins+obb)"} <= set(
+        doc["scales"][0]["methods"]
+    )
     frames = doc["game_frame"]  # DESIGN.md's contract: one entry per scene measured
     assert [e["level"] for e in frames] == ["3-broadsword", "stress-5000"]
     for e in frames:
@@ -47,5 +51,11 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity"):
         assert key in doc, key
     text = capsys.readouterr().out
-    assert "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
-    assert "Drawing 2,000 bullets" in text and "with the game's sweeps" in text and "--quick: early in the level, NOT its bullet-hell peak" in text
+    assert (
+        "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
+    )
+    assert (
+        "Drawing 2,000 bullets" in text
+        and "with the game's sweeps" in text
+        and "--quick: early in the level, NOT its bullet-hell peak" in text
+    )

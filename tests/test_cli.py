@@ -51,7 +51,18 @@ def test_headless__same_hash_in_a_fresh_process(capsys):
 
 def test_record_and_replay__same_hash(tmp_path, capsys):
     rec = tmp_path / "run.json"
-    args = ["--headless", "--level", "3-broadsword", "--frames", "400", "--seed", "4", "--autopilot", "--record", str(rec)]
+    args = [
+        "--headless",
+        "--level",
+        "3-broadsword",
+        "--frames",
+        "400",
+        "--seed",
+        "4",
+        "--autopilot",
+        "--record",
+        str(rec),
+    ]
     recorded = summary(run(args, capsys)[1])
     doc = json.loads(rec.read_text())
     assert doc["frames"] == recorded["frames"] and doc["state_hash"] == recorded["state_hash"]
@@ -65,7 +76,7 @@ def test_list_levels(capsys):
     lines = out.splitlines()
     assert code == 0 and [line.split()[0] for line in lines] == list_levels()  # play order, the name first
     for line, name in zip(lines, list_levels()):  # then the title, as the level file gives it
-        assert line[len(name):].strip() == load_level(resolve_level(name)).title
+        assert line[len(name) :].strip() == load_level(resolve_level(name)).title
 
 
 def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
@@ -78,8 +89,13 @@ def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "text, field",
-    [("not json", "bad JSON"), ('{"version": 9}', "version"), ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "zz"}', "inputs"),
-     ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "ff"}', "inputs"), ('{"version": 1}', "older Broadsword")],
+    [
+        ("not json", "bad JSON"),
+        ('{"version": 9}', "version"),
+        ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "zz"}', "inputs"),
+        ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "ff"}', "inputs"),
+        ('{"version": 1}', "older Broadsword"),
+    ],
 )
 def test_broken_recording__exit_2(tmp_path, capsys, text, field):
     bad = tmp_path / "rec.json"
@@ -113,15 +129,23 @@ def test_version__one_source(capsys):
     assert pyproject["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "broadsword.__version__"}
 
 
-@pytest.mark.parametrize("args, says", [
-    (["--headless", "--frames", "-1"], "--frames: must be >= 0"),
-    (["--lab", "3"], "--lab: wants E,B"), (["--lab", "0,5"], "--lab: wants E,B"), (["--lab", "2,x"], "--lab: wants E,B"),
-    (["--seed", "-1"], "--seed: must be a whole number in [0, 2**63)"), (["--seed", str(2**63)], "--seed"),
-    (["--frames", "ten"], "not a whole number"), (["--no-such-option"], "unrecognized arguments"),
-    (["bogus"], "invalid choice: 'bogus'"), (["--difficulty", "brutal"], "invalid choice"),
-    (["armature", "generate", "x.png", "--max-vertices", "2"], "--max-vertices must be at least 3"),
-    (["soak", "--frames", "-5"], "--frames: must be >= 0"),
-])
+@pytest.mark.parametrize(
+    "args, says",
+    [
+        (["--headless", "--frames", "-1"], "--frames: must be >= 0"),
+        (["--lab", "3"], "--lab: wants E,B"),
+        (["--lab", "0,5"], "--lab: wants E,B"),
+        (["--lab", "2,x"], "--lab: wants E,B"),
+        (["--seed", "-1"], "--seed: must be a whole number in [0, 2**63)"),
+        (["--seed", str(2**63)], "--seed"),
+        (["--frames", "ten"], "not a whole number"),
+        (["--no-such-option"], "unrecognized arguments"),
+        (["bogus"], "invalid choice: 'bogus'"),
+        (["--difficulty", "brutal"], "invalid choice"),
+        (["armature", "generate", "x.png", "--max-vertices", "2"], "--max-vertices must be at least 3"),
+        (["soak", "--frames", "-5"], "--frames: must be >= 0"),
+    ],
+)
 def test_usage_errors__exit_2_with_the_reason(args, says, capsys):
     code, out, err = run(args, capsys)
     assert code == 2 and out == "" and says in err and "Traceback" not in err
@@ -143,7 +167,11 @@ def test_help__every_command_and_every_option_described(capsys):
 def test_play_is_the_default_command(capsys):
     args = ["--headless", "--level", "1-picket", "--frames", "30", "--seed", "5", "--autopilot"]
     default, play = summary(run(args, capsys)[1]), summary(run(["play", *args], capsys)[1])
-    assert (default["state_hash"], default["frames"], default["score"]) == (play["state_hash"], play["frames"], play["score"])
+    assert (default["state_hash"], default["frames"], default["score"]) == (
+        play["state_hash"],
+        play["frames"],
+        play["score"],
+    )
 
 
 def test_subcommands_are_importable_with_a_main():

@@ -15,9 +15,9 @@ from pathlib import Path
 import pytest
 
 from broadsword.cli import main
-from broadsword.data.recordings import load_recording
 from broadsword.collision import ROTATION_MODES
-from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
+from broadsword.data import list_levels, load_level, resolve_level
+from broadsword.data.recordings import load_recording
 from broadsword.sim import Input, Pilot, World
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -55,8 +55,14 @@ def cli_subprocess(*args: str):
     """``python -m broadsword ARGS`` in a fresh interpreter, started at once so it runs while
     the test works; :func:`finish` collects its JSON summary. Killed if the test fails first."""
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))}
-    proc = subprocess.Popen([sys.executable, "-m", "broadsword", *args], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "broadsword", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=ROOT,
+        env=env,
+    )
     try:
         yield proc
     finally:
@@ -81,8 +87,9 @@ def run_cli_here(args, capsys) -> dict:
 def test_same_states_twice_in_this_process_and_in_another(name, rotation, armatures):
     """Two runs here (World and autopilot directly) agree at every checkpoint; the command
     line in a fresh interpreter ends on the same hash."""
-    with cli_subprocess("--headless", "--level", name, "--frames", str(FRAMES), "--seed", "11", "--autopilot",
-                        "--rotation", rotation) as other:
+    with cli_subprocess(
+        "--headless", "--level", name, "--frames", str(FRAMES), "--seed", "11", "--autopilot", "--rotation", rotation
+    ) as other:
         level = level_with(name, rotation)
         first = trajectory(level, armatures, seed=11)
         assert len(first) >= 2
@@ -110,8 +117,23 @@ def test_a_recorded_replay_reproduces_its_hash(rotation, tmp_path, armatures, ca
     """Record here, replay in another process and here (through World directly): the same
     hash; a replay whose inputs were changed does not match."""
     rec = tmp_path / "run.json"
-    recorded = run_cli_here(["--headless", "--level", "3-broadsword", "--frames", str(FRAMES), "--seed", "5",
-                             "--autopilot", "--rotation", rotation, "--record", str(rec)], capsys)
+    recorded = run_cli_here(
+        [
+            "--headless",
+            "--level",
+            "3-broadsword",
+            "--frames",
+            str(FRAMES),
+            "--seed",
+            "5",
+            "--autopilot",
+            "--rotation",
+            rotation,
+            "--record",
+            str(rec),
+        ],
+        capsys,
+    )
     with cli_subprocess("--headless", "--replay", str(rec)) as other:
         doc = load_recording(rec)
         assert doc.state_hash == recorded["state_hash"] and doc.frames == recorded["frames"]

@@ -25,11 +25,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from support.gamerun import autopilot_digests, scenarios
+from support.perturb import MATH_TRANSCENDENTALS, NUMPY_TRANSCENDENTALS, perturbed_transcendentals
 
 from broadsword.collision import ROTATION_MODES
 from broadsword.data import list_levels, load_level, resolve_level
-from support.gamerun import autopilot_digests, scenarios
-from support.perturb import MATH_TRANSCENDENTALS, NUMPY_TRANSCENDENTALS, perturbed_transcendentals
 
 #: Frames per scenario: the busiest wave arrives at frame 180 and the bullet count passes
 #: 2,000 by frame 600 in the densest stages; the boss arrives at frame 60 and fires from ~300.
@@ -40,9 +40,13 @@ PACKAGE = Path(__file__).resolve().parents[1] / "broadsword"
 
 
 def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off():
-    jobs = [(name, scenario, rotation, d) for name in reversed(list_levels())  # the denser later ones first
-            for scenario in scenarios(load_level(resolve_level(name)))
-            for rotation in ROTATION_MODES for d in DIRECTIONS]
+    jobs = [
+        (name, scenario, rotation, d)
+        for name in reversed(list_levels())  # the denser later ones first
+        for scenario in scenarios(load_level(resolve_level(name)))
+        for rotation in ROTATION_MODES
+        for d in DIRECTIONS
+    ]
     # Spawned workers: nothing of this process (pytest, pygame) is shared; the perturbation
     # covers each run from loading the level on. Imports happen once per worker, which is
     # safe because nothing on the path to state calls a transcendental at all (test below).
@@ -56,8 +60,10 @@ def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off():
         if d and other != base:
             bits = next((a[0] for a, b in zip(base, other) if a[2] != b[2]), None)
             hashes = next((a[0] for a, b in zip(base, other) if a[1] != b[1]), None)
-            differ.append(f"{name} {scenario} {rotation} direction {d:+d}: bits differ from frame {bits}, "
-                          f"state_hash from frame {hashes} ({len(base)} vs {len(other)} checkpoints)")
+            differ.append(
+                f"{name} {scenario} {rotation} direction {d:+d}: bits differ from frame {bits}, "
+                f"state_hash from frame {hashes} ({len(base)} vs {len(other)} checkpoints)"
+            )
     assert not differ, "\n".join(differ)
 
 
@@ -82,13 +88,17 @@ def test_nothing_on_the_path_to_state_calls_a_transcendental_function():
                 if node.attr in banned.get(node.value.id, ()):
                     found.append(f"{rel}:{node.lineno} {node.value.id}.{node.attr}")
             if isinstance(node, ast.ImportFrom) and node.module in ("math", "numpy"):
-                found += [f"{rel}:{node.lineno} from {node.module} import {a.name}" for a in node.names
-                          if a.name in banned[node.module] or a.name == "*"]
+                found += [
+                    f"{rel}:{node.lineno} from {node.module} import {a.name}"
+                    for a in node.names
+                    if a.name in banned[node.module] or a.name == "*"
+                ]
     assert checked > 40  # it really walked the package
     assert not found, "\n".join(found)
 
 
 # --- the perturbation itself -------------------------------------------------------------
+
 
 def test_the_perturbation_moves_every_listed_function_one_ulp_and_restores_them():
     x = np.array([0.3, 0.7, 0.45])
@@ -110,10 +120,12 @@ def test_the_perturbation_moves_every_listed_function_one_ulp_and_restores_them(
             assert isinstance(scalar, np.float64) and scalar == np.nextafter(originals["sin"](0.5), direction * np.inf)
             single = np.cos(np.float32([0.25, 1.5]))
             assert single.dtype == np.float32
-            assert np.array_equal(single, np.nextafter(originals["cos"](np.float32([0.25, 1.5])), np.float32(direction * np.inf)))
+            assert np.array_equal(
+                single, np.nextafter(originals["cos"](np.float32([0.25, 1.5])), np.float32(direction * np.inf))
+            )
             out = np.empty(3)
             assert np.sin(x, out=out) is out and np.array_equal(out, np.nextafter(plain["sin"], direction * np.inf))
-            assert np.sqrt(2.0) == math.sqrt(2.0) == 2.0 ** 0.5  # correctly rounded: left alone
+            assert np.sqrt(2.0) == math.sqrt(2.0) == 2.0**0.5  # correctly rounded: left alone
     assert all(getattr(np, n) is f for n, f in originals.items())
     assert all(getattr(math, n) is f for n, f in m_originals.items())
     with pytest.raises(RuntimeError):
@@ -139,10 +151,42 @@ def _math_args(name: str) -> tuple:
 
 #: numpy ufuncs on float64 whose results IEEE 754 defines exactly (correctly rounded or exact).
 EXACT_UFUNCS = {
-    "absolute", "add", "ceil", "conjugate", "copysign", "deg2rad", "degrees", "divide", "divmod", "fabs", "floor",
-    "floor_divide", "fmax", "fmin", "fmod", "frexp", "heaviside", "ldexp", "maximum", "minimum", "modf", "multiply",
-    "negative", "nextafter", "positive", "rad2deg", "radians", "reciprocal", "remainder", "rint", "sign", "spacing", "sqrt",
-    "square", "subtract", "trunc",
+    "absolute",
+    "add",
+    "ceil",
+    "conjugate",
+    "copysign",
+    "deg2rad",
+    "degrees",
+    "divide",
+    "divmod",
+    "fabs",
+    "floor",
+    "floor_divide",
+    "fmax",
+    "fmin",
+    "fmod",
+    "frexp",
+    "heaviside",
+    "ldexp",
+    "maximum",
+    "minimum",
+    "modf",
+    "multiply",
+    "negative",
+    "nextafter",
+    "positive",
+    "rad2deg",
+    "radians",
+    "reciprocal",
+    "remainder",
+    "rint",
+    "sign",
+    "spacing",
+    "sqrt",
+    "square",
+    "subtract",
+    "trunc",
 }
 #: Sums of products (their order and fused multiply-adds are up to the BLAS): not
 #: transcendental, not perturbed, and kept off the path to game state.
@@ -156,8 +200,9 @@ def test_the_perturbation_covers_every_inexact_numpy_ufunc():
     inexact = set()
     for name in dir(np):
         fn = getattr(np, name)
-        if isinstance(fn, np.ufunc) and any(t.split("->")[1].startswith("d") and t.split("->")[0] in ("d", "dd")
-                                            for t in fn.types):
+        if isinstance(fn, np.ufunc) and any(
+            t.split("->")[1].startswith("d") and t.split("->")[0] in ("d", "dd") for t in fn.types
+        ):
             if fn.__name__ not in EXACT_UFUNCS | PRODUCT_SUMS:
                 inexact.add(name)
     assert inexact == set(NUMPY_TRANSCENDENTALS)

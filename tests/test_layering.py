@@ -84,9 +84,13 @@ def test_layering__every_package_imports_only_layers_below():
 
 
 def test_layering__nothing_imports_bench():
-    bad = [f"{path.relative_to(ROOT.parent)}:{line}"
-           for path in ROOT.rglob("*.py") if "bench" not in path.relative_to(ROOT).parts
-           for layer, line in _imported_layers(path) if layer == "bench"]
+    bad = [
+        f"{path.relative_to(ROOT.parent)}:{line}"
+        for path in ROOT.rglob("*.py")
+        if "bench" not in path.relative_to(ROOT).parts
+        for layer, line in _imported_layers(path)
+        if layer == "bench"
+    ]
     assert not bad, "bench is imported by: " + ", ".join(bad)
 
 

@@ -21,7 +21,9 @@ SETUPTOOLS = PYPROJECT["tool"]["setuptools"]
 def test_every_package_folder_is_listed():
     found = {".".join(p.parent.relative_to(ROOT).parts) for p in (ROOT / "broadsword").rglob("__init__.py")}
     missing = found - set(SETUPTOOLS["packages"])
-    assert not missing, f"add {sorted(missing)} to [tool.setuptools] packages in pyproject.toml, or the wheel lacks them"
+    assert not missing, (
+        f"add {sorted(missing)} to [tool.setuptools] packages in pyproject.toml, or the wheel lacks them"
+    )
 
 
 def test_shipped_data_folders_are_packages_of_the_wheel():

@@ -18,8 +18,22 @@ def run(args, capsys):
 
 def record(tmp_path, capsys, level="3-broadsword", frames=CHECKPOINT_EVERY * 2 + 10, *extra):
     rec = tmp_path / "run.json"
-    code, summary, _ = run(["--headless", "--level", str(level), "--frames", str(frames), "--seed", "3",
-                            "--autopilot", "--record", str(rec), *extra], capsys)
+    code, summary, _ = run(
+        [
+            "--headless",
+            "--level",
+            str(level),
+            "--frames",
+            str(frames),
+            "--seed",
+            "3",
+            "--autopilot",
+            "--record",
+            str(rec),
+            *extra,
+        ],
+        capsys,
+    )
     assert code == 0
     return rec, summary
 
@@ -28,11 +42,16 @@ def test_a_recording_carries_everything(tmp_path, capsys):
     rec, summary = record(tmp_path, capsys, "3-broadsword", CHECKPOINT_EVERY * 2 + 10, "--rotation", "exact")
     doc = json.loads(rec.read_text())
     assert doc["version"] == FORMAT_VERSION and doc["game_version"] == __version__
-    assert doc["level"] == "3-broadsword" and doc["seed"] == 3 and doc["settings"] == {"rotation": "exact", "difficulty": "normal"}
+    assert (
+        doc["level"] == "3-broadsword"
+        and doc["seed"] == 3
+        and doc["settings"] == {"rotation": "exact", "difficulty": "normal"}
+    )
     assert len(doc["level_sha256"]) == 64 and doc["carry"] == {"score": 0, "lives": None, "continues": 0}
     frames = summary["frames"]
     assert doc["frames"] == frames and [c[0] for c in doc["checkpoints"]] == list(
-        range(CHECKPOINT_EVERY, frames + 1, CHECKPOINT_EVERY))
+        range(CHECKPOINT_EVERY, frames + 1, CHECKPOINT_EVERY)
+    )
     assert doc["state_hash"] == summary["state_hash"]
     code, replayed, _ = run(["--headless", "--replay", str(rec)], capsys)
     assert code == 0 and replayed["replay_matches"] is True and "first_mismatch" not in replayed

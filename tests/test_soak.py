@@ -24,16 +24,45 @@ from pathlib import Path
 import pytest
 
 from broadsword import soak as soak_mod
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import Pilot, World
 
 ROOT = Path(__file__).resolve().parents[1]
-FIELDS = {"level", "seed", "frames", "frames_requested", "warmup", "games", "restarts", "games_over",
-          "levels_complete", "score", "hits", "max_enemy_bullets", "longest_game_frames", "games_with_boss", "run_hash", "rss_source", "rss_start_bytes",
-          "rss_warmup_bytes", "rss_peak_bytes", "rss_final_bytes", "growth_after_warmup_pct", "final_growth_pct",
-          "samples", "gc_objects_warmup", "gc_objects_final", "wall_s", "fps", "step_ms_max", "steps_over_a_frame",
-          "error", "max_growth_pct", "ok"}
+FIELDS = {
+    "level",
+    "seed",
+    "frames",
+    "frames_requested",
+    "warmup",
+    "games",
+    "restarts",
+    "games_over",
+    "levels_complete",
+    "score",
+    "hits",
+    "max_enemy_bullets",
+    "longest_game_frames",
+    "games_with_boss",
+    "run_hash",
+    "rss_source",
+    "rss_start_bytes",
+    "rss_warmup_bytes",
+    "rss_peak_bytes",
+    "rss_final_bytes",
+    "growth_after_warmup_pct",
+    "final_growth_pct",
+    "samples",
+    "gc_objects_warmup",
+    "gc_objects_final",
+    "wall_s",
+    "fps",
+    "step_ms_max",
+    "steps_over_a_frame",
+    "error",
+    "max_growth_pct",
+    "ok",
+}
 
 
 @pytest.fixture(scope="module")
@@ -44,9 +73,30 @@ def broadsword_level():
 def test_short_soak_in_a_fresh_process(tmp_path):
     out_json = tmp_path / "soak.json"
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))}
-    run = subprocess.run([sys.executable, "-m", "broadsword", "soak", "--frames", "5400", "--warmup", "3600",
-                          "--sample-every", "300", "--progress-every", "1800", "--json", str(out_json)],
-                         check=False, capture_output=True, text=True, cwd=ROOT, env=env, timeout=600)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "broadsword",
+            "soak",
+            "--frames",
+            "5400",
+            "--warmup",
+            "3600",
+            "--sample-every",
+            "300",
+            "--progress-every",
+            "1800",
+            "--json",
+            str(out_json),
+        ],
+        check=False,
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=600,
+    )
     s = json.loads(run.stdout.strip().splitlines()[-1])
     assert run.returncode == 0, run.stderr
     assert s == json.loads(out_json.read_text())
@@ -60,7 +110,9 @@ def test_short_soak_in_a_fresh_process(tmp_path):
         assert s["rss_source"] == "statm"
     assert 0 < s["rss_start_bytes"] and 0 < s["rss_warmup_bytes"] <= s["rss_peak_bytes"]
     assert s["rss_final_bytes"] <= s["rss_peak_bytes"]
-    assert s["samples"] == 5400 // 300  # every 300 frames; the warm-up's (3600, past the level's densest part) and the last fall on those
+    assert (
+        s["samples"] == 5400 // 300
+    )  # every 300 frames; the warm-up's (3600, past the level's densest part) and the last fall on those
     assert s["growth_after_warmup_pct"] is not None and s["growth_after_warmup_pct"] <= s["max_growth_pct"] == 5.0
     assert s["final_growth_pct"] <= s["growth_after_warmup_pct"]
     assert re.fullmatch(r"[0-9a-f]{64}", s["run_hash"])
@@ -74,9 +126,23 @@ def test_soak_restarts_after_game_over_with_derived_seeds(armatures, broadsword_
     plays on through every game over, each game with the next seed of the sequence."""
     ring = FireSpec(pattern="ring", bullet="pellet", speed=300.0, every=0.05, shots=72, delay=0.0)
     deadly = dataclasses.replace(
-        broadsword_level, player=dataclasses.replace(broadsword_level.player, lives=1, bombs=0), boss=None,
-        waves=(WaveSpec(at=0.0, enemy="gunship", count=3, every=0.0, hp=10**6, score=0, mirror=True, fire=ring,
-                        path=PathSpec(kind="hold", x=100.0, speed=300.0, hold_y=200.0, hold_for=600.0)),))
+        broadsword_level,
+        player=dataclasses.replace(broadsword_level.player, lives=1, bombs=0),
+        boss=None,
+        waves=(
+            WaveSpec(
+                at=0.0,
+                enemy="gunship",
+                count=3,
+                every=0.0,
+                hp=10**6,
+                score=0,
+                mirror=True,
+                fire=ring,
+                path=PathSpec(kind="hold", x=100.0, speed=300.0, hold_y=200.0, hold_for=600.0),
+            ),
+        ),
+    )
     s = soak_mod.soak(deadly, armatures, frames=400, seed=3, warmup=100, sample_every=50)
     assert s["error"] is None and s["frames"] == 400
     assert s["games_over"] >= 2 and s["levels_complete"] == 0 and s["restarts"] == s["games"] - 1 >= 2
@@ -143,8 +209,9 @@ def test_an_exception_fails_the_soak_with_its_traceback(monkeypatch, capsys):
 
 
 def test_memory_growth_over_the_limit_fails(capsys):
-    code = soak_mod.main(["--frames", "120", "--warmup", "20", "--sample-every", "20", "--progress-every", "0",
-                          "--max-growth", "-100"])
+    code = soak_mod.main(
+        ["--frames", "120", "--warmup", "20", "--sample-every", "20", "--progress-every", "0", "--max-growth", "-100"]
+    )
     out, err = capsys.readouterr()
     s = json.loads(out.strip().splitlines()[-1])
     assert code == 1 and s["ok"] is False and "memory grew" in err and "FAIL (memory growth)" in err

@@ -30,8 +30,12 @@ FRAMES = 180
 SNAPSHOTS = (60, 120, 180)
 ORIGIN, TARGET = (240.0, 160.0), (240.0, 560.0)
 #: The game's kinds need parameters: speed px/frame, shots, spread or turn (degrees), every, delay (frames).
-RUNS = {"aimed": (3.0, 3, 20.0, 40, 5), "spread": (2.5, 5, 60.0, 40, 0), "ring": (2.5, 12, 10.0, 30, 0),
-        "spiral": (3.0, 4, 11.0, 6, 0)}
+RUNS = {
+    "aimed": (3.0, 3, 20.0, 40, 5),
+    "spread": (2.5, 5, 60.0, 40, 0),
+    "ring": (2.5, 12, 10.0, 30, 0),
+    "spiral": (3.0, 4, 11.0, 6, 0),
+}
 
 
 def golden(name: str) -> dict:
@@ -47,8 +51,16 @@ def golden(name: str) -> dict:
         counts.append(eng.bullets.n)
         if frame in SNAPSHOTS:
             shots[str(frame)] = np.round(eng.bullets.pos[: eng.bullets.n], 4).tolist()
-    return {"pattern": f"{name}.xml", "params": list(params), "rank": 0.5, "seed": 0, "origin": ORIGIN,
-            "target": TARGET, "counts": counts, "positions": shots}
+    return {
+        "pattern": f"{name}.xml",
+        "params": list(params),
+        "rank": 0.5,
+        "seed": 0,
+        "origin": ORIGIN,
+        "target": TARGET,
+        "counts": counts,
+        "positions": shots,
+    }
 
 
 def names() -> list[str]:

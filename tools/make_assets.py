@@ -176,8 +176,16 @@ class Sprite:
         self.alpha[mask] = 1.0
         self.solid |= mask
 
-    def panel(self, mask: np.ndarray, ramp, base: int = 2, bevel: int = 2, relief: float = 2.6,
-              vgrad: float = 0.0, hgrad: float = 0.0) -> None:
+    def panel(
+        self,
+        mask: np.ndarray,
+        ramp,
+        base: int = 2,
+        bevel: int = 2,
+        relief: float = 2.6,
+        vgrad: float = 0.0,
+        hgrad: float = 0.0,
+    ) -> None:
         """Paint ``mask`` as a bevelled panel from ``ramp`` lit from the top-left.
 
         ``base`` is the ramp index of a flat interior, ``bevel`` the width of the rounded
@@ -205,7 +213,7 @@ class Sprite:
             span_y = max(ys.max() - ys.min(), 1.0)
             span_x = max(xs.max() - xs.min(), 1.0)
             t = np.zeros(mask.shape)
-            t[mask] = (vgrad * ((ys - ys.min()) / span_y - 0.5) + hgrad * ((xs - xs.min()) / span_x - 0.5))
+            t[mask] = vgrad * ((ys - ys.min()) / span_y - 0.5) + hgrad * ((xs - xs.min()) / span_x - 0.5)
             tone = tone - t
         idx = np.clip(np.rint(tone), 0, len(ramp) - 1).astype(int)
         colours = np.array(ramp, dtype=float)[idx]
@@ -234,8 +242,18 @@ class Sprite:
 
     # -- light ------------------------------------------------------------------------
 
-    def glow(self, cx, cy, rx, ry, stops, strength: float = 1.0, falloff: float = 1.6,
-             levels: int = 0, over_solid: float = 1.0) -> None:
+    def glow(
+        self,
+        cx,
+        cy,
+        rx,
+        ry,
+        stops,
+        strength: float = 1.0,
+        falloff: float = 1.6,
+        levels: int = 0,
+        over_solid: float = 1.0,
+    ) -> None:
         """Add a soft elliptical glow centred at (cx, cy) with radii (rx, ry).
 
         Intensity is ``(1 - d) ** falloff`` at normalised distance ``d``; its colour comes
@@ -441,11 +459,38 @@ def make_boss_core() -> pygame.Surface:
     glowing magenta eye in a gunmetal socket; twin exhausts at the back."""
     sp = Sprite(80, 72)
     s = sp.s
-    hull = s.poly([(0, -24), (-6, -26), (-10, -35), (-17, -35), (-21, -26), (-31, -18), (-39, -4),
-                   (-39, 12), (-32, 23), (-21, 31), (-10, 35), (0, 33)])
+    hull = s.poly(
+        [
+            (0, -24),
+            (-6, -26),
+            (-10, -35),
+            (-17, -35),
+            (-21, -26),
+            (-31, -18),
+            (-39, -4),
+            (-39, 12),
+            (-32, 23),
+            (-21, 31),
+            (-10, 35),
+            (0, 33),
+        ]
+    )
     sp.panel(hull, PURPLE, base=2, bevel=3, relief=3.0, vgrad=1.4)
-    plate = s.poly([(0, -20), (-8, -22), (-13, -30), (-17, -22), (-28, -14), (-35, -2), (-35, 10),
-                    (-29, 20), (-19, 27), (-9, 30), (0, 28)])
+    plate = s.poly(
+        [
+            (0, -20),
+            (-8, -22),
+            (-13, -30),
+            (-17, -22),
+            (-28, -14),
+            (-35, -2),
+            (-35, 10),
+            (-29, 20),
+            (-19, 27),
+            (-9, 30),
+            (0, 28),
+        ]
+    )
     sp.panel(plate, MAROON, base=3, bevel=2, relief=2.6, vgrad=1.4)
     shell = s.poly([(0, -18), (-8, -17), (-16, -10), (-21, 0), (-20, 10), (-14, 19), (-6, 23), (0, 24)])
     sp.panel(shell, PURPLE, base=3, bevel=2, relief=2.8, vgrad=1.2)
@@ -485,8 +530,9 @@ def make_boss_turret() -> pygame.Surface:
     sp = Sprite(32, 32)
     s = sp.s
     cy = 0  # the dome sits on the sprite centre, which the game turns the turret about
-    octagon = [(12 * math.cos(math.radians(22.5 + 45 * k)), cy + 12 * math.sin(math.radians(22.5 + 45 * k)))
-               for k in range(8)]
+    octagon = [
+        (12 * math.cos(math.radians(22.5 + 45 * k)), cy + 12 * math.sin(math.radians(22.5 + 45 * k))) for k in range(8)
+    ]
     mount = s.poly([(round(x), round(y)) for x, y in octagon], mirror=True)
     sp.panel(mount, GUNMETAL, base=2, bevel=2, relief=2.8, vgrad=1.6)
     for k in range(8):
@@ -626,8 +672,7 @@ def make_citadel() -> pygame.Surface:
     with battlements, a great magenta reactor and red lights along the walls."""
     sp = Sprite(128, 72)
     s = sp.s
-    wall = s.poly([(0, -34), (-24, -34), (-28, -28), (-58, -20), (-62, -6), (-62, 14), (-54, 28),
-                   (-30, 34), (0, 32)])
+    wall = s.poly([(0, -34), (-24, -34), (-28, -28), (-58, -20), (-62, -6), (-62, 14), (-54, 28), (-30, 34), (0, 32)])
     sp.panel(wall, GUNMETAL, base=2, bevel=3, relief=3.0, vgrad=1.6)
     for x in (-56, -44, -32):
         sp.panel(s.rect(x, -24, x + 8, -16, mirror=True), PURPLE, base=3, bevel=1)
@@ -664,20 +709,33 @@ def make_pellet() -> pygame.Surface:
     """Pellet, 10x10: the common enemy bullet, a round white-hot core in a hot pink rim
     with a magenta halo."""
     sp = Sprite(10, 10)
-    _radial(sp, 5.0, 5.0,
-            [(0.0, (255, 255, 255)), (0.3, (255, 240, 250)), (0.5, (255, 120, 210)),
-             (0.72, (240, 30, 150)), (1.0, (150, 0, 120))],
-            [(0.0, 1.0), (0.7, 1.0), (0.82, 0.55), (1.0, 0.0)])
+    _radial(
+        sp,
+        5.0,
+        5.0,
+        [
+            (0.0, (255, 255, 255)),
+            (0.3, (255, 240, 250)),
+            (0.5, (255, 120, 210)),
+            (0.72, (240, 30, 150)),
+            (1.0, (150, 0, 120)),
+        ],
+        [(0.0, 1.0), (0.7, 1.0), (0.82, 0.55), (1.0, 0.0)],
+    )
     return sp.surface()
 
 
 def make_needle() -> pygame.Surface:
     """Needle, 4x10: a fast thin enemy bullet, a white-hot centre line in an amber rim."""
     sp = Sprite(4, 10)
-    _radial(sp, 2.0, 5.0,
-            [(0.0, (255, 255, 255)), (0.35, (255, 250, 200)), (0.6, (255, 190, 40)),
-             (1.0, (255, 70, 0))],
-            [(0.0, 1.0), (0.8, 1.0), (1.05, 0.55)], power=3.0)
+    _radial(
+        sp,
+        2.0,
+        5.0,
+        [(0.0, (255, 255, 255)), (0.35, (255, 250, 200)), (0.6, (255, 190, 40)), (1.0, (255, 70, 0))],
+        [(0.0, 1.0), (0.8, 1.0), (1.05, 0.55)],
+        power=3.0,
+    )
     return sp.surface()
 
 
@@ -685,20 +743,34 @@ def make_orb() -> pygame.Surface:
     """Orb, 16x16: a big slow enemy ball, white core, hot pink-violet rim and a wide
     violet halo."""
     sp = Sprite(16, 16)
-    _radial(sp, 8.0, 8.0,
-            [(0.0, (255, 255, 255)), (0.28, (255, 235, 255)), (0.5, (250, 120, 255)),
-             (0.68, (210, 40, 255)), (0.8, (140, 20, 220)), (1.0, (80, 0, 160))],
-            [(0.0, 1.0), (0.72, 1.0), (0.8, 0.7), (1.0, 0.0)])
+    _radial(
+        sp,
+        8.0,
+        8.0,
+        [
+            (0.0, (255, 255, 255)),
+            (0.28, (255, 235, 255)),
+            (0.5, (250, 120, 255)),
+            (0.68, (210, 40, 255)),
+            (0.8, (140, 20, 220)),
+            (1.0, (80, 0, 160)),
+        ],
+        [(0.0, 1.0), (0.72, 1.0), (0.8, 0.7), (1.0, 0.0)],
+    )
     return sp.surface()
 
 
 def make_shot() -> pygame.Surface:
     """Shot, 4x14: the player's laser bolt, a white core in cyan light, long along y."""
     sp = Sprite(4, 14)
-    _radial(sp, 2.0, 7.0,
-            [(0.0, (255, 255, 255)), (0.4, (200, 255, 255)), (0.7, (40, 220, 255)),
-             (1.0, (0, 110, 255))],
-            [(0.0, 1.0), (0.55, 1.0), (0.8, 0.75), (1.05, 0.2)], power=3.0)
+    _radial(
+        sp,
+        2.0,
+        7.0,
+        [(0.0, (255, 255, 255)), (0.4, (200, 255, 255)), (0.7, (40, 220, 255)), (1.0, (0, 110, 255))],
+        [(0.0, 1.0), (0.55, 1.0), (0.8, 0.75), (1.05, 0.2)],
+        power=3.0,
+    )
     return sp.surface()
 
 
@@ -750,9 +822,14 @@ def make_item_point() -> pygame.Surface:
 def make_item_star() -> pygame.Surface:
     """Star, 8x8: what a cancelled enemy bullet leaves, a small amber glint."""
     sp = Sprite(8, 8)
-    _radial(sp, 4.0, 4.0,
-            [(0.0, (255, 255, 255)), (0.35, (255, 250, 190)), (0.7, (255, 200, 60)), (1.0, (255, 140, 0))],
-            [(0.0, 1.0), (0.5, 1.0), (1.0, 0.0)], power=1.0)
+    _radial(
+        sp,
+        4.0,
+        4.0,
+        [(0.0, (255, 255, 255)), (0.35, (255, 250, 190)), (0.7, (255, 200, 60)), (1.0, (255, 140, 0))],
+        [(0.0, 1.0), (0.5, 1.0), (1.0, 0.0)],
+        power=1.0,
+    )
     return sp.surface()
 
 
@@ -764,14 +841,25 @@ def make_item_star() -> pygame.Surface:
 def make_spark() -> pygame.Surface:
     """Spark, 8x8: a soft round particle, white centre fading through yellow to orange."""
     sp = Sprite(8, 8)
-    _radial(sp, 4.0, 4.0,
-            [(0.0, (255, 255, 255)), (0.35, (255, 248, 200)), (0.65, (255, 196, 80)), (1.0, (255, 120, 30))],
-            [(0.0, 1.0), (0.45, 1.0), (0.75, 0.6), (1.0, 0.0)])
+    _radial(
+        sp,
+        4.0,
+        4.0,
+        [(0.0, (255, 255, 255)), (0.35, (255, 248, 200)), (0.65, (255, 196, 80)), (1.0, (255, 120, 30))],
+        [(0.0, 1.0), (0.45, 1.0), (0.75, 0.6), (1.0, 0.0)],
+    )
     return sp.surface()
 
 
-FIRE = [(0.0, (34, 26, 34)), (0.16, (72, 30, 30)), (0.3, (150, 34, 18)), (0.46, (236, 88, 18)),
-        (0.64, (255, 170, 44)), (0.82, (255, 236, 150)), (1.0, (255, 255, 255))]
+FIRE = [
+    (0.0, (34, 26, 34)),
+    (0.16, (72, 30, 30)),
+    (0.3, (150, 34, 18)),
+    (0.46, (236, 88, 18)),
+    (0.64, (255, 170, 44)),
+    (0.82, (255, 236, 150)),
+    (1.0, (255, 255, 255)),
+]
 
 
 def _value_noise(size: int, cells: int, rng: np.random.Generator) -> np.ndarray:
@@ -837,8 +925,8 @@ def make_explosion() -> pygame.Surface:
                     sp.rgb[ix, iy] = hot
                     sp.alpha[ix, iy] = 1.0
         # Copied, not blitted: blending onto transparent pixels would darken the smoke.
-        sheet.rgb[f * size:(f + 1) * size] = sp.rgb
-        sheet.alpha[f * size:(f + 1) * size] = sp.alpha
+        sheet.rgb[f * size : (f + 1) * size] = sp.rgb
+        sheet.alpha[f * size : (f + 1) * size] = sp.alpha
     return sheet.surface()
 
 

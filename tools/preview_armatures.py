@@ -225,11 +225,15 @@ def main() -> int:
     legend = font.render(
         f"{args.scale}x, dark panels; green = hit armature, amber = graze polygon, red dot = sprite centre; "
         f"right panel: rotate(sprite, -{ANGLE:g}) with the armature posed at {ANGLE:g} deg",
-        True, DIM,
+        True,
+        DIM,
     )
     label_1x = font.render("1x, as played, on a starfield", True, DIM)
-    width = max(max(sum(c.get_width() for c in r) + PAD * (len(r) + 1) for r in rows),
-                strip.get_width() + 2 * PAD, legend.get_width() + 2 * PAD)
+    width = max(
+        max(sum(c.get_width() for c in r) + PAD * (len(r) + 1) for r in rows),
+        strip.get_width() + 2 * PAD,
+        legend.get_width() + 2 * PAD,
+    )
     height = PAD + title.get_height() + 4 + legend.get_height() + PAD
     height += sum(max(c.get_height() for c in r) + PAD for r in rows)
     height += label_1x.get_height() + 4 + strip.get_height() + PAD

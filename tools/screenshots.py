@@ -29,8 +29,14 @@ OUT = Path(__file__).resolve().parents[1] / "docs" / "img"
 
 
 def capture(level: str, frames: int, name: str, overlay: bool = False, seed: int = 2) -> None:
-    app = App(start_level=level, seed=seed, demo=True, audio=False, scale=1.0,
-              scores=HighScores(Path(tempfile.mkdtemp()) / "s.json"))
+    app = App(
+        start_level=level,
+        seed=seed,
+        demo=True,
+        audio=False,
+        scale=1.0,
+        scores=HighScores(Path(tempfile.mkdtemp()) / "s.json"),
+    )
     app.start_run()
     for _ in range(frames):
         app.frame(DT)
@@ -38,8 +44,7 @@ def capture(level: str, frames: int, name: str, overlay: bool = False, seed: int
         app.overlay.visible = True
         app.frame(DT)
     pygame.image.save(pygame.display.get_surface(), str(OUT / name))
-    print(f"{OUT / name}: frame {app.world.frame}, score {app.world.score}, "
-          f"{app.world.enemy_bullets.n} enemy bullets")
+    print(f"{OUT / name}: frame {app.world.frame}, score {app.world.score}, {app.world.enemy_bullets.n} enemy bullets")
     pygame.quit()
 
 
@@ -55,7 +60,9 @@ def capture_editor(name: str = "editor.png") -> None:
         shutil.copy(data_dir("assets") / "sprites" / f, tmp / f)
     ed = Editor(tmp / "player.armature.toml")
     pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_b, mod=0, unicode="b"))
-    pygame.event.post(pygame.event.Event(pygame.MOUSEMOTION, pos=ed.to_screen(6.0, -3.0), rel=(0, 0), buttons=(0, 0, 0)))
+    pygame.event.post(
+        pygame.event.Event(pygame.MOUSEMOTION, pos=ed.to_screen(6.0, -3.0), rel=(0, 0), buttons=(0, 0, 0))
+    )
     ed.frame()
     ed.frame()
     pygame.image.save(pygame.display.get_surface(), str(OUT / name))

@@ -13,6 +13,15 @@ from .masks import ALPHA_THRESHOLD, dilate, erode, largest_region, opaque_mask
 from .outline import generate_armature, simplify_polygon, trace_outline
 
 __all__ = [
-    "ALPHA_THRESHOLD", "ShapeFit", "dilate", "erode", "fit_of", "generate_armature", "largest_region", "opaque_mask",
-    "shape_fit", "simplify_polygon", "trace_outline",
+    "ALPHA_THRESHOLD",
+    "ShapeFit",
+    "dilate",
+    "erode",
+    "fit_of",
+    "generate_armature",
+    "largest_region",
+    "opaque_mask",
+    "shape_fit",
+    "simplify_polygon",
+    "trace_outline",
 ]

@@ -40,12 +40,21 @@ class Generated:
 
 def strip_warning(sprite: Path, guess: StripGuess) -> str:
     """One line: ``sprite`` was traced as one frame but looks like ``guess``."""
-    return (f"{sprite}: traced as one frame, but it looks like a strip of {guess.frames} frames "
-            f"({guess.reason}); if it is, give --frames {guess.frames}")
+    return (
+        f"{sprite}: traced as one frame, but it looks like a strip of {guess.frames} frames "
+        f"({guess.reason}); if it is, give --frames {guess.frames}"
+    )
 
 
-def generate(sprite: str | Path, read_alpha: AlphaReader, max_vertices: int = 8, inset: int = 0,
-             shape: str = "hit", out: str | Path | None = None, frames: int | None = None) -> Generated:
+def generate(
+    sprite: str | Path,
+    read_alpha: AlphaReader,
+    max_vertices: int = 8,
+    inset: int = 0,
+    shape: str = "hit",
+    out: str | Path | None = None,
+    frames: int | None = None,
+) -> Generated:
     """Trace the ``shape`` of ``sprite`` (every frame) and write it into its armature file
     (``out``, default ``<stem>.armature.toml`` beside the sprite), keeping the file's other
     shapes and its header. A new file gets the shape as its ``hit`` too if ``shape`` is not
@@ -108,8 +117,12 @@ def _load_checked(path: Path, read_alpha: AlphaReader) -> tuple[ArmatureFile, li
     if len(f.frames) == 1:
         guess = detect_frames(alpha)
         if guess is not None and guess.separated:
-            raise DataError(path, "frames", f"one frame, but {f.sprite} looks like a strip of {guess.frames} frames "
-                                            f"({guess.reason}): give frames = {guess.frames} and a [[frame]] each")
+            raise DataError(
+                path,
+                "frames",
+                f"one frame, but {f.sprite} looks like a strip of {guess.frames} frames "
+                f"({guess.reason}): give frames = {guess.frames} and a [[frame]] each",
+            )
     return f, alphas
 
 
@@ -120,8 +133,11 @@ def check(paths: list[str], read_alpha: AlphaReader, out: TextIO | None = None) 
     out = out or sys.stdout
     files = _armature_files(paths)
     bad = 0
-    print(f"{'file':34s} {'shape':14s} {'verts':>5s} {'valid':>5s} {'area':>8s} {'on_opaque':>9s} "
-          f"{'coverage':>8s} {'iou':>6s}", file=out)
+    print(
+        f"{'file':34s} {'shape':14s} {'verts':>5s} {'valid':>5s} {'area':>8s} {'on_opaque':>9s} "
+        f"{'coverage':>8s} {'iou':>6s}",
+        file=out,
+    )
     for path in files:
         try:
             f, alphas = _load_checked(path, read_alpha)
@@ -133,7 +149,10 @@ def check(paths: list[str], read_alpha: AlphaReader, out: TextIO | None = None) 
             for key, arm in shapes.items():
                 fit = fit_of(arm.vertices, alphas[i])
                 label = key if len(f.frames) == 1 else f"{key}[{i}]"
-                print(f"{path.name:34s} {label:14s} {len(arm):5d} {'yes':>5s} {arm.area:8.1f} {fit.on_opaque:9.3f} "
-                      f"{fit.coverage:8.3f} {fit.iou:6.3f}", file=out)
+                print(
+                    f"{path.name:34s} {label:14s} {len(arm):5d} {'yes':>5s} {arm.area:8.1f} {fit.on_opaque:9.3f} "
+                    f"{fit.coverage:8.3f} {fit.iou:6.3f}",
+                    file=out,
+                )
     print(f"{len(files)} file(s), {bad} invalid", file=out)
     return bad

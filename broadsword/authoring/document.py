@@ -21,8 +21,15 @@ from .frames import split_frames
 from .masks import opaque_mask
 from .outline import generate_armature
 
-__all__ = ["FRAME_SIDE_MAX", "NEW_BOX", "ArmatureDocument", "load_document", "new_document", "open_document",
-           "save_document"]
+__all__ = [
+    "FRAME_SIDE_MAX",
+    "NEW_BOX",
+    "ArmatureDocument",
+    "load_document",
+    "new_document",
+    "open_document",
+    "save_document",
+]
 
 Point = tuple[float, float]
 Points = tuple[Point, ...]
@@ -83,7 +90,9 @@ def _frame_alphas(png: Path, frames: int, read_alpha: AlphaReader) -> list[np.nd
     alphas = split_frames(read_alpha(png), frames, png)
     h, w = alphas[0].shape
     if max(w, h) > FRAME_SIDE_MAX:
-        raise DataError(png, "", f"a {w} x {h} px frame is too large for the editor (at most {FRAME_SIDE_MAX} px a side)")
+        raise DataError(
+            png, "", f"a {w} x {h} px frame is too large for the editor (at most {FRAME_SIDE_MAX} px a side)"
+        )
     return alphas
 
 
@@ -148,7 +157,8 @@ def save_document(doc: ArmatureDocument, frames: Shapes) -> ArmatureFile:
     """Write ``frames`` as the document's file (validated first, atomically, four vertices to
     a line) and return it as loaded back; the document's header and ``new`` follow. Raises
     :class:`DataError` for an invalid shape, ``OSError`` if it cannot be written."""
-    f = save_armature_file(doc.path, doc.name, doc.sprite, [{k: list(v) for k, v in s.items()} for s in frames],
-                           doc.frame_time, doc.header)
+    f = save_armature_file(
+        doc.path, doc.name, doc.sprite, [{k: list(v) for k, v in s.items()} for s in frames], doc.frame_time, doc.header
+    )
     doc.header, doc.new = f.header, False
     return f

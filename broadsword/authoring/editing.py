@@ -137,7 +137,7 @@ class EditSession:
         """The document with the active shape replaced by ``points``."""
         shapes = dict(self.frames[self.frame_index])
         shapes[self.shape] = tuple(points)
-        return self.frames[:self.frame_index] + (shapes,) + self.frames[self.frame_index + 1:]
+        return self.frames[: self.frame_index] + (shapes,) + self.frames[self.frame_index + 1 :]
 
     def commit(self, new: Shapes, before: Shapes | None = None) -> None:
         """Make ``new`` the document; ``before`` (default: the current one) goes on the undo stack."""
@@ -193,7 +193,7 @@ class EditSession:
         dx, dy = at[0] - d.anchor[0], at[1] - d.anchor[1]
         if d.kind == DragKind.VERTEX:
             x0, y0 = d.start[d.index]
-            cand = d.start[:d.index] + (self.place(x0 + dx, y0 + dy),) + d.start[d.index + 1:]
+            cand = d.start[: d.index] + (self.place(x0 + dx, y0 + dy),) + d.start[d.index + 1 :]
         else:
             mx, my = step(dx, self.snap), step(dy, self.snap)
             cand = tuple(moved(p, mx, my, self.snap) for p in d.start)
@@ -232,7 +232,7 @@ class EditSession:
         ``drag_from`` (the pointer, armature coordinates) the new vertex is then dragged, and
         the insert and the drag are one undo step. False if refused."""
         pts = self.points
-        cand = pts[:edge + 1] + (point,) + pts[edge + 1:]
+        cand = pts[: edge + 1] + (point,) + pts[edge + 1 :]
         why = self.problem(cand)
         if why is not None:
             self.say(f"refused: {why}", bad=True)
@@ -251,7 +251,7 @@ class EditSession:
         """Delete vertex ``index`` of the active shape. False (and a message) if refused."""
         self.finish_drag()
         pts = self.points
-        if not self._apply(pts[:index] + pts[index + 1:]):
+        if not self._apply(pts[:index] + pts[index + 1 :]):
             return False
         self.selected = None
         self.say(f"deleted vertex {index}")
@@ -267,7 +267,7 @@ class EditSession:
             self.say("select a vertex first (click it), or Shift+arrows to move the shape", bad=True)
             return False
         i = self.selected
-        return self._apply(pts[:i] + ((clean(pts[i][0] + dx), clean(pts[i][1] + dy)),) + pts[i + 1:])
+        return self._apply(pts[:i] + ((clean(pts[i][0] + dx), clean(pts[i][1] + dy)),) + pts[i + 1 :])
 
     def undo(self) -> bool:
         self.finish_drag()

@@ -60,7 +60,7 @@ def shape_fit(vertices, opaque: np.ndarray) -> ShapeFit:
     inside = rasterise(v, x0, y0, gw, gh)
     ox, oy = int(round(-w / 2 - x0)), int(round(-h / 2 - y0))
     big = np.zeros((gh, gw), dtype=bool)
-    big[oy:oy + h, ox:ox + w] = opaque
+    big[oy : oy + h, ox : ox + w] = opaque
     both = int((inside & big).sum())
     return ShapeFit(int(inside.sum()), int(opaque.sum()), both, int((inside | big).sum()))
 

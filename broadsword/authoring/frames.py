@@ -33,7 +33,7 @@ def split_frames(alpha: np.ndarray, frames: int, path: str | Path = "") -> list[
     if w % frames:
         raise DataError(path, "frames", f"a {w} px wide strip does not split into {frames} equal frames")
     fw = w // frames
-    return [alpha[:, i * fw:(i + 1) * fw] for i in range(frames)]
+    return [alpha[:, i * fw : (i + 1) * fw] for i in range(frames)]
 
 
 @dataclass(frozen=True)
@@ -80,12 +80,17 @@ def detect_frames(alpha: np.ndarray) -> StripGuess | None:
         counts = per_column.reshape(n, fw).sum(axis=1)
         if counts.min() == 0 or counts.min() * ALIKE < counts.max():
             continue
-        return StripGuess(n, fw, f"its opaque pixels fall into {n} alike frames {fw} px wide, "
-                                 "with transparent columns between them")
+        return StripGuess(
+            n, fw, f"its opaque pixels fall into {n} alike frames {fw} px wide, with transparent columns between them"
+        )
     n = w // h
     if n >= 2 and w == n * h and n <= FRAMES_MAX:
         counts = per_column.reshape(n, h).sum(axis=1)
         if counts.min() > 0 and counts.min() * ALIKE >= counts.max():
-            return StripGuess(n, h, f"it is {n} times as wide as it is high ({w} x {h} px) and its "
-                                    f"{n} square frames are alike", separated=False)
+            return StripGuess(
+                n,
+                h,
+                f"it is {n} times as wide as it is high ({w} x {h} px) and its {n} square frames are alike",
+                separated=False,
+            )
     return None

@@ -32,7 +32,7 @@ class History:
 
     def record(self, before: Snapshot) -> None:
         self.undo_stack.append(before)
-        del self.undo_stack[:-self.limit]
+        del self.undo_stack[: -self.limit]
         self.redo_stack.clear()
 
     def undo(self, current_frames: tuple) -> Snapshot | None:

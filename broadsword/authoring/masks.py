@@ -59,7 +59,7 @@ def _label4(mask: np.ndarray) -> tuple[np.ndarray, int]:
     number: dict[int, int] = {}
     for k, r in enumerate(rows.tolist()):
         lab = number.setdefault(root(k), len(number) + 1)
-        labels[r, s[k]:e[k]] = lab
+        labels[r, s[k] : e[k]] = lab
     return labels, len(number)
 
 
@@ -93,7 +93,7 @@ def erode(mask: np.ndarray, k: int) -> np.ndarray:
     p = np.pad(mask, k, constant_values=False)
     out = np.ones_like(mask)
     for dr, dc in _disk_offsets(k):
-        out &= p[k + dr:k + dr + h, k + dc:k + dc + w]
+        out &= p[k + dr : k + dr + h, k + dc : k + dc + w]
     return out
 
 
@@ -105,5 +105,5 @@ def dilate(mask: np.ndarray, k: int) -> np.ndarray:
     p = np.pad(mask, 2 * k, constant_values=False)
     out = np.zeros((h + 2 * k, w + 2 * k), dtype=bool)
     for dr, dc in _disk_offsets(k):
-        out |= p[k + dr:k + dr + h + 2 * k, k + dc:k + dc + w + 2 * k]
+        out |= p[k + dr : k + dr + h + 2 * k, k + dc : k + dc + w + 2 * k]
     return out

@@ -37,10 +37,10 @@ def trace_outline(region: np.ndarray) -> np.ndarray:
     # Boundary edges with the region on the left when walking them (y down): corners are
     # (x, y) = (c, r) top-left ... (c + 1, r + 1) bottom-right of pixel (r, c).
     for free, (fx, fy), (tx, ty) in (
-        (~p[:-2, 1:-1], (1, 0), (0, 0)),   # nothing above: walk the top edge right to left
-        (~p[2:, 1:-1], (0, 1), (1, 1)),    # nothing below: left to right
-        (~p[1:-1, :-2], (0, 0), (0, 1)),   # nothing to the left: top to bottom
-        (~p[1:-1, 2:], (1, 1), (1, 0)),    # nothing to the right: bottom to top
+        (~p[:-2, 1:-1], (1, 0), (0, 0)),  # nothing above: walk the top edge right to left
+        (~p[2:, 1:-1], (0, 1), (1, 1)),  # nothing below: left to right
+        (~p[1:-1, :-2], (0, 0), (0, 1)),  # nothing to the left: top to bottom
+        (~p[1:-1, 2:], (1, 1), (1, 0)),  # nothing to the right: bottom to top
     ):
         rows, cols = np.nonzero(inner & free)
         for r, c in zip(rows.tolist(), cols.tolist()):

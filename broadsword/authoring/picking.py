@@ -44,8 +44,13 @@ def _segment_distance2(p: Point, a: Point, b: Point) -> tuple[float, float]:
     return ex * ex + ey * ey, t
 
 
-def pick(pts, at: Point, vertex_radius: float, edge_radius: float,
-         place: Callable[[float, float], Point] = lambda x, y: (x, y)) -> Hover:
+def pick(
+    pts,
+    at: Point,
+    vertex_radius: float,
+    edge_radius: float,
+    place: Callable[[float, float], Point] = lambda x, y: (x, y),
+) -> Hover:
     """What of the polygon ``pts`` (n, 2) is at ``at``: the nearest vertex within
     ``vertex_radius``, else the nearest edge within ``edge_radius`` (``point``: the nearest
     point on it, through ``place``, e.g. snapping), else the inside, else nothing."""

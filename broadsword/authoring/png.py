@@ -71,10 +71,18 @@ def read_png_header(path: str | Path) -> PngHeader:
     if width == 0 or height == 0:
         raise DataError(path, "", f"cannot load image: an empty image ({width} x {height} px)")
     if width > SIDE_MAX or height > SIDE_MAX or width * height > PIXELS_MAX:
-        raise DataError(path, "", f"cannot load image: a {width} x {height} px image is too large for a sprite "
-                                  f"(at most {SIDE_MAX} px a side and {PIXELS_MAX:,} pixels)")
+        raise DataError(
+            path,
+            "",
+            f"cannot load image: a {width} x {height} px image is too large for a sprite "
+            f"(at most {SIDE_MAX} px a side and {PIXELS_MAX:,} pixels)",
+        )
     if depth not in _DEPTHS.get(colour, ()):
-        raise DataError(path, "", f"cannot load image: a corrupt PNG file (colour type {colour} with bit depth {depth})")
+        raise DataError(
+            path, "", f"cannot load image: a corrupt PNG file (colour type {colour} with bit depth {depth})"
+        )
     if compression or filtering or interlace > 1:
-        raise DataError(path, "", "cannot load image: a corrupt PNG file (unknown compression, filter or interlace method)")
+        raise DataError(
+            path, "", "cannot load image: a corrupt PNG file (unknown compression, filter or interlace method)"
+        )
     return PngHeader(width, height, depth, colour, interlace == 1)

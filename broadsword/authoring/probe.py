@@ -48,8 +48,9 @@ class Probe:
         if self._pipeline is None or self._shape_key != points:
             self._pipeline = Pipeline(ArmatureSet([shape, self.armature]), self._table)
             self._shape_key = points
-        result = self._pipeline.step(np.array([0, 1]), np.array([0, 1]),
-                                     np.array([[0.0, 0.0], at], dtype=np.float64), np.zeros(2))
+        result = self._pipeline.step(
+            np.array([0, 1]), np.array([0, 1]), np.array([[0.0, 0.0], at], dtype=np.float64), np.zeros(2)
+        )
         self._hit = bool(len(result.hits))
         self._last = key
         return self._hit

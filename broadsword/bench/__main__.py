@@ -31,13 +31,14 @@ import json
 import platform
 import sys
 import time
+from functools import partial
 
 import numpy as np
 
 from ..collision import FrameObjects, Pipeline, retain_heap
+from ..collision.scenarios import ReferenceScene
 from . import analysis
 from .peers import PEERS
-from ..collision.scenarios import ReferenceScene
 from .truth import level_visual_truth, pixel_truth
 
 #: The product's default pipeline: the paper's bins, a cheap bound, the exact armature test.
@@ -107,7 +108,11 @@ def _methods(scene) -> dict:
         peer = cls()
         if peer.available:
             peer.setup(scene)
-            out[f"peer: {peer.name}"] = (lambda pos, ang, p=peer: (p.step(pos, ang, scene.layer), {}), "exact", ("peer",))
+            out[f"peer: {peer.name}"] = (
+                lambda pos, ang, p=peer: (p.step(pos, ang, scene.layer), {}),
+                "exact",
+                ("peer",),
+            )
     return out
 
 
@@ -172,8 +177,10 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     for f in range(warmup + frames):
         pos, ang = scene.advance()
         prev = pos - scene.vel * scene.dt
-        runs = [(solo, lambda: solo_pipe.step(scene.armature, scene.layer, pos, ang)),
-                (swept, lambda: swept_pipe.run(FrameObjects(scene.armature, scene.layer, pos, ang, prev, ang, bullet)))]
+        runs = [
+            (solo, partial(solo_pipe.step, scene.armature, scene.layer, pos, ang)),
+            (swept, partial(swept_pipe.run, FrameObjects(scene.armature, scene.layer, pos, ang, prev, ang, bullet))),
+        ]
         for times, run in runs[:: 1 if f % 2 else -1]:  # alternate which goes first
             t0 = time.perf_counter()
             run()
@@ -182,19 +189,43 @@ def run_scale(enemies: int, bullets: int, frames: int, warmup: int, seed: int, p
     out = {}
     for name, (_, rotation, tiers) in methods.items():
         a = np.array(ms[name])
-        per_tier = {k: float(np.median([t[k] for t in tier_ms[name]])) for k in (tier_ms[name][0] if tier_ms[name] else {})}
-        out[name] = {"tiers": list(tiers), "rotation": rotation, "median_ms": float(np.median(a)), "tier_median_ms": per_tier,
-                     "min_ms": float(a.min()), "max_ms": float(a.max()),
-                     "false_positives": fp[name], "false_negatives": fn[name],
-                     "pose_false_positives": own_fp[name], "pose_false_negatives": own_fn[name],
-                     "pixel_false_positives": pfp[name], "pixel_false_negatives": pfn[name]}
+        per_tier = {
+            k: float(np.median([t[k] for t in tier_ms[name]])) for k in (tier_ms[name][0] if tier_ms[name] else {})
+        }
+        out[name] = {
+            "tiers": list(tiers),
+            "rotation": rotation,
+            "median_ms": float(np.median(a)),
+            "tier_median_ms": per_tier,
+            "min_ms": float(a.min()),
+            "max_ms": float(a.max()),
+            "false_positives": fp[name],
+            "false_negatives": fn[name],
+            "pose_false_positives": own_fp[name],
+            "pose_false_negatives": own_fn[name],
+            "pixel_false_positives": pfp[name],
+            "pixel_false_negatives": pfn[name],
+        }
     solo_ms, swept_ms = np.array(solo), np.array(swept)
-    return {"enemies": enemies, "bullets": bullets, "frames": frames, "exact_hits": exact_hits,
-            "pixel_frames": min(pixel_frames, frames), "pixel_hits": pixel_hits, "methods": out,
-            "default_alone": {"median_ms": float(np.median(solo_ms)), "min_ms": float(solo_ms.min()),
-                              "max_ms": float(solo_ms.max())},
-            "default_alone_swept": {"median_ms": float(np.median(swept_ms)), "min_ms": float(swept_ms.min()),
-                                    "max_ms": float(swept_ms.max())}}
+    return {
+        "enemies": enemies,
+        "bullets": bullets,
+        "frames": frames,
+        "exact_hits": exact_hits,
+        "pixel_frames": min(pixel_frames, frames),
+        "pixel_hits": pixel_hits,
+        "methods": out,
+        "default_alone": {
+            "median_ms": float(np.median(solo_ms)),
+            "min_ms": float(solo_ms.min()),
+            "max_ms": float(solo_ms.max()),
+        },
+        "default_alone_swept": {
+            "median_ms": float(np.median(swept_ms)),
+            "min_ms": float(swept_ms.min()),
+            "max_ms": float(swept_ms.max()),
+        },
+    }
 
 
 def _progress(label: str):
@@ -209,13 +240,17 @@ def markdown(results: list[dict]) -> str:
     lines = []
     for scale in results:
         base = scale["methods"][next(iter(scale["methods"]))]["median_ms"]
-        lines.append(f"\n### Reference scene: {scale['enemies']} enemies, {scale['bullets']} bullets\n\n"
-                     f"{scale['frames']} frames, {scale['exact_hits']} exact hits in all (exact geometry at the true "
-                     f"angles); pixel truth over the first {scale['pixel_frames']} frames ({scale['pixel_hits']} pixel hits). "
-                     "False positives and negatives are counted against exact geometry at the true angles, against the "
-                     "exact answer at the method's own poses (a `lut` method's rounded angles), and against pixel truth.\n")
-        lines.append("| method | median ms | min | max | x default | false pos | false neg | at own poses fp/fn "
-                     "| pixel false pos | pixel false neg | median ms per tier |")
+        lines.append(
+            f"\n### Reference scene: {scale['enemies']} enemies, {scale['bullets']} bullets\n\n"
+            f"{scale['frames']} frames, {scale['exact_hits']} exact hits in all (exact geometry at the true "
+            f"angles); pixel truth over the first {scale['pixel_frames']} frames ({scale['pixel_hits']} pixel hits). "
+            "False positives and negatives are counted against exact geometry at the true angles, against the "
+            "exact answer at the method's own poses (a `lut` method's rounded angles), and against pixel truth.\n"
+        )
+        lines.append(
+            "| method | median ms | min | max | x default | false pos | false neg | at own poses fp/fn "
+            "| pixel false pos | pixel false neg | median ms per tier |"
+        )
         lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
         for name, m in scale["methods"].items():
             tier = ", ".join(f"{k} {v:.2f}" for k, v in m["tier_median_ms"].items())
@@ -223,15 +258,20 @@ def markdown(results: list[dict]) -> str:
                 f"| {name} | {m['median_ms']:.2f} | {m['min_ms']:.2f} | {m['max_ms']:.2f} | {m['median_ms'] / base:.2f} | "
                 f"{m['false_positives']} | {m['false_negatives']} | "
                 f"{m['pose_false_positives']}/{m['pose_false_negatives']} | {m['pixel_false_positives']} | "
-                f"{m['pixel_false_negatives']} | {tier} |")
+                f"{m['pixel_false_negatives']} | {tier} |"
+            )
         alone = scale["default_alone"]
-        lines.append(f"| default, alone (as in the game: no other method between its frames) | "
-                     f"{alone['median_ms']:.2f} | {alone['min_ms']:.2f} | {alone['max_ms']:.2f} | "
-                     f"{alone['median_ms'] / base:.2f} | | | | | | |")
+        lines.append(
+            f"| default, alone (as in the game: no other method between its frames) | "
+            f"{alone['median_ms']:.2f} | {alone['min_ms']:.2f} | {alone['max_ms']:.2f} | "
+            f"{alone['median_ms'] / base:.2f} | | | | | | |"
+        )
         sw = scale["default_alone_swept"]
-        lines.append(f"| default, alone, with the game's sweeps (every bullet swept along its velocity; "
-                     f"{sw['median_ms'] / alone['median_ms']:.2f}x without) | {sw['median_ms']:.2f} | {sw['min_ms']:.2f} | "
-                     f"{sw['max_ms']:.2f} | {sw['median_ms'] / base:.2f} | | | | | | |")
+        lines.append(
+            f"| default, alone, with the game's sweeps (every bullet swept along its velocity; "
+            f"{sw['median_ms'] / alone['median_ms']:.2f}x without) | {sw['median_ms']:.2f} | {sw['min_ms']:.2f} | "
+            f"{sw['max_ms']:.2f} | {sw['median_ms'] / base:.2f} | | | | | | |"
+        )
         missing = [cls().why for cls in PEERS if not cls().available]
         if missing:
             lines.append(f"\nPeers not run: {'; '.join(missing)}.")
@@ -239,13 +279,19 @@ def markdown(results: list[dict]) -> str:
 
 
 def game_markdown(visual: list[dict]) -> str:
-    lines = ["\n### The levels against their sprites' own masks (what the player sees)\n",
-             "Per level and layer pair, over the frames played by the autopilot: hits both agree on, armature hits the "
-             "sprites do not show, and sprite overlaps the armatures do not count (by design for the player's small "
-             "hit shape).\n", "| level | frames | pair | both | armature only | sprite only |", "|---|---:|---|---:|---:|---:|"]
+    lines = [
+        "\n### The levels against their sprites' own masks (what the player sees)\n",
+        "Per level and layer pair, over the frames played by the autopilot: hits both agree on, armature hits the "
+        "sprites do not show, and sprite overlaps the armatures do not count (by design for the player's small "
+        "hit shape).\n",
+        "| level | frames | pair | both | armature only | sprite only |",
+        "|---|---:|---|---:|---:|---:|",
+    ]
     for v in visual:
         for pair, c in v["pairs"].items():
-            lines.append(f"| {v['level']} | {v['frames']} | {pair} | {c['both']} | {c['armature_only']} | {c['sprite_only']} |")
+            lines.append(
+                f"| {v['level']} | {v['frames']} | {pair} | {c['both']} | {c['armature_only']} | {c['sprite_only']} |"
+            )
     return "\n".join(lines)
 
 
@@ -318,23 +364,42 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--json", metavar="FILE", help="write every figure as JSON")
     ap.add_argument("--plots", metavar="DIR", help="write PNG plots (needs matplotlib)")
     ap.add_argument("--no-game", action="store_true", help="skip the game sections (they need pygame)")
-    ap.add_argument("--no-retain-heap", action="store_true",
-                    help="leave glibc's heap trimming on (the game turns it off; see docs/PERFORMANCE.md)")
+    ap.add_argument(
+        "--no-retain-heap",
+        action="store_true",
+        help="leave glibc's heap trimming on (the game turns it off; see docs/PERFORMANCE.md)",
+    )
     args = ap.parse_args(argv)
-    heap = "default allocator" if args.no_retain_heap else (
-        "heap retained" if retain_heap() else "default allocator (no glibc mallopt)")
+    heap = (
+        "default allocator"
+        if args.no_retain_heap
+        else ("heap retained" if retain_heap() else "default allocator (no glibc mallopt)")
+    )
     frames = args.frames or (5 if args.quick else 30)
     if frames < 1:
         ap.error("--frames must be at least 1")
     warmup = 2 if args.quick else 5
     scales = [(20, 200), (200, 10_000)] if args.quick else SCALES
     canary = host_canary()
-    print(f"# broadsword.bench: {platform.processor() or platform.machine()}, python {platform.python_version()}, "
-          f"numpy {np.__version__}, seed {args.seed}, {heap}; host canary: add(100k) {canary['stream_us']:.1f} us, "
-          f"add(100) {canary['call_us']:.2f} us", flush=True)
+    print(
+        f"# broadsword.bench: {platform.processor() or platform.machine()}, python {platform.python_version()}, "
+        f"numpy {np.__version__}, seed {args.seed}, {heap}; host canary: add(100k) {canary['stream_us']:.1f} us, "
+        f"add(100) {canary['call_us']:.2f} us",
+        flush=True,
+    )
     started = time.perf_counter()
-    results = [run_scale(e, b, frames, warmup, args.seed, _progress(f"reference scene {e} + {b}"),
-                         pixel_frames=min(frames, 3 if args.quick else 10)) for e, b in scales]
+    results = [
+        run_scale(
+            e,
+            b,
+            frames,
+            warmup,
+            args.seed,
+            _progress(f"reference scene {e} + {b}"),
+            pixel_frames=min(frames, 3 if args.quick else 10),
+        )
+        for e, b in scales
+    ]
     print(markdown(results), flush=True)
 
     game = None
@@ -342,7 +407,8 @@ def main(argv: list[str] | None = None) -> int:
     visual = []
     if not args.no_game:
         from ..data import list_levels
-        from .game_frame import markdown as frame_markdown, run_all
+        from .game_frame import markdown as frame_markdown
+        from .game_frame import run_all
 
         print("  whole game frame: the bullet-hell stage's peak and the stress scenes ...", file=sys.stderr, flush=True)
         game = run_all(args.quick, args.seed)
@@ -351,22 +417,28 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
         print(game_markdown(visual), flush=True)
-        from .drawing import markdown as drawing_markdown, run_bullet_drawing
+        from .drawing import markdown as drawing_markdown
+        from .drawing import run_bullet_drawing
 
         print("  drawing bullets, batched and one by one ...", file=sys.stderr, flush=True)
         drawing = run_bullet_drawing(2000 if args.quick else 10_000, frames=5 if args.quick else 30, seed=args.seed)
         print(drawing_markdown(drawing), flush=True)
 
-    from .patterns import markdown as patterns_markdown, run_pattern_frames
+    from .patterns import markdown as patterns_markdown
+    from .patterns import run_pattern_frames
 
     print("  BulletML patterns ...", file=sys.stderr, flush=True)
     patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
     print(patterns_markdown(patterns, game[0] if game else None), flush=True)
 
     sections = {}
-    for key, fn in (("scaling", analysis.scaling), ("bin_size", analysis.bin_size_curve),
-                    ("rotation_table", analysis.rotation_table), ("stability", analysis.stability),
-                    ("fidelity", analysis.fidelity)):
+    for key, fn in (
+        ("scaling", analysis.scaling),
+        ("bin_size", analysis.bin_size_curve),
+        ("rotation_table", analysis.rotation_table),
+        ("stability", analysis.stability),
+        ("fidelity", analysis.fidelity),
+    ):
         if key == "fidelity" and args.no_game:
             continue  # reads the sprites with pygame
         print(f"  {key.replace('_', ' ')} ...", file=sys.stderr, flush=True)
@@ -376,10 +448,20 @@ def main(argv: list[str] | None = None) -> int:
     for path in written:
         print(f"wrote {path}")
     if args.json:
-        doc = {"command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
-               "python": platform.python_version(), "numpy": np.__version__, "allocator": heap,
-               "host_canary_before": canary, "host_canary_after": host_canary(), "scales": results,
-               "game_frame": game, "bullet_drawing": drawing, "levels_vs_sprites": visual, "patterns": patterns, **sections}
+        doc = {
+            "command": " ".join(["python -m broadsword.bench", *(argv if argv is not None else sys.argv[1:])]),
+            "python": platform.python_version(),
+            "numpy": np.__version__,
+            "allocator": heap,
+            "host_canary_before": canary,
+            "host_canary_after": host_canary(),
+            "scales": results,
+            "game_frame": game,
+            "bullet_drawing": drawing,
+            "levels_vs_sprites": visual,
+            "patterns": patterns,
+            **sections,
+        }
         with open(args.json, "w") as fh:
             json.dump(doc, fh, indent=1)
         print(f"\nwrote {args.json}")

@@ -21,8 +21,8 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import Any
 from functools import partial
+from typing import Any
 
 import numpy as np
 
@@ -50,6 +50,7 @@ DEFAULT = ("bins", "aabb", "armature")
 
 
 # -- shared helpers ---------------------------------------------------------------------------
+
 
 def _interleave(frames: int, warmup: int, make_jobs: Callable[[], dict], summary=None):
     """Run ``warmup + frames`` frames; each frame ``make_jobs()`` (which advances the scene)
@@ -93,6 +94,7 @@ def _pair_keys(pairs: np.ndarray, n: int) -> np.ndarray:
 
 # -- 1. scaling -------------------------------------------------------------------------------
 
+
 def _scaling_row(scene: ReferenceScene, frames: int, warmup: int, brute: bool) -> dict:
     """One size of :func:`scaling`: every broad phase and the pipeline on the same frames."""
     phases = {"bins": BinGrid(), "quadtree": QuadTree(), "loose_quadtree": LooseQuadTree()}
@@ -108,8 +110,12 @@ def _scaling_row(scene: ReferenceScene, frames: int, warmup: int, brute: bool) -
         return out
 
     ms, kept = _interleave(frames, warmup, jobs, lambda name, r: len(r.hits) if name == "pipeline" else len(r))
-    row = {"n": scene.n, "ships": scene.enemies + 1, "bullets": scene.bullets,
-           "allowed_pairs": scene.table.possible_pairs(scene.layer)}
+    row = {
+        "n": scene.n,
+        "ships": scene.enemies + 1,
+        "bullets": scene.bullets,
+        "allowed_pairs": scene.table.possible_pairs(scene.layer),
+    }
     for name in ("bins", "quadtree", "loose_quadtree", "brute", "pipeline"):
         row[f"{name}_ms"] = _median(ms[name]) if name in ms else None
     row["bins_pairs"] = int(np.median(kept["bins"]))
@@ -154,15 +160,28 @@ def scaling(quick: bool = False, seed: int = SEED, brute_budget_ms: float = 2000
     fits = {}
     for m in ("bins", "quadtree", "loose_quadtree", "brute", "pipeline"):
         pts = [(r["n"], r[f"{m}_ms"]) for r in rows if r[f"{m}_ms"] is not None]
-        fits[m] = {"all": _fit_power(pts), "n_ge_1000": _fit_power([p for p in pts if p[0] >= 1000]),
-                   "two_largest": _fit_power(pts[-2:])}
-    exponents = {f"exponent{suffix}": {m: (f[key] or {}).get("k") for m, f in fits.items()}
-                 for key, suffix in (("all", ""), ("n_ge_1000", "_n_ge_1000"), ("two_largest", "_two_largest"))}
-    return {"frames": frames, "warmup": warmup, "brute_budget_ms": brute_budget_ms, "brute_skipped_n": skipped,
-            **exponents, "fit": fits, "table": rows}
+        fits[m] = {
+            "all": _fit_power(pts),
+            "n_ge_1000": _fit_power([p for p in pts if p[0] >= 1000]),
+            "two_largest": _fit_power(pts[-2:]),
+        }
+    exponents = {
+        f"exponent{suffix}": {m: (f[key] or {}).get("k") for m, f in fits.items()}
+        for key, suffix in (("all", ""), ("n_ge_1000", "_n_ge_1000"), ("two_largest", "_two_largest"))
+    }
+    return {
+        "frames": frames,
+        "warmup": warmup,
+        "brute_budget_ms": brute_budget_ms,
+        "brute_skipped_n": skipped,
+        **exponents,
+        "fit": fits,
+        "table": rows,
+    }
 
 
 # -- 2. bin size ------------------------------------------------------------------------------
+
 
 def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
     """Median frame time of the default pipeline against the bin side, in units of object size.
@@ -184,10 +203,14 @@ def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
     boxes = aabbs(pose(scene.shapes, scene.armature, pos, ang, "lut"))
     extent = np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1])
     ref = float(np.median(extent))
-    layer_ext = {name: float(np.median(extent[scene.layer == k]))
-                 for k, name in enumerate(scene.table.names) if np.any(scene.layer == k)}
-    pipes: dict[float | str, Pipeline] = {f: Pipeline(scene.shapes, scene.table, tiers=DEFAULT, bin_size=f * ref)
-                                          for f in factors}
+    layer_ext = {
+        name: float(np.median(extent[scene.layer == k]))
+        for k, name in enumerate(scene.table.names)
+        if np.any(scene.layer == k)
+    }
+    pipes: dict[float | str, Pipeline] = {
+        f: Pipeline(scene.shapes, scene.table, tiers=DEFAULT, bin_size=f * ref) for f in factors
+    }
     pipes["auto"] = Pipeline(scene.shapes, scene.table, tiers=DEFAULT)
 
     def jobs():
@@ -203,23 +226,38 @@ def bin_size_curve(quick: bool = False, seed: int = SEED) -> dict:
     for key in pipes:
         out, tier_ms, sizes = zip(*kept[key])
         size = _median(sizes)
-        rows.append({"setting": "auto" if key == "auto" else "fixed", "factor": size / ref if key == "auto" else key,
-                     "bin_px": size,
-                     "median_ms": _median(ms[key]), "bins_ms": _median(tier_ms), "bins_pairs": int(np.median(out))})
+        rows.append(
+            {
+                "setting": "auto" if key == "auto" else "fixed",
+                "factor": size / ref if key == "auto" else key,
+                "bin_px": size,
+                "median_ms": _median(ms[key]),
+                "bins_ms": _median(tier_ms),
+                "bins_pairs": int(np.median(out)),
+            }
+        )
     fixed = rows[:-1]
     best = min(fixed, key=lambda r: r["median_ms"])
     auto = rows[-1]
     return {
-        "enemies": enemies, "bullets": bullets, "frames": frames,
-        "reference_extent_px": ref, "layer_median_extent_px": layer_ext,
-        "best_factor": best["factor"], "best_ms": best["median_ms"],
+        "enemies": enemies,
+        "bullets": bullets,
+        "frames": frames,
+        "reference_extent_px": ref,
+        "layer_median_extent_px": layer_ext,
+        "best_factor": best["factor"],
+        "best_ms": best["median_ms"],
         "within_5pct_of_best": [r["factor"] for r in fixed if r["median_ms"] <= 1.05 * best["median_ms"]],
-        "auto_size_px": auto["bin_px"], "auto_factor": auto["factor"], "auto_ms": auto["median_ms"],
-        "auto_over_best": auto["median_ms"] / best["median_ms"], "table": rows,
+        "auto_size_px": auto["bin_px"],
+        "auto_factor": auto["factor"],
+        "auto_ms": auto["median_ms"],
+        "auto_over_best": auto["median_ms"] / best["median_ms"],
+        "table": rows,
     }
 
 
 # -- 3. rotation table ------------------------------------------------------------------------
+
 
 def rotation_table(quick: bool = False, seed: int = SEED) -> dict:
     """What posing with the paper's integer-degree table (``lut``) moves, against ``exact``.
@@ -256,8 +294,16 @@ def rotation_table(quick: bool = False, seed: int = SEED) -> dict:
         bound = lut_max_displacement(arm.radius)
         chord = 2.0 * arm.radius * math.sin(math.radians(0.25))  # half a degree of rotation
         top = float(d[worst])
-        rows.append({"radius": arm.radius, "max_displacement_px": top, "worst_angle_deg": float(angles[worst]),
-                     "bound_px": bound, "ratio": top / bound, "excess_over_chord_px": top - chord})
+        rows.append(
+            {
+                "radius": arm.radius,
+                "max_displacement_px": top,
+                "worst_angle_deg": float(angles[worst]),
+                "bound_px": bound,
+                "ratio": top / bound,
+                "excess_over_chord_px": top - chord,
+            }
+        )
 
     enemies, bullets = (50, 2000) if quick else (200, 10_000)
     frames = 5 if quick else 30
@@ -276,18 +322,27 @@ def rotation_table(quick: bool = False, seed: int = SEED) -> dict:
         only_exact += b
         per_frame.append(a + b)
     return {
-        "angle_step_deg": step, "angles": len(angles),
+        "angle_step_deg": step,
+        "angles": len(angles),
         "max_ratio": max(r["ratio"] for r in rows),
-        "scene": {"enemies": enemies, "bullets": bullets, "frames": frames, "hits_exact": hits_exact,
-                  "hits_lut": hits_lut, "only_lut": only_lut, "only_exact": only_exact,
-                  "flipped": only_lut + only_exact,
-                  "flipped_fraction": (only_lut + only_exact) / hits_exact if hits_exact else 0.0,
-                  "flipped_per_frame_max": max(per_frame)},
+        "scene": {
+            "enemies": enemies,
+            "bullets": bullets,
+            "frames": frames,
+            "hits_exact": hits_exact,
+            "hits_lut": hits_lut,
+            "only_lut": only_lut,
+            "only_exact": only_exact,
+            "flipped": only_lut + only_exact,
+            "flipped_fraction": (only_lut + only_exact) / hits_exact if hits_exact else 0.0,
+            "flipped_per_frame_max": max(per_frame),
+        },
         "table": rows,
     }
 
 
 # -- 4. stability of the paper's segment test -------------------------------------------------
+
 
 def _uniform(rng, n, scale=100.0):
     return rng.uniform(-1, 1, (n, 4, 2)) * scale
@@ -297,7 +352,7 @@ def _collinear(rng, n, touching):
     """Integer points on a line ``p + t u`` (exact in float64), scaled by a power of two.
     Overlapping: segments [t0, t2], [t1, t3] or nested [t0, t3], [t1, t2]; touching:
     [t0, t1], [t1, t2]."""
-    p = rng.integers(-2**20, 2**20, (n, 1, 2))
+    p = rng.integers(-(2**20), 2**20, (n, 1, 2))
     u = rng.integers(-64, 65, (n, 1, 2))
     u[(u == 0).all(axis=2)] = (1, 0)
     t = np.sort(np.stack([rng.choice(2001, 4, replace=False) - 1000 for _ in range(n)]), axis=1)
@@ -324,7 +379,7 @@ def _on_segment(rng, n):
     u[u == 0] = 1  # both components non-zero: not axis-parallel
     k = rng.integers(2, 2**wk + 2)
     j = rng.integers(1, k)
-    a = rng.integers(-2**30, 2**30, (n, 2))
+    a = rng.integers(-(2**30), 2**30, (n, 2))
     s = rng.integers(1, 2**ww + 1) * rng.choice([-1, 1], n)
     r = rng.integers(-(2**ww), 2**ww + 1)
     c = a + j[:, None] * u
@@ -425,8 +480,16 @@ def stability(quick: bool = False, seed: int = SEED) -> dict:
     for index, (family, make) in enumerate(FAMILIES):
         rng = np.random.default_rng([seed, index])
         pts = _shuffle_roles(rng, make(rng, count)).tolist()
-        row: dict[str, Any] = {"family": family, "cases": count, "exact_true": 0, "disagreements": 0, "false_negatives": 0,
-               "false_positives": 0, "degenerate": 0, "degenerate_disagreements": 0}
+        row: dict[str, Any] = {
+            "family": family,
+            "cases": count,
+            "exact_true": 0,
+            "disagreements": 0,
+            "false_negatives": 0,
+            "false_positives": 0,
+            "degenerate": 0,
+            "degenerate_disagreements": 0,
+        }
         for a, b, c, d in pts:
             want, got = segments_intersect(a, b, c, d), paper_segments_intersect(a, b, c, d)
             degenerate = _degenerate(a, b, c, d)
@@ -442,6 +505,7 @@ def stability(quick: bool = False, seed: int = SEED) -> dict:
 
 
 # -- 5. fidelity of the shipped armatures -----------------------------------------------------
+
 
 def fidelity(quick: bool = False) -> dict:
     """How well each shipped armature matches its sprite's opaque pixels.
@@ -467,10 +531,19 @@ def fidelity(quick: bool = False) -> dict:
         for key, arm in entry.frames[0].items():
             fit = shape_fit(arm.vertices, opaque)
             a, o = fit.shape_px, fit.opaque_px
-            rows.append({"armature": name if key == "hit" else f"{name}.{key}", "sprite": entry.sprite,
-                         "size_px": f"{width}x{height}", "opaque_px": o, "armature_px": a,
-                         "area_ratio": a / o if o else None, "iou": fit.iou if fit.union_px else None,
-                         "on_opaque": fit.on_opaque if a else None, "coverage": fit.coverage if o else None})
+            rows.append(
+                {
+                    "armature": name if key == "hit" else f"{name}.{key}",
+                    "sprite": entry.sprite,
+                    "size_px": f"{width}x{height}",
+                    "opaque_px": o,
+                    "armature_px": a,
+                    "area_ratio": a / o if o else None,
+                    "iou": fit.iou if fit.union_px else None,
+                    "on_opaque": fit.on_opaque if a else None,
+                    "coverage": fit.coverage if o else None,
+                }
+            )
     by_name = {r["armature"]: r for r in rows}
     return {
         "alpha_threshold": ALPHA_THRESHOLD,
@@ -481,6 +554,7 @@ def fidelity(quick: bool = False) -> dict:
 
 
 # -- rendering --------------------------------------------------------------------------------
+
 
 def _cell(v) -> str:
     if v is None:
@@ -503,7 +577,10 @@ def markdown(section_name: str, result: dict) -> str:
     rows = result.get("table") or []
     if rows:
         cols = list(dict.fromkeys(k for r in rows for k in r))
-        lines += ["", "| " + " | ".join(cols) + " |",
-                  "|" + "|".join("---" if isinstance(rows[0].get(c), str) else "---:" for c in cols) + "|"]
+        lines += [
+            "",
+            "| " + " | ".join(cols) + " |",
+            "|" + "|".join("---" if isinstance(rows[0].get(c), str) else "---:" for c in cols) + "|",
+        ]
         lines += ["| " + " | ".join(_cell(r.get(c)) for c in cols) + " |" for r in rows]
     return "\n".join(lines) + "\n"

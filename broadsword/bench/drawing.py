@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import time
+from functools import partial
 
 import numpy as np
 
@@ -35,8 +36,12 @@ def run_bullet_drawing(n: int = 10_000, frames: int = 30, seed: int = 0) -> dict
     rng = np.random.default_rng(seed)
     kinds = rng.integers(0, len(names), n)
     sprites = BulletSprites(bank, names, frames_of)
-    times: dict[str, list[float]] = {"one_by_one_list": [], "batched_list": [], "one_by_one_draw": [],
-                                     "batched_draw": []}
+    times: dict[str, list[float]] = {
+        "one_by_one_list": [],
+        "batched_list": [],
+        "one_by_one_draw": [],
+        "batched_draw": [],
+    }
     for f in range(frames + 2):  # two warm-up frames fill the rotation caches
         centres = rng.random((n, 2)) * FIELD
         angles = rng.random(n) * 720 - 360
@@ -49,8 +54,10 @@ def run_bullet_drawing(n: int = 10_000, frames: int = 30, seed: int = 0) -> dict
         row["batched_list"] = time.perf_counter() - t0
         if f == 0 and [(i, tuple(p)) for i, p in ref] != [(i, tuple(p)) for i, p in got]:
             raise AssertionError("the batched blit list differs from the one-by-one reference")
-        for way, make in (("one_by_one_draw", lambda: blit_one_by_one(bank, names, frames_of, kinds, angles, centres)),
-                          ("batched_draw", lambda: sprites.blits(kinds, angles, centres))):
+        for way, make in (
+            ("one_by_one_draw", partial(blit_one_by_one, bank, names, frames_of, kinds, angles, centres)),
+            ("batched_draw", partial(sprites.blits, kinds, angles, centres)),
+        ):
             screen.fill((0, 0, 0))
             t0 = time.perf_counter()
             screen.fblits(make())
@@ -59,15 +66,23 @@ def run_bullet_drawing(n: int = 10_000, frames: int = 30, seed: int = 0) -> dict
             for k, v in row.items():
                 times[k].append(v)
     pygame.quit()
-    return {"bullets": n, "frames": frames,
-            **{f"{k}_us_per_bullet": float(np.median(v) * 1e6 / n) for k, v in times.items()}}
+    return {
+        "bullets": n,
+        "frames": frames,
+        **{f"{k}_us_per_bullet": float(np.median(v) * 1e6 / n) for k, v in times.items()},
+    }
 
 
 def markdown(r: dict) -> str:
-    rows = [("blit list only", r["one_by_one_list_us_per_bullet"], r["batched_list_us_per_bullet"]),
-            ("list + fblits", r["one_by_one_draw_us_per_bullet"], r["batched_draw_us_per_bullet"])]
-    out = [f"\n## Drawing {r['bullets']:,} bullets ({r['frames']} frames, us per bullet)\n",
-           "| part | one by one | batched | ratio |", "|---|---:|---:|---:|"]
+    rows = [
+        ("blit list only", r["one_by_one_list_us_per_bullet"], r["batched_list_us_per_bullet"]),
+        ("list + fblits", r["one_by_one_draw_us_per_bullet"], r["batched_draw_us_per_bullet"]),
+    ]
+    out = [
+        f"\n## Drawing {r['bullets']:,} bullets ({r['frames']} frames, us per bullet)\n",
+        "| part | one by one | batched | ratio |",
+        "|---|---:|---:|---:|",
+    ]
     out += [f"| {name} | {a:.3f} | {b:.3f} | {b / a:.2f} |" for name, a, b in rows]
     return "\n".join(out)
 

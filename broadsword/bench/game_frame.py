@@ -47,8 +47,9 @@ def _present(screen) -> None:
     pygame.display.flip()
 
 
-def run_game_frames(level: str | Path = "3-broadsword", bullets: int | None = None, warmup: int = 660,
-                    frames: int = 60, seed: int = 0) -> dict:
+def run_game_frames(
+    level: str | Path = "3-broadsword", bullets: int | None = None, warmup: int = 660, frames: int = 60, seed: int = 0
+) -> dict:
     """Play ``level`` (a shipped level's name or a file) until it shows ``bullets`` enemy
     bullets (at most ``warmup`` steps; with ``bullets=None``, exactly ``warmup`` steps),
     then time ``frames`` whole frames. Returns the ``game_frame`` entry of DESIGN.md
@@ -100,21 +101,34 @@ def run_game_frames(level: str | Path = "3-broadsword", bullets: int | None = No
     a = np.array(rows)
     med = np.median(a, axis=0)
     total = a.sum(axis=1)
-    return {"bullets": int(np.median(counts)), "median_ms": float(np.median(total)), "step_ms": float(med[0]),
-            "collision_ms": float(med[1]), "render_ms": float(med[2]), "present_ms": float(med[3]),
-            "max_ms": float(total.max()), "level": Path(str(level)).stem, "frames": frames, "warmup": steps,
-            "player_bullets": int(np.median(own)), "game_over": bool(world.over),
-            "peak_bullets": max(peak, max(counts)),  # the most this run saw, and at which step
-            "peak_frame": peak_step if peak >= max(counts) else steps + 1 + int(np.argmax(counts)),
-            "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else None}
+    return {
+        "bullets": int(np.median(counts)),
+        "median_ms": float(np.median(total)),
+        "step_ms": float(med[0]),
+        "collision_ms": float(med[1]),
+        "render_ms": float(med[2]),
+        "present_ms": float(med[3]),
+        "max_ms": float(total.max()),
+        "level": Path(str(level)).stem,
+        "frames": frames,
+        "warmup": steps,
+        "player_bullets": int(np.median(own)),
+        "game_over": bool(world.over),
+        "peak_bullets": max(peak, max(counts)),  # the most this run saw, and at which step
+        "peak_frame": peak_step if peak >= max(counts) else steps + 1 + int(np.argmax(counts)),
+        "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else None,
+    }
 
 
 def run_all(quick: bool = False, seed: int = 0) -> list[dict]:
     """The ``game_frame`` list: the shipped bullet-hell stage at its peak, then each stress
     scene at its count (5,000 only in quick mode, briefly)."""
     out = [run_game_frames("3-broadsword", None, 120 if quick else 3240, 10 if quick else 60, seed)]
-    out[0]["where"] = ("--quick: early in the level, NOT its bullet-hell peak" if quick
-                       else "the level's bullet-hell peak (54 s in; docs/PERFORMANCE.md)")
+    out[0]["where"] = (
+        "--quick: early in the level, NOT its bullet-hell peak"
+        if quick
+        else "the level's bullet-hell peak (54 s in; docs/PERFORMANCE.md)"
+    )
     for count, path in STRESS_LEVELS.items():
         if quick and count > 5000:
             continue
@@ -124,13 +138,18 @@ def run_all(quick: bool = False, seed: int = 0) -> list[dict]:
 
 
 def markdown(entries: list[dict]) -> str:
-    lines = ["\n### Whole game frame (autopilot; step, collision with the game's sweeps, render, present)\n",
-             "| scene | where | enemy bullets | most seen (step) | warm-up steps | frames | median ms | step | collision "
-             "| render | present | max ms | load |", "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    lines = [
+        "\n### Whole game frame (autopilot; step, collision with the game's sweeps, render, present)\n",
+        "| scene | where | enemy bullets | most seen (step) | warm-up steps | frames | median ms | step | collision "
+        "| render | present | max ms | load |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
     for e in entries:
         la = f"{e['load_average']:.1f}" if e.get("load_average") is not None else ""
-        lines.append(f"| {e['level']} | {e.get('where', '')} | {e['bullets']:,} | {e['peak_bullets']:,} ({e['peak_frame']}) "
-                     f"| {e['warmup']} | {e['frames']} | {e['median_ms']:.2f} | "
-                     f"{e['step_ms']:.2f} | {e['collision_ms']:.2f} | {e['render_ms']:.2f} | {e['present_ms']:.2f} | "
-                     f"{e['max_ms']:.2f} | {la} |")
+        lines.append(
+            f"| {e['level']} | {e.get('where', '')} | {e['bullets']:,} | {e['peak_bullets']:,} ({e['peak_frame']}) "
+            f"| {e['warmup']} | {e['frames']} | {e['median_ms']:.2f} | "
+            f"{e['step_ms']:.2f} | {e['collision_ms']:.2f} | {e['render_ms']:.2f} | {e['present_ms']:.2f} | "
+            f"{e['max_ms']:.2f} | {la} |"
+        )
     return "\n".join(lines)

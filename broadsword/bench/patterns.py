@@ -63,19 +63,30 @@ def run_pattern_frames(bullets: int = 2000, frames: int = 120, seed: int = 0) ->
         times.append((time.perf_counter() - t0) * 1e3)
         machine_runs.append(due)
     changing = int(np.count_nonzero(eng.bullets.ch_on[: eng.bullets.n].any(axis=1)))
-    return {"bullets": int(eng.bullets.n), "frames": frames, "pattern_median_ms": float(np.median(times)),
-            "pattern_max_ms": float(np.max(times)), "start_ms": start_ms, "machine_runs_median": float(np.median(machine_runs)),
-            "changing_at_end": changing, "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None}
+    return {
+        "bullets": int(eng.bullets.n),
+        "frames": frames,
+        "pattern_median_ms": float(np.median(times)),
+        "pattern_max_ms": float(np.max(times)),
+        "start_ms": start_ms,
+        "machine_runs_median": float(np.median(machine_runs)),
+        "changing_at_end": changing,
+        "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+    }
 
 
 def markdown(result: dict, game: dict | None) -> str:
     frame = f"{game['median_ms']:.2f}" if game else "(not run)"
     la = result.get("load_average")
     load = f"; host load average {la[0]:.2f} over 1 minute" if la else ""
-    return "\n".join([
-        f"\n### BulletML patterns: {result['bullets']} live bullets, each mid-action "
-        f"(changeDirection, changeSpeed or accel over 60-120 frames), {result['frames']} frames{load}\n",
-        "| pattern median ms per frame | pattern max ms | first frame (all start) ms | machine runs per frame (median) "
-        "| whole game frame median ms |", "|---:|---:|---:|---:|---:|",
-        f"| {result['pattern_median_ms']:.3f} | {result['pattern_max_ms']:.2f} | {result['start_ms']:.2f} | "
-        f"{result['machine_runs_median']:.0f} | {frame} |"])
+    return "\n".join(
+        [
+            f"\n### BulletML patterns: {result['bullets']} live bullets, each mid-action "
+            f"(changeDirection, changeSpeed or accel over 60-120 frames), {result['frames']} frames{load}\n",
+            "| pattern median ms per frame | pattern max ms | first frame (all start) ms | machine runs per frame (median) "
+            "| whole game frame median ms |",
+            "|---:|---:|---:|---:|---:|",
+            f"| {result['pattern_median_ms']:.3f} | {result['pattern_max_ms']:.2f} | {result['start_ms']:.2f} | "
+            f"{result['machine_runs_median']:.0f} | {frame} |",
+        ]
+    )

@@ -54,8 +54,11 @@ def convex_pieces(vertices: np.ndarray) -> list[np.ndarray]:
             if orient(*v[a], *v[b], *v[c]) <= 0:
                 continue  # reflex or flat corner: not an ear
             if any(
-                orient(*v[a], *v[b], *v[o]) >= 0 and orient(*v[b], *v[c], *v[o]) >= 0 and orient(*v[c], *v[a], *v[o]) >= 0
-                for o in idx if o not in (a, b, c)
+                orient(*v[a], *v[b], *v[o]) >= 0
+                and orient(*v[b], *v[c], *v[o]) >= 0
+                and orient(*v[c], *v[a], *v[o]) >= 0
+                for o in idx
+                if o not in (a, b, c)
             ):
                 continue  # another vertex inside or on the triangle
             pieces.append([a, b, c])
@@ -79,7 +82,7 @@ def convex_pieces(vertices: np.ndarray) -> list[np.ndarray]:
                     u, w = A[s], A[(s + 1) % len(A)]
                     if w in B and B[(B.index(w) + 1) % len(B)] == u:  # shared diagonal u-w
                         t = B.index(u)
-                        cand = A[s + 1:] + A[:s + 1] + (B[t:] + B[:t])[1:-1]  # w..u then B's u..w inside
+                        cand = A[s + 1 :] + A[: s + 1] + (B[t:] + B[:t])[1:-1]  # w..u then B's u..w inside
                         if convex(cand):
                             pieces[p] = cand
                             del pieces[q]
@@ -414,7 +417,7 @@ class PygameMaskPeer(Peer):
                 rows, cols = np.flatnonzero(b.any(axis=1)), np.flatnonzero(b.any(axis=0))
                 if not len(rows):
                     continue  # no pixel: a zero-size rect never collides
-                sub = b[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1]
+                sub = b[rows[0] : rows[-1] + 1, cols[0] : cols[-1] + 1]
                 key = a * 360 + d
                 rgba = np.zeros(sub.shape + (4,), dtype=np.uint8)
                 rgba[..., 3] = sub * np.uint8(255)

@@ -31,7 +31,11 @@ def pixel_truth(shapes, armature, pos, ang, layer, table: LayerTable) -> set[tup
         lo = np.floor(np.maximum(boxes[i, :2], boxes[j, :2]))
         hi = np.ceil(np.minimum(boxes[i, 2:], boxes[j, 2:]))
         w, h = (hi - lo).astype(int)
-        if w > 0 and h > 0 and (rasterise(polys[i], lo[0], lo[1], w, h) & rasterise(polys[j], lo[0], lo[1], w, h)).any():
+        if (
+            w > 0
+            and h > 0
+            and (rasterise(polys[i], lo[0], lo[1], w, h) & rasterise(polys[j], lo[0], lo[1], w, h)).any()
+        ):
             hits.add((i, j))
     return hits
 

@@ -24,24 +24,75 @@ the game. Modules, one idea each:
 """
 
 from .armature import Armature, convex_hull, lut_max_displacement
-from .broadphase import (AUTO_BIN_FACTOR, BROAD_PHASES, BinGrid, BroadPhase, BroadPhaseStats, BruteForce, GridLayout,
-                         LooseQuadTree, QuadTree, TreeLayout, auto_bin_size)
+from .broadphase import (
+    AUTO_BIN_FACTOR,
+    BROAD_PHASES,
+    BinGrid,
+    BroadPhase,
+    BroadPhaseStats,
+    BruteForce,
+    GridLayout,
+    LooseQuadTree,
+    QuadTree,
+    TreeLayout,
+    auto_bin_size,
+)
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
 from .layers import LayerTable
 from .narrow import collide_pairs, paper_collide_padded, polygons_collide_padded
-from .pixels import MaskCache, rasterise
 from .pipeline import Pipeline
-from .tiers import BOUND_TIERS, BROAD_TIERS, EXACT_TIERS, LAST_TIERS, TIERS, Tier, TierKind, check_tiers
+from .pixels import MaskCache, rasterise
 from .posing import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
-from .workspace import Workspace, retain_heap
 from .predicates import orient, paper_segments_intersect, point_in_polygon, polygons_collide, segments_intersect
+from .tiers import BOUND_TIERS, BROAD_TIERS, EXACT_TIERS, LAST_TIERS, TIERS, Tier, TierKind, check_tiers
+from .workspace import Workspace, retain_heap
 
 __all__ = [
-    "AUTO_BIN_FACTOR", "Armature", "ArmatureSet", "BinGrid", "BroadPhase", "BroadPhaseStats", "BruteForce", "BROAD_PHASES",
-    "BROAD_TIERS", "BOUND_TIERS", "EXACT_TIERS", "FrameObjects", "FrameResult", "GridLayout", "LAST_TIERS", "TIERS", "Tier",
-    "TierKind", "TreeLayout", "check_tiers", "kdops", "kdops_overlap", "LayerTable", "MaskCache", "paper_collide_padded", "rasterise", "LooseQuadTree", "Pipeline", "Posed", "QuadTree", "ROTATION_MODES",
-    "TierStats", "auto_bin_size", "collide_pairs", "convex_hull", "lut_max_displacement", "orient",
-    "paper_segments_intersect", "point_in_polygon", "polygons_collide", "polygons_collide_padded",
-    "pose", "retain_heap", "rotation_table", "segments_intersect", "Workspace",
+    "AUTO_BIN_FACTOR",
+    "Armature",
+    "ArmatureSet",
+    "BinGrid",
+    "BroadPhase",
+    "BroadPhaseStats",
+    "BruteForce",
+    "BROAD_PHASES",
+    "BROAD_TIERS",
+    "BOUND_TIERS",
+    "EXACT_TIERS",
+    "FrameObjects",
+    "FrameResult",
+    "GridLayout",
+    "LAST_TIERS",
+    "TIERS",
+    "Tier",
+    "TierKind",
+    "TreeLayout",
+    "check_tiers",
+    "kdops",
+    "kdops_overlap",
+    "LayerTable",
+    "MaskCache",
+    "paper_collide_padded",
+    "rasterise",
+    "LooseQuadTree",
+    "Pipeline",
+    "Posed",
+    "QuadTree",
+    "ROTATION_MODES",
+    "TierStats",
+    "auto_bin_size",
+    "collide_pairs",
+    "convex_hull",
+    "lut_max_displacement",
+    "orient",
+    "paper_segments_intersect",
+    "point_in_polygon",
+    "polygons_collide",
+    "polygons_collide_padded",
+    "pose",
+    "retain_heap",
+    "rotation_table",
+    "segments_intersect",
+    "Workspace",
 ]

@@ -27,7 +27,6 @@ The rules, everywhere:
 wrong type, still caught by code written when every refusal was a ``ValueError``.
 """
 
-
 import math
 import numbers
 from typing import NamedTuple
@@ -36,8 +35,16 @@ import numpy as np
 
 __all__ = ["ArgumentTypeError", "Frame", "flags", "frame", "ids", "point", "points", "polygon", "real_array", "reals"]
 
-_KINDS = {"b": "booleans", "c": "complex numbers", "U": "strings", "S": "bytes", "O": "Python objects",
-          "M": "datetimes", "m": "timedeltas", "V": "records"}
+_KINDS = {
+    "b": "booleans",
+    "c": "complex numbers",
+    "U": "strings",
+    "S": "bytes",
+    "O": "Python objects",
+    "M": "datetimes",
+    "m": "timedeltas",
+    "V": "records",
+}
 
 
 class ArgumentTypeError(TypeError, ValueError):
@@ -180,8 +187,9 @@ class Frame(NamedTuple):
     swept: np.ndarray | None  #: (n,) bool; None when nothing is swept
 
 
-def frame(armature, layer, positions, angles, prev_positions, prev_angles, swept, *,
-          armatures: int, layers: int | None) -> Frame:
+def frame(
+    armature, layer, positions, angles, prev_positions, prev_angles, swept, *, armatures: int, layers: int | None
+) -> Frame:
     """Check one frame's arguments (``layer`` and ``layers`` ``None`` for :func:`pose`).
 
     ``n`` is the length of ``armature``; every other per-object argument must have it.

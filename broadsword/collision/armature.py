@@ -124,9 +124,7 @@ class Armature:
         same = np.flatnonzero((v == nxt).all(axis=1))
         if same.size:
             i = int(same[0])
-            raise ValueError(
-                f"{label}: vertex {(i + 1) % n} repeats vertex {i} {v[i].tolist()} (zero-length edge)"
-            )
+            raise ValueError(f"{label}: vertex {(i + 1) % n} repeats vertex {i} {v[i].tolist()} (zero-length edge)")
         _check_simple(v, label)
         area2 = _signed_area2(v)
         if area2 == 0.0:
@@ -156,7 +154,7 @@ class Armature:
         return float(_signed_area2(self.vertices) / 2)
 
     @classmethod
-    def box(cls, width: float, height: float, name: str = "box") -> "Armature":
+    def box(cls, width: float, height: float, name: str = "box") -> Armature:
         """An axis-aligned ``width`` x ``height`` rectangle centred on the origin."""
         w, h = width / 2.0, height / 2.0
         return cls([(-w, -h), (w, -h), (w, h), (-w, h)], name=name)

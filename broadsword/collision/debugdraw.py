@@ -12,8 +12,9 @@ tuples of ints in 0..255.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Protocol, Sequence, Union, runtime_checkable
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -38,7 +39,9 @@ class DebugDraw(Protocol):
     def segments(self, starts: np.ndarray, ends: np.ndarray, colour: RGB, width: int = 1) -> None:
         """Segments from ``starts`` (m, 2) to ``ends`` (m, 2)."""
 
-    def boxes(self, boxes: np.ndarray | Sequence[Sequence[float]], colours: Colours, width: int = 1, alpha: int = 255) -> None:
+    def boxes(
+        self, boxes: np.ndarray | Sequence[Sequence[float]], colours: Colours, width: int = 1, alpha: int = 255
+    ) -> None:
         """Axis-aligned boxes, (m, 4) rows ``(xmin, ymin, xmax, ymax)``."""
 
     def circles(self, centres: np.ndarray, radii: np.ndarray, colours: Colours, width: int = 1) -> None:
@@ -106,9 +109,12 @@ def draw_layout(draw: DebugDraw, layout: GridLayout | TreeLayout | None, colours
         size, (ox, oy) = layout.size, layout.origin
         xs = ox + np.arange(ncols + 1) * size
         ys = oy + np.arange(nrows + 1) * size
-        starts = np.concatenate([np.column_stack([xs, np.full_like(xs, oy)]), np.column_stack([np.full_like(ys, ox), ys])])
-        ends = np.concatenate([np.column_stack([xs, np.full_like(xs, ys[-1])]),
-                               np.column_stack([np.full_like(ys, xs[-1]), ys])])
+        starts = np.concatenate(
+            [np.column_stack([xs, np.full_like(xs, oy)]), np.column_stack([np.full_like(ys, ox), ys])]
+        )
+        ends = np.concatenate(
+            [np.column_stack([xs, np.full_like(xs, ys[-1])]), np.column_stack([np.full_like(ys, xs[-1]), ys])]
+        )
         draw.segments(starts, ends, colours.grid)
     elif isinstance(layout, TreeLayout):
         draw.boxes(layout.node_boxes(), colours.grid)
@@ -131,7 +137,7 @@ def draw_frame(draw: DebugDraw, result: FrameResult, colours: FrameColours) -> N
     owners, polys = posed_polygons(result)
     start = 0
     for batch in polys:
-        who = owners[start:start + len(batch)]
+        who = owners[start : start + len(batch)]
         start += len(batch)
         tint = colours.of_layer(layer[who])
         swept = objects.swept[who].tolist() if objects.swept is not None else [False] * len(who)

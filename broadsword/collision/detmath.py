@@ -45,8 +45,18 @@ import math
 
 import numpy as np
 
-__all__ = ["atan2_deg", "ceil_log2", "cos_deg", "floor_log2", "heading_deg", "norm", "rotation_table", "sin_deg", "sincos_deg",
-           "velocity_deg"]
+__all__ = [
+    "atan2_deg",
+    "ceil_log2",
+    "cos_deg",
+    "floor_log2",
+    "heading_deg",
+    "norm",
+    "rotation_table",
+    "sin_deg",
+    "sincos_deg",
+    "velocity_deg",
+]
 
 # pi / 180 and 180 / pi as double-doubles (hi + lo, |lo| <= ulp(hi) / 2); checked against
 # an 80-digit oracle in the tests.
@@ -56,13 +66,38 @@ _DEG_HI = float.fromhex("0x1.ca5dc1a63c1f8p+5")
 _DEG_LO = float.fromhex("-0x1.1e7ab456405f9p-49")
 
 # atan(k / 8) in degrees, k = 0..8, as double-doubles (the arctangent's breakpoints).
-_ATAN_HI = np.array([float.fromhex(h) for h in (
-    "0x0p+0", "0x1.c80044927fe83p+2", "0x1.c128e80fae02ep+3", "0x1.48e58fac13547p+4", "0x1.a90a731a61dc4p+4",
-    "0x1.000b0659f5545p+5", "0x1.26f58ce59e23cp+5", "0x1.497cc65551cf8p+5", "0x1.68p+5")])
-_ATAN_LO = np.array([float.fromhex(h) for h in (
-    "0x0p+0", "-0x1.2a9346eb4b87bp-53", "-0x1.0fc10e257c651p-53", "0x1.bdef92fae944fp-51",
-    "-0x1.80b27b26e182bp-51", "0x1.0e62435c62f2fp-49", "0x1.80b27b26e182bp-50", "-0x1.2dd089737cc28p-49",
-    "0x0p+0")])
+_ATAN_HI = np.array(
+    [
+        float.fromhex(h)
+        for h in (
+            "0x0p+0",
+            "0x1.c80044927fe83p+2",
+            "0x1.c128e80fae02ep+3",
+            "0x1.48e58fac13547p+4",
+            "0x1.a90a731a61dc4p+4",
+            "0x1.000b0659f5545p+5",
+            "0x1.26f58ce59e23cp+5",
+            "0x1.497cc65551cf8p+5",
+            "0x1.68p+5",
+        )
+    ]
+)
+_ATAN_LO = np.array(
+    [
+        float.fromhex(h)
+        for h in (
+            "0x0p+0",
+            "-0x1.2a9346eb4b87bp-53",
+            "-0x1.0fc10e257c651p-53",
+            "0x1.bdef92fae944fp-51",
+            "-0x1.80b27b26e182bp-51",
+            "0x1.0e62435c62f2fp-49",
+            "0x1.80b27b26e182bp-50",
+            "-0x1.2dd089737cc28p-49",
+            "0x0p+0",
+        )
+    ]
+)
 _ATAN_HI_LIST = tuple(_ATAN_HI.tolist())  # the same, for the scalar path
 _ATAN_LO_LIST = tuple(_ATAN_LO.tolist())
 
@@ -92,6 +127,7 @@ _TINY_SHIFT = 600  # scale for arctangents of ratios below 2**-500
 
 # --- error-free transformations (Dekker, Knuth); valid away from overflow --------------
 
+
 def _two_sum(a, b):
     """``(s, e)`` with ``s = fl(a + b)`` and ``s + e == a + b`` exactly (Knuth)."""
     s = a + b
@@ -116,6 +152,7 @@ def _two_prod(a, b):
 
 # --- input and output kinds --------------------------------------------------------------
 
+
 def _is_scalar(*args) -> bool:
     return all(isinstance(a, (int, float, np.generic)) for a in args)
 
@@ -127,8 +164,11 @@ def _elementwise(fn, *arrays: np.ndarray, outputs: int = 1):
     values = [fn(*args) for args in zip(*(a.ravel().tolist() for a in arrays))]
     if outputs == 1:
         return np.array(values, dtype=np.float64).reshape(shape)
-    return tuple(np.array(col, dtype=np.float64).reshape(shape) for col in zip(*values)) if values else \
-        tuple(np.empty(shape) for _ in range(outputs))
+    return (
+        tuple(np.array(col, dtype=np.float64).reshape(shape) for col in zip(*values))
+        if values
+        else tuple(np.empty(shape) for _ in range(outputs))
+    )
 
 
 def _out(value: np.ndarray, scalar: bool):
@@ -136,6 +176,7 @@ def _out(value: np.ndarray, scalar: bool):
 
 
 # --- sine and cosine ---------------------------------------------------------------------
+
 
 def _kernel_sin(x, y):
     """sin(x + y) for |x + y| <= ~pi/4, |y| <= ulp(x)/2 (fdlibm __kernel_sin, iy = 1)."""
@@ -231,6 +272,7 @@ def cos_deg(d):
 
 
 # --- arctangent --------------------------------------------------------------------------
+
 
 def _atan_deg_core(th, tl, c, atan_hi, atan_lo):
     """atan(th + tl) in degrees as a double-double, for 0 <= th <= 1, |tl| <= ulp(th),
@@ -384,6 +426,7 @@ def velocity_deg(heading, speed):
 
 
 # --- lengths and tables ------------------------------------------------------------------
+
 
 def norm(x, y):
     """``sqrt(x**2 + y**2)`` without spurious overflow or underflow (a deterministic hypot).

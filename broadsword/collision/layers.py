@@ -6,8 +6,8 @@ scene says so.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 import numpy as np
 
@@ -58,7 +58,7 @@ class LayerTable:
         object.__setattr__(self, "entries", tuple(entries))
 
     @classmethod
-    def shmup(cls) -> "LayerTable":
+    def shmup(cls) -> LayerTable:
         """The paper's table: the player against enemy ships and enemy bullets, enemy ships
         against player bullets; bullets never test bullets."""
         return cls(

@@ -114,7 +114,9 @@ def _block_body(pxe, pye, qxe, qye, err, ws):
         unc_a = ~(a_pos | a_neg) & valid_p[:, None, :]
         unc_b = ~(b_pos | b_neg) & valid_q[None, :, :]
         _exact_signs(sa, unc_a, pxe[:-1, None], pye[:-1, None], pxe[1:, None], pye[1:, None], qxe[None], qye[None])
-        _exact_signs(sb, unc_b, qxe[None, :-1], qye[None, :-1], qxe[None, 1:], qye[None, 1:], pxe[:, None], pye[:, None])
+        _exact_signs(
+            sb, unc_b, qxe[None, :-1], qye[None, :-1], qxe[None, 1:], qye[None, 1:], pxe[:, None], pye[:, None]
+        )
 
     # Edge i of P against edge j of Q (Cormen et al. 33.1 with exact signs).
     o1, o2 = sa[:, :-1], sa[:, 1:]  # Q_j, Q_j+1 against edge i of P
@@ -132,8 +134,15 @@ def _block_body(pxe, pye, qxe, qye, err, ws):
         touchy = np.flatnonzero(zero.any(axis=(0, 1)) & ~hit)
         if touchy.size:
             hit[touchy] = _touching(
-                o1[..., touchy], o2[..., touchy], o3[..., touchy], o4[..., touchy], valid[..., touchy],
-                pxe[:, touchy], pye[:, touchy], qxe[:, touchy], qye[:, touchy],
+                o1[..., touchy],
+                o2[..., touchy],
+                o3[..., touchy],
+                o4[..., touchy],
+                valid[..., touchy],
+                pxe[:, touchy],
+                pye[:, touchy],
+                qxe[:, touchy],
+                qye[:, touchy],
             )
 
     # Boundaries apart: containment by crossing number (Haines, Graphics Gems IV), with the
@@ -149,16 +158,19 @@ def _block_body(pxe, pye, qxe, qye, err, ws):
 
     degenerate = np.flatnonzero(~valid_p.any(0) | ~valid_q.any(0))
     for k in degenerate.tolist():
-        result[k] = _polygons_collide(list(zip(px[:, k].tolist(), py[:, k].tolist())),
-                                      list(zip(qx[:, k].tolist(), qy[:, k].tolist())))
+        result[k] = _polygons_collide(
+            list(zip(px[:, k].tolist(), py[:, k].tolist())), list(zip(qx[:, k].tolist(), qy[:, k].tolist()))
+        )
     return result
 
 
 def _within(px, py, ax, ay, bx, by):
     """p lies in the closed box spanned by a and b (exact comparisons), elementwise."""
     return (
-        (np.minimum(ax, bx) <= px) & (px <= np.maximum(ax, bx))
-        & (np.minimum(ay, by) <= py) & (py <= np.maximum(ay, by))
+        (np.minimum(ax, bx) <= px)
+        & (px <= np.maximum(ax, bx))
+        & (np.minimum(ay, by) <= py)
+        & (py <= np.maximum(ay, by))
     )
 
 
@@ -243,8 +255,9 @@ def paper_collide_padded(px, py, qx, qy) -> np.ndarray:
     return (pos | neg).any(axis=(0, 1))
 
 
-def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None,
-                  narrow=polygons_collide_padded) -> np.ndarray:
+def collide_pairs(
+    posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None, narrow=polygons_collide_padded
+) -> np.ndarray:
     """(m,) bool: collision of the posed polygons of each pair in ``pairs`` (m, 2).
 
     Pairs are grouped by the two objects' size classes so each group is one padded batch
@@ -263,7 +276,11 @@ def collide_pairs(posed: Posed, pairs: np.ndarray, workspace: Workspace | None =
         a, b = np.take(i, sel), np.take(j, sel)
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
-        batch = (np.take(posed.xs[k1], sa, axis=1), np.take(posed.ys[k1], sa, axis=1),
-                 np.take(posed.xs[k2], sb, axis=1), np.take(posed.ys[k2], sb, axis=1))
+        batch = (
+            np.take(posed.xs[k1], sa, axis=1),
+            np.take(posed.ys[k1], sa, axis=1),
+            np.take(posed.xs[k2], sb, axis=1),
+            np.take(posed.ys[k2], sb, axis=1),
+        )
         out[sel] = narrow(*batch, ws) if narrow is polygons_collide_padded else narrow(*batch)
     return out

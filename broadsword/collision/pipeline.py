@@ -16,7 +16,7 @@ objects that overlap for a single update pass through each other.
 from __future__ import annotations
 
 import time
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -31,8 +31,16 @@ from .posing import ROTATION_MODES, ArmatureSet, pose_checked
 from .tiers import BOUND_TIERS, EXACT_TIERS, LAST_TIERS, TIERS, Tier, TierInput, check_tiers
 from .workspace import Workspace
 
-__all__ = ["Pipeline", "FrameObjects", "FrameResult", "TierStats", "BOUND_TIERS", "EXACT_TIERS", "LAST_TIERS",
-           "collide_pairs"]
+__all__ = [
+    "Pipeline",
+    "FrameObjects",
+    "FrameResult",
+    "TierStats",
+    "BOUND_TIERS",
+    "EXACT_TIERS",
+    "LAST_TIERS",
+    "collide_pairs",
+]
 
 
 class Pipeline:
@@ -126,8 +134,12 @@ class Pipeline:
     def run(self, objects: FrameObjects) -> FrameResult:
         """Run every tier on ``objects`` (one frame, after all movement); see :meth:`step`."""
         layer = objects.layer
-        arguments.in_range(objects.armature, "armature", len(self.armatures), f"the pipeline has {len(self.armatures)} armatures")
-        arguments.in_range(layer, "layer", len(self.layers.names), f"the layer table has {len(self.layers.names)} layers")
+        arguments.in_range(
+            objects.armature, "armature", len(self.armatures), f"the pipeline has {len(self.armatures)} armatures"
+        )
+        arguments.in_range(
+            layer, "layer", len(self.layers.names), f"the layer table has {len(self.layers.names)} layers"
+        )
         n = len(layer)
         stats = [TierStats("layers", n * (n - 1) // 2, self.layers.possible_pairs(layer), 0.0)]
         tier_pairs = {}
@@ -135,9 +147,18 @@ class Pipeline:
 
         t0 = clock()
         swept = objects.swept if objects.swept is not None and objects.swept.any() else None
-        posed = pose_checked(self.armatures, objects.armature, objects.positions, objects.angles, self.rotation,
-                             objects.prev_positions, objects.prev_angles, swept, vertices=self.needs_vertices,
-                             workspace=self.workspace)
+        posed = pose_checked(
+            self.armatures,
+            objects.armature,
+            objects.positions,
+            objects.angles,
+            self.rotation,
+            objects.prev_positions,
+            objects.prev_angles,
+            swept,
+            vertices=self.needs_vertices,
+            workspace=self.workspace,
+        )
         if self.needs_vertices:
             # Posing every object at once and boxing the polygons tightly beats posing only
             # the survivors of cheap tiers: measured, the tighter boxes save the broad phase
@@ -163,5 +184,15 @@ class Pipeline:
             stats.append(TierStats(tier.value, n_in, len(pairs), (clock() - t0) * 1e3))
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs
-        return FrameResult(pairs, tuple(stats), broad, objects, candidates, posed if self.needs_vertices else None,
-                           boxes, self.rotation, self.layers, tier_pairs)
+        return FrameResult(
+            pairs,
+            tuple(stats),
+            broad,
+            objects,
+            candidates,
+            posed if self.needs_vertices else None,
+            boxes,
+            self.rotation,
+            self.layers,
+            tier_pairs,
+        )

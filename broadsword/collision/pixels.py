@@ -67,5 +67,7 @@ class MaskCache:
             x1 = min(ax + ma.shape[1], bx + mb.shape[1])
             y1 = min(ay + ma.shape[0], by + mb.shape[0])
             if x0 < x1 and y0 < y1:
-                out[k] = bool((ma[y0 - ay : y1 - ay, x0 - ax : x1 - ax] & mb[y0 - by : y1 - by, x0 - bx : x1 - bx]).any())
+                out[k] = bool(
+                    (ma[y0 - ay : y1 - ay, x0 - ax : x1 - ax] & mb[y0 - by : y1 - by, x0 - bx : x1 - bx]).any()
+                )
         return out

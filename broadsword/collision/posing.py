@@ -35,14 +35,14 @@ pose; sweeping is meant for small, fast things (bullets) against slower ones (sh
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
 from . import arguments, detmath
-from .armature import Armature
 from ._indexing import pick, selector
+from .armature import Armature
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
@@ -192,8 +192,15 @@ class Posed:
         return [self.polygon(i) for i in range(self.n)]
 
 
-def _sweep(vx: np.ndarray, vy: np.ndarray, dx: np.ndarray, dy: np.ndarray, ox: np.ndarray | None = None,
-           oy: np.ndarray | None = None, ws: Workspace | None = None):
+def _sweep(
+    vx: np.ndarray,
+    vy: np.ndarray,
+    dx: np.ndarray,
+    dy: np.ndarray,
+    ox: np.ndarray | None = None,
+    oy: np.ndarray | None = None,
+    ws: Workspace | None = None,
+):
     """Minkowski sum of convex CCW polygons (H, m) with the segments from 0 to (-dx, -dy).
 
     Returns (2H, m) arrays (``ox``, ``oy`` when given, filled in place): vertex ``k`` of each
@@ -274,15 +281,35 @@ def pose(
     """
     if rotation not in ROTATION_MODES:
         raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
-    f = arguments.frame(armature, None, positions, angles, prev_positions, prev_angles, swept,
-                        armatures=len(shapes), layers=None)
-    return pose_checked(shapes, f.armature, f.positions, f.angles, rotation, f.prev_positions, f.prev_angles,
-                        f.swept, vertices, workspace)
+    f = arguments.frame(
+        armature, None, positions, angles, prev_positions, prev_angles, swept, armatures=len(shapes), layers=None
+    )
+    return pose_checked(
+        shapes,
+        f.armature,
+        f.positions,
+        f.angles,
+        rotation,
+        f.prev_positions,
+        f.prev_angles,
+        f.swept,
+        vertices,
+        workspace,
+    )
 
 
-def pose_checked(shapes: ArmatureSet, armature: np.ndarray, positions: np.ndarray, angles: np.ndarray,
-                 rotation: str, prev_positions: np.ndarray | None, prev_angles: np.ndarray | None,
-                 swept: np.ndarray | None, vertices: bool = True, workspace: Workspace | None = None) -> Posed:
+def pose_checked(
+    shapes: ArmatureSet,
+    armature: np.ndarray,
+    positions: np.ndarray,
+    angles: np.ndarray,
+    rotation: str,
+    prev_positions: np.ndarray | None,
+    prev_angles: np.ndarray | None,
+    swept: np.ndarray | None,
+    vertices: bool = True,
+    workspace: Workspace | None = None,
+) -> Posed:
     """:func:`pose` of arguments already checked (what :meth:`Pipeline.run` calls: its
     :class:`FrameObjects` checked them once): int64 ids in range, float64 ``(n, 2)`` and
     ``(n,)`` finite arrays, ``swept`` a bool array with a True entry, or ``None``."""
@@ -309,8 +336,9 @@ def pose_checked(shapes: ArmatureSet, armature: np.ndarray, positions: np.ndarra
         radius = np.where(swept, radius / _OCTAGON_COS + detmath.norm(half[:, 0], half[:, 1]), radius)
     # Term by term: |cx| + |cy| overflows at 1.7e308 (an infinite radius is still a bound; a nan would not be).
     with np.errstate(over="ignore"):  # a radius past the doubles is inf: still a bound
-        radius = radius * (1.0 + BOUND_SLACK) + (BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1])
-                                                 + BOUND_SLACK)
+        radius = radius * (1.0 + BOUND_SLACK) + (
+            BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1]) + BOUND_SLACK
+        )
 
     slot = np.zeros(n, dtype=np.int64)
     xs, ys, members = {}, {}, {}

@@ -13,8 +13,8 @@ The vectorised narrow phase (``narrow.py``) uses these functions as its exact fa
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from fractions import Fraction
-from typing import Iterable, Sequence
 
 from . import arguments
 from .tolerance import ORIENT_EPS, UNDERFLOW_GUARD
@@ -41,9 +41,9 @@ def _as_polygon(polygon: Iterable[Sequence[float]], what: str = "polygon") -> li
 
 
 def _orient_exact(ax: float, ay: float, bx: float, by: float, cx: float, cy: float) -> int:
-    det = (Fraction(bx) - Fraction(ax)) * (Fraction(cy) - Fraction(ay)) - (
-        Fraction(by) - Fraction(ay)
-    ) * (Fraction(cx) - Fraction(ax))
+    det = (Fraction(bx) - Fraction(ax)) * (Fraction(cy) - Fraction(ay)) - (Fraction(by) - Fraction(ay)) * (
+        Fraction(cx) - Fraction(ax)
+    )
     return (det > 0) - (det < 0)
 
 
@@ -72,9 +72,7 @@ def _within_box(px: float, py: float, ax: float, ay: float, bx: float, by: float
     return min(ax, bx) <= px <= max(ax, bx) and min(ay, by) <= py <= max(ay, by)
 
 
-def _segments_intersect(
-    ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float
-) -> bool:
+def _segments_intersect(ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float) -> bool:
     # Cormen et al., "Introduction to Algorithms", 33.1, with exact orientations. A
     # zero-length segment has every orientation 0 against it, and the box test then
     # reduces to point equality, so points need no special case.

@@ -17,7 +17,16 @@ from .armature import Armature
 from .layers import LayerTable
 from .posing import ArmatureSet
 
-__all__ = ["FIELD", "random_armature", "player_armature", "ReferenceScene", "PLAYER", "ENEMY", "ENEMY_BULLET", "PLAYER_BULLET"]
+__all__ = [
+    "FIELD",
+    "random_armature",
+    "player_armature",
+    "ReferenceScene",
+    "PLAYER",
+    "ENEMY",
+    "ENEMY_BULLET",
+    "PLAYER_BULLET",
+]
 
 PLAYER, ENEMY, ENEMY_BULLET, PLAYER_BULLET = range(4)
 
@@ -69,7 +78,9 @@ class ReferenceScene:
         rng = np.random.default_rng(self.seed)
         self.rng = rng
         shapes = [player_armature()]
-        shapes += [random_armature(rng, int(rng.integers(5, 9)), float(rng.uniform(24, 48)), f"enemy{k}") for k in range(8)]
+        shapes += [
+            random_armature(rng, int(rng.integers(5, 9)), float(rng.uniform(24, 48)), f"enemy{k}") for k in range(8)
+        ]
         shapes.append(Armature.box(4, 10, name="bullet"))
         self.shapes = ArmatureSet(shapes)
         self.table = LayerTable.shmup()

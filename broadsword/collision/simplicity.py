@@ -34,8 +34,9 @@ BLOCK_PAIRS = 1 << 18
 def _scaled(v: np.ndarray) -> tuple[np.ndarray, float]:
     """``v`` scaled by a power of two to an extent near 1 when that is exact, and the
     orientation error bound for it (``inf``: decide every sign exactly)."""
-    extent = float(np.max(v.max(axis=0) - v.min(axis=0))) if np.isfinite(v.max(axis=0) - v.min(axis=0)).all() \
-        else np.inf
+    extent = (
+        float(np.max(v.max(axis=0) - v.min(axis=0))) if np.isfinite(v.max(axis=0) - v.min(axis=0)).all() else np.inf
+    )
     if np.isfinite(extent) and extent > 0:
         _, e = np.frexp(extent)
         w = np.ldexp(v, -int(e))
@@ -60,8 +61,12 @@ def _signs(ax, ay, bx, by, cx, cy, err: float) -> np.ndarray:
 
 def _within(px, py, ax, ay, bx, by) -> np.ndarray:
     """p in the closed box of a and b (exact comparisons)."""
-    return ((np.minimum(ax, bx) <= px) & (px <= np.maximum(ax, bx))
-            & (np.minimum(ay, by) <= py) & (py <= np.maximum(ay, by)))
+    return (
+        (np.minimum(ax, bx) <= px)
+        & (px <= np.maximum(ax, bx))
+        & (np.minimum(ay, by) <= py)
+        & (py <= np.maximum(ay, by))
+    )
 
 
 def _meet(v: np.ndarray, i: np.ndarray, j: np.ndarray, err: float) -> np.ndarray:

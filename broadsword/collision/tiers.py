@@ -24,9 +24,9 @@ call :func:`check_tiers`, so the rule is written once.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import Enum, StrEnum
-from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -37,8 +37,18 @@ from .pixels import MaskCache
 from .posing import Posed
 from .workspace import Workspace
 
-__all__ = ["Tier", "TierKind", "TierSpec", "TierInput", "TIERS", "check_tiers", "BROAD_TIERS", "BOUND_TIERS",
-           "EXACT_TIERS", "LAST_TIERS"]
+__all__ = [
+    "Tier",
+    "TierKind",
+    "TierSpec",
+    "TierInput",
+    "TIERS",
+    "check_tiers",
+    "BROAD_TIERS",
+    "BOUND_TIERS",
+    "EXACT_TIERS",
+    "LAST_TIERS",
+]
 
 
 class Tier(StrEnum):
@@ -107,21 +117,31 @@ def _spec(tier, kind, vertices=False, keep=None):
 
 
 #: Every tier by name. Bound tiers are conservative: none rejects a pair the exact test accepts.
-TIERS: Mapping[Tier, TierSpec] = dict([
-    _spec(Tier.BINS, TierKind.BROAD),
-    _spec(Tier.QUADTREE, TierKind.BROAD),
-    _spec(Tier.LOOSE_QUADTREE, TierKind.BROAD),
-    _spec(Tier.BRUTE, TierKind.BROAD),
-    _spec(Tier.AABB, TierKind.BOUND, True, lambda inp, pairs: bounds.boxes_overlap(inp.boxes, pairs)),
-    _spec(Tier.CIRCLE, TierKind.BOUND, False, lambda inp, pairs: bounds.circles_overlap(inp.posed, pairs)),
-    _spec(Tier.OBB, TierKind.BOUND, True,
-          lambda inp, pairs: bounds.oriented_boxes_overlap(bounds.oriented_boxes(inp.posed), pairs)),
-    _spec(Tier.KDOP, TierKind.BOUND, True, lambda inp, pairs: kdop.kdops_overlap(kdop.kdops(inp.posed), pairs)),
-    _spec(Tier.ARMATURE, TierKind.EXACT, True, lambda inp, pairs: collide_pairs(inp.posed, pairs, inp.workspace)),
-    _spec(Tier.PAPER, TierKind.LAST, True,
-          lambda inp, pairs: collide_pairs(inp.posed, pairs, narrow=paper_collide_padded)),
-    _spec(Tier.PIXEL, TierKind.LAST, False, _pixel),
-])
+TIERS: Mapping[Tier, TierSpec] = dict(
+    [
+        _spec(Tier.BINS, TierKind.BROAD),
+        _spec(Tier.QUADTREE, TierKind.BROAD),
+        _spec(Tier.LOOSE_QUADTREE, TierKind.BROAD),
+        _spec(Tier.BRUTE, TierKind.BROAD),
+        _spec(Tier.AABB, TierKind.BOUND, True, lambda inp, pairs: bounds.boxes_overlap(inp.boxes, pairs)),
+        _spec(Tier.CIRCLE, TierKind.BOUND, False, lambda inp, pairs: bounds.circles_overlap(inp.posed, pairs)),
+        _spec(
+            Tier.OBB,
+            TierKind.BOUND,
+            True,
+            lambda inp, pairs: bounds.oriented_boxes_overlap(bounds.oriented_boxes(inp.posed), pairs),
+        ),
+        _spec(Tier.KDOP, TierKind.BOUND, True, lambda inp, pairs: kdop.kdops_overlap(kdop.kdops(inp.posed), pairs)),
+        _spec(Tier.ARMATURE, TierKind.EXACT, True, lambda inp, pairs: collide_pairs(inp.posed, pairs, inp.workspace)),
+        _spec(
+            Tier.PAPER,
+            TierKind.LAST,
+            True,
+            lambda inp, pairs: collide_pairs(inp.posed, pairs, narrow=paper_collide_padded),
+        ),
+        _spec(Tier.PIXEL, TierKind.LAST, False, _pixel),
+    ]
+)
 
 
 def _names(kinds) -> tuple[str, ...]:
@@ -154,8 +174,9 @@ def check_tiers(names: Sequence[str]) -> tuple[Tier, ...]:
             raise ValueError(f"unknown tier {_short(x)}; tiers are {known}")
     tiers = tuple(Tier(x) for x in names)
     if not tiers or TIERS[tiers[0]].kind is not TierKind.BROAD:
-        raise ValueError(f"the first tier must be a broad phase, one of {', '.join(BROAD_TIERS)}; "
-                         f"got {', '.join(tiers) or 'none'}")
+        raise ValueError(
+            f"the first tier must be a broad phase, one of {', '.join(BROAD_TIERS)}; got {', '.join(tiers) or 'none'}"
+        )
     rest = tiers[1:]
     if any(TIERS[t].kind is TierKind.BROAD for t in rest):
         raise ValueError(f"only one broad phase, first; got {', '.join(tiers)}")
@@ -164,6 +185,8 @@ def check_tiers(names: Sequence[str]) -> tuple[Tier, ...]:
         raise ValueError(f"a tier is named twice ({twice}): name each tier once")
     last = [t for t in rest if t.value in LAST_TIERS]
     if len(last) > 1 or (last and rest[-1] != last[0]):
-        raise ValueError(f"{last[0].value!r} must be the last tier, and only one of {', '.join(LAST_TIERS)} "
-                         "may end the list, only last")
+        raise ValueError(
+            f"{last[0].value!r} must be the last tier, and only one of {', '.join(LAST_TIERS)} "
+            "may end the list, only last"
+        )
     return tiers

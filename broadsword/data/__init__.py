@@ -10,6 +10,19 @@ from .levels import BossPart, BossSpec, Level, PlayerSpec, SceneSpec, WaveSpec, 
 from .resources import data_dir, list_levels, resolve_level
 
 __all__ = [
-    "ArmatureFile", "BossPart", "BossSpec", "DataError", "Level", "PlayerSpec", "SceneSpec", "WaveSpec",
-    "check_level_sprites", "data_dir", "list_levels", "load_armature_file", "load_armatures", "load_level", "resolve_level",
+    "ArmatureFile",
+    "BossPart",
+    "BossSpec",
+    "DataError",
+    "Level",
+    "PlayerSpec",
+    "SceneSpec",
+    "WaveSpec",
+    "check_level_sprites",
+    "data_dir",
+    "list_levels",
+    "load_armature_file",
+    "load_armatures",
+    "load_level",
+    "resolve_level",
 ]

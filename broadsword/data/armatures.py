@@ -114,8 +114,11 @@ def parse_polygon(value, path: Path, where: str, label: str) -> tuple[Armature, 
                 got = f"[{', '.join(shown(c) for c in v[:3])}{', ...' if len(v) > 3 else ''}]"
             raise DataError(path, f"{where}[{i}]", f"must be an [x, y] pair of numbers, got {got}")
         if not all(-COORD_MAX <= c <= COORD_MAX for c in v):  # nan and inf fail the range
-            raise DataError(path, f"{where}[{i}]", f"must be finite and within {COORD_MAX:g} px of the centre, "
-                                                   f"got [{shown(v[0])}, {shown(v[1])}]")
+            raise DataError(
+                path,
+                f"{where}[{i}]",
+                f"must be finite and within {COORD_MAX:g} px of the centre, got [{shown(v[0])}, {shown(v[1])}]",
+            )
     drawn = tuple((float(x), float(y)) for x, y in value)
     try:
         return Armature(drawn, name=label), drawn
@@ -172,8 +175,14 @@ def _parse(doc: dict, path: Path, header: str) -> ArmatureFile:
     sprite = doc.get("sprite", f"{name}.png")
     if not isinstance(sprite, str) or not sprite.endswith(".png"):
         raise DataError(path, "sprite", f"must be the file name of a .png beside this file, got {shown(sprite)}")
-    if ("/" in sprite or "\\" in sprite or sprite.startswith(".") or Path(sprite).is_absolute()
-            or not sprite.isprintable() or len(sprite) > 64):
+    if (
+        "/" in sprite
+        or "\\" in sprite
+        or sprite.startswith(".")
+        or Path(sprite).is_absolute()
+        or not sprite.isprintable()
+        or len(sprite) > 64
+    ):
         raise DataError(path, "sprite", f"must be a file name in the same folder, not a path; got {shown(sprite)}")
     frames_n = doc.get("frames", 1)
     if not isinstance(frames_n, int) or isinstance(frames_n, bool) or not 1 <= frames_n <= FRAMES_MAX:
@@ -181,8 +190,9 @@ def _parse(doc: dict, path: Path, header: str) -> ArmatureFile:
     frame_time = doc.get("frame_time", 0.1)
     if not _is_number(frame_time) or not (1 / 120 <= frame_time <= 10):  # nan and inf fail the range
         finite = "finite, " if isinstance(frame_time, float) and not math.isfinite(frame_time) else ""
-        raise DataError(path, "frame_time",
-                        f"must be {finite}a number of seconds from 1/120 to 10, got {shown(frame_time)}")
+        raise DataError(
+            path, "frame_time", f"must be {finite}a number of seconds from 1/120 to 10, got {shown(frame_time)}"
+        )
     if frames_n == 1:
         if "frame" in doc:
             raise DataError(path, "frame", "only for animated sprites (frames > 1); use [shapes]")
@@ -201,8 +211,9 @@ def _parse(doc: dict, path: Path, header: str) -> ArmatureFile:
         for i, (shapes, _) in enumerate(sets):
             if sorted(shapes) != sorted(names):
                 raise DataError(path, f"frame[{i}]", f"must name the same shapes as frame[0]: {', '.join(names)}")
-    return ArmatureFile(name, sprite, tuple(s for s, _ in sets), path, float(frame_time),
-                        tuple(d for _, d in sets), header)
+    return ArmatureFile(
+        name, sprite, tuple(s for s, _ in sets), path, float(frame_time), tuple(d for _, d in sets), header
+    )
 
 
 def load_armatures(folder: str | Path) -> dict[str, ArmatureFile]:
@@ -226,14 +237,16 @@ def _polygon_toml(points, indent: str = "    ", per_line: int = 4) -> str:
     pairs = [f"[{_number(x)}, {_number(y)}]" for x, y in points]
     if len(pairs) <= per_line:
         return "[" + ", ".join(pairs) + "]"
-    rows = [indent + ", ".join(pairs[i:i + per_line]) + "," for i in range(0, len(pairs), per_line)]
+    rows = [indent + ", ".join(pairs[i : i + per_line]) + "," for i in range(0, len(pairs), per_line)]
     return "[\n" + "\n".join(rows) + "\n]"
 
 
 def format_armature_file(name: str, sprite: str, frames, frame_time: float = 0.1, header: str = "") -> str:
     """The text of an armature file: ``frames`` is a list of ``{shape: [(x, y), ...]}``
     (``hit`` first), one per animation frame. Four vertices to a line, shortest exact floats."""
-    lines = [header] if header else [f"# Armatures of {sprite}: sprite pixels, origin at the centre, +x right, +y down."]
+    lines = (
+        [header] if header else [f"# Armatures of {sprite}: sprite pixels, origin at the centre, +x right, +y down."]
+    )
     lines += [f"name = {json.dumps(name)}", f"sprite = {json.dumps(sprite)}"]  # a JSON string is a TOML basic string
     if len(frames) > 1:
         lines += [f"frames = {len(frames)}", f"frame_time = {_number(frame_time)}"]
@@ -245,8 +258,9 @@ def format_armature_file(name: str, sprite: str, frames, frame_time: float = 0.1
     return "\n".join(lines) + "\n"
 
 
-def save_armature_file(path: str | Path, name: str, sprite: str, frames, frame_time: float = 0.1,
-                       header: str = "") -> ArmatureFile:
+def save_armature_file(
+    path: str | Path, name: str, sprite: str, frames, frame_time: float = 0.1, header: str = ""
+) -> ArmatureFile:
     """Validate ``frames`` (as :func:`format_armature_file` takes them), write the file
     atomically and return it as loaded back. Nothing is written if anything is invalid (a
     shape, the name, the sprite: :class:`DataError` naming the field)."""

@@ -30,13 +30,15 @@ def resolve_pattern(name: str, level_path: Path) -> Path:
     suffix) beside ``level_path`` or among the shipped patterns. Raises ``ValueError`` with
     the reason (the caller adds the level file and field)."""
     if not isinstance(name, str) or not name.strip():
-        raise ValueError("must name a pattern file, e.g. \"aimed.xml\"")
+        raise ValueError('must name a pattern file, e.g. "aimed.xml"')
     if len(name) > PATTERN_NAME_MAX or not name.isprintable():
         raise ValueError(f"must be a printable relative path of at most {PATTERN_NAME_MAX} characters")
     rel = PurePosixPath(name)
     if "\\" in name or ":" in name or rel.is_absolute() or ".." in rel.parts or name.startswith("~"):
-        raise ValueError(f"{name!r} must be a relative path inside the level's folder or the shipped patterns "
-                         "(no absolute paths, drives, backslashes or '..')")
+        raise ValueError(
+            f"{name!r} must be a relative path inside the level's folder or the shipped patterns "
+            "(no absolute paths, drives, backslashes or '..')"
+        )
     if not rel.suffix:
         rel = rel.with_suffix(".xml")
     roots = [Path(level_path).resolve().parent, shipped_patterns().resolve()]
@@ -46,8 +48,10 @@ def resolve_pattern(name: str, level_path: Path) -> Path:
             if not candidate.is_relative_to(root):
                 raise ValueError(f"{name!r} leads outside {root} (through a link)")
             return candidate
-    raise ValueError(f"no pattern file {str(rel)!r} beside the level ({roots[0]}) or among the shipped patterns "
-                     f"({roots[1]}); shipped: {', '.join(sorted(p.stem for p in roots[1].glob('*.xml')))}")
+    raise ValueError(
+        f"no pattern file {str(rel)!r} beside the level ({roots[0]}) or among the shipped patterns "
+        f"({roots[1]}); shipped: {', '.join(sorted(p.stem for p in roots[1].glob('*.xml')))}"
+    )
 
 
 def load_pattern(path: Path) -> bulletml.Pattern:

@@ -91,10 +91,19 @@ class Recording:
         return len(self.inputs)
 
     def to_json(self) -> dict:
-        doc = {"version": FORMAT_VERSION, "game_version": self.game_version, "level": self.level, "seed": self.seed,
-               "settings": dict(self.settings), "carry": dict(self.carry), "toggles": [list(t) for t in self.toggles], "frames": self.frames,
-               "inputs": self.inputs.hex(), "checkpoints": [list(c) for c in self.checkpoints],
-               "state_hash": self.state_hash}
+        doc = {
+            "version": FORMAT_VERSION,
+            "game_version": self.game_version,
+            "level": self.level,
+            "seed": self.seed,
+            "settings": dict(self.settings),
+            "carry": dict(self.carry),
+            "toggles": [list(t) for t in self.toggles],
+            "frames": self.frames,
+            "inputs": self.inputs.hex(),
+            "checkpoints": [list(c) for c in self.checkpoints],
+            "state_hash": self.state_hash,
+        }
         if self.level_sha256:
             doc["level_sha256"] = self.level_sha256
         return doc
@@ -162,13 +171,15 @@ def _toggles(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str, str], 
     out, last = [], 0
     for i, t in enumerate(raw):
         where = f"toggles[{i}]"
-        if not (isinstance(t, list) and len(t) == 3 and _whole(t[0]) and isinstance(t[1], str)
-                and isinstance(t[2], str)):
+        if not (
+            isinstance(t, list) and len(t) == 3 and _whole(t[0]) and isinstance(t[1], str) and isinstance(t[2], str)
+        ):
             raise DataError(path, where, f"must be [frame, name, value], got {shown(t)}")
         frame, name, value = t
         if not last <= frame <= frames:
-            raise DataError(path, where, f"frame must lie in [{last}, {frames}] (not before the one before), "
-                                         f"got {frame}")
+            raise DataError(
+                path, where, f"frame must lie in [{last}, {frames}] (not before the one before), got {frame}"
+            )
         if name not in TOGGLES:
             raise DataError(path, where, f"unknown toggle {shown(name)}; toggles are {', '.join(TOGGLES)}")
         if value not in TOGGLES[name]:
@@ -185,13 +196,15 @@ def _checkpoints(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str], .
     out = []
     for i, c in enumerate(raw):
         where = f"checkpoints[{i}]"
-        if not (isinstance(c, list) and len(c) == 2 and _whole(c[0]) and isinstance(c[1], str)
-                and _HEX_DIGEST.match(c[1])):
+        if not (
+            isinstance(c, list) and len(c) == 2 and _whole(c[0]) and isinstance(c[1], str) and _HEX_DIGEST.match(c[1])
+        ):
             raise DataError(path, where, f"must be [frame, 64 hex digits], got {shown(c)}")
         want = CHECKPOINT_EVERY * (i + 1)
         if c[0] != want or c[0] > frames:
-            raise DataError(path, where, f"frame must be {want} (every {CHECKPOINT_EVERY}, within {frames}), "
-                                         f"got {c[0]}")
+            raise DataError(
+                path, where, f"frame must be {want} (every {CHECKPOINT_EVERY}, within {frames}), got {c[0]}"
+            )
         out.append((c[0], c[1]))
     return tuple(out)
 
@@ -215,11 +228,19 @@ def load_recording(path: str | Path) -> Recording:
         raise DataError(path, "", f"not a recording: must be a JSON object, got {shown(doc)}")
     version = doc.get("version")
     if _whole(version) and 1 <= version < FORMAT_VERSION:
-        raise DataError(path, "version", f"a recording of format {version}, from an older Broadsword; this one "
-                                         f"({__version__}) reads format {FORMAT_VERSION}: replay it with the game "
-                                         "that made it")
+        raise DataError(
+            path,
+            "version",
+            f"a recording of format {version}, from an older Broadsword; this one "
+            f"({__version__}) reads format {FORMAT_VERSION}: replay it with the game "
+            "that made it",
+        )
     if not _whole(version) or version != FORMAT_VERSION:
-        raise DataError(path, "version", f"must be {FORMAT_VERSION}, got {shown(version) if 'version' in doc else 'nothing (missing)'}")
+        raise DataError(
+            path,
+            "version",
+            f"must be {FORMAT_VERSION}, got {shown(version) if 'version' in doc else 'nothing (missing)'}",
+        )
     level = _field(doc, path, "level", str, "a level name")
     if not level:
         raise DataError(path, "level", "must name a level, got ''")
@@ -248,14 +269,30 @@ def load_recording(path: str | Path) -> Recording:
     if digest and not _HEX_DIGEST.match(digest):
         raise DataError(path, "level_sha256", f"must be 64 hex digits, got {shown(digest)}")
     made_by = _field(doc, path, "game_version", str, "a version string")
-    known = {"version", "game_version", "level", "level_sha256", "seed", "settings", "carry", "toggles", "frames",
-             "inputs", "checkpoints", "state_hash"}
+    known = {
+        "version",
+        "game_version",
+        "level",
+        "level_sha256",
+        "seed",
+        "settings",
+        "carry",
+        "toggles",
+        "frames",
+        "inputs",
+        "checkpoints",
+        "state_hash",
+    }
     extra = sorted(set(doc) - known)
     if extra:
         raise DataError(path, extra[0], f"unknown field (expected some of {', '.join(sorted(known))})")
     if made_by != __version__:
-        raise DataError(path, "game_version", f"made by Broadsword {shown(made_by)}; this is {__version__}, whose "
-                                              "game may differ: replay it with the version that made it")
+        raise DataError(
+            path,
+            "game_version",
+            f"made by Broadsword {shown(made_by)}; this is {__version__}, whose "
+            "game may differ: replay it with the version that made it",
+        )
     return Recording(level, seed, settings, inputs, toggles, checkpoints, state_hash, digest, carry, made_by)
 
 
@@ -263,5 +300,8 @@ def check_level_digest(rec: Recording, rec_path: str | Path, level_path: str | P
     """Refuse a recording whose level file has changed since it was made (when it kept the
     file's digest): a :class:`DataError` naming the recording's ``level_sha256``."""
     if rec.level_sha256 and file_sha256(level_path) != rec.level_sha256:
-        raise DataError(rec_path, "level_sha256", f"the level {level_path} has changed since this was recorded; "
-                                                  "the replay would be a different game")
+        raise DataError(
+            rec_path,
+            "level_sha256",
+            f"the level {level_path} has changed since this was recorded; the replay would be a different game",
+        )

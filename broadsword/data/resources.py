@@ -62,13 +62,17 @@ def read_text(path: str | Path, max_bytes: int, kind: str) -> str:
     if not regular:
         raise DataError(path, "", f"not a regular file; {kind} is a text file")
     if size > max_bytes or len(data) > max_bytes:
-        raise DataError(path, "", f"is {max(size, len(data)):,}{'+' if size <= max_bytes else ''} bytes; "
-                                  f"{kind} is at most {max_bytes:,}")
+        raise DataError(
+            path,
+            "",
+            f"is {max(size, len(data)):,}{'+' if size <= max_bytes else ''} bytes; {kind} is at most {max_bytes:,}",
+        )
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise DataError(path, "", f"not UTF-8 text (byte 0x{data[exc.start]:02x} at offset {exc.start}); "
-                                  f"{kind} is a text file") from None
+        raise DataError(
+            path, "", f"not UTF-8 text (byte 0x{data[exc.start]:02x} at offset {exc.start}); {kind} is a text file"
+        ) from None
 
 
 #: Keys of this many dotted parts or more (``a.b.c...``) are refused before parsing:
@@ -88,8 +92,11 @@ def read_toml(path: str | Path, max_bytes: int, kind: str) -> dict:
     deep = _DOTTED_CHAIN.search(text)
     if deep:
         line = text.count("\n", 0, deep.start()) + 1
-        raise DataError(path, "", f"not valid TOML: nested too deeply (a key of {KEY_PARTS_MAX} or more "
-                                  f"dotted parts, at line {line})")
+        raise DataError(
+            path,
+            "",
+            f"not valid TOML: nested too deeply (a key of {KEY_PARTS_MAX} or more dotted parts, at line {line})",
+        )
     try:
         return tomllib.loads(text)
     except RecursionError:

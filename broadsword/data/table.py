@@ -9,7 +9,6 @@ expected. :meth:`Table.done` refuses keys nobody read, so a typo is never ignore
 from __future__ import annotations
 
 import builtins
-
 import math
 import re
 from pathlib import Path
@@ -91,8 +90,9 @@ class Table:
         """A sprite's name (an armature in assets/sprites): a name, never a path."""
         v = self.str(key, default)
         if not SPRITE_NAME.match(v):
-            raise self.error(key, "must be a sprite name (a-z first, then a-z, 0-9, _ or -; at most 32), "
-                                  f"not a path; got {shown(v)}")
+            raise self.error(
+                key, f"must be a sprite name (a-z first, then a-z, 0-9, _ or -; at most 32), not a path; got {shown(v)}"
+            )
         return v
 
     def bool(self, key, default) -> bool:
@@ -106,4 +106,3 @@ class Table:
         if extra:
             known = ", ".join(sorted(self.used | set(also)))
             raise self.error(sorted(extra)[0], f"unknown field (expected some of {known})")
-

@@ -36,8 +36,10 @@ from .render import Renderer
 from .run import Run, Stage, load_stage, replay_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
-from .scenes.play import ReplayInput
-from .scenes.play import MAX_CATCH_UP  # noqa: F401  (the loop's limit, named where the app is)
+from .scenes.play import (
+    MAX_CATCH_UP,  # noqa: F401  (the loop's limit, named where the app is)
+    ReplayInput,
+)
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
 from .soundtrack import follow
@@ -53,8 +55,13 @@ HIDDEN_FPS = 20  # frame rate while the window is minimised or hidden (nothing t
 #: Window events that mean the window went away (minimised, hidden, focus lost), and came back.
 AWAY_EVENTS = {pygame.WINDOWFOCUSLOST, pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN}
 HIDE_EVENTS = {pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN}
-SHOW_EVENTS = {pygame.WINDOWRESTORED, pygame.WINDOWSHOWN, pygame.WINDOWEXPOSED, pygame.WINDOWMAXIMIZED,
-               pygame.WINDOWFOCUSGAINED}
+SHOW_EVENTS = {
+    pygame.WINDOWRESTORED,
+    pygame.WINDOWSHOWN,
+    pygame.WINDOWEXPOSED,
+    pygame.WINDOWMAXIMIZED,
+    pygame.WINDOWFOCUSGAINED,
+}
 
 
 class App:
@@ -80,10 +87,18 @@ class App:
         Play on this difficulty this session (``--difficulty``) instead of the saved one.
     """
 
-    def __init__(self, start_level: str | None = None, seed: int = 0, demo: bool = False,
-                 audio: bool = True, scores: HighScores | None = None, scale: float = DEFAULT_SCALE,
-                 lab: tuple[int, int] | None = None, data: Path | None = None,
-                 difficulty: Difficulty | None = None):
+    def __init__(
+        self,
+        start_level: str | None = None,
+        seed: int = 0,
+        demo: bool = False,
+        audio: bool = True,
+        scores: HighScores | None = None,
+        scale: float = DEFAULT_SCALE,
+        lab: tuple[int, int] | None = None,
+        data: Path | None = None,
+        difficulty: Difficulty | None = None,
+    ):
         self.data = Path(data) if data else (scores.path.parent if scores is not None else data_home())
         self.options, options_warning = load_options(self.data / "options.json")
         if difficulty is not None:  # --difficulty: this session's, not saved

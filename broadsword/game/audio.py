@@ -48,6 +48,7 @@ DEFAULT_MUSIC_VOLUME = 0.8
 
 # --------------------------------------------------------------------------- helpers
 
+
 def _phase(freq: np.ndarray, rate: int) -> np.ndarray:
     """Running phase (radians) of a tone whose instantaneous frequency is ``freq`` (Hz)."""
     return 2.0 * np.pi * np.cumsum(freq) / rate
@@ -81,8 +82,7 @@ def _shot(rate: int) -> np.ndarray:
 
 def _hit(rate: int) -> np.ndarray:
     t = times(0.045, rate)
-    partials = ((1870.0, 1.0, 0.012), (2983.0, 0.7, 0.009), (4411.0, 0.45, 0.007),
-                (6229.0, 0.3, 0.005))
+    partials = ((1870.0, 1.0, 0.012), (2983.0, 0.7, 0.009), (4411.0, 0.45, 0.007), (6229.0, 0.3, 0.005))
     x = np.zeros_like(t)
     for f, a, tau in partials:
         x += a * np.sin(2.0 * np.pi * float(_cap(f, rate)) * t) * np.exp(-t / tau)
@@ -91,9 +91,16 @@ def _hit(rate: int) -> np.ndarray:
     return _finish(x, rate, 0.40, attack=0.001, release=0.008)
 
 
-def _boom(name: str, rate: int, seconds: float, bright_hz: float, dark_hz: float,
-          bright_tau: float, dark_tau: float,
-          thump: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+def _boom(
+    name: str,
+    rate: int,
+    seconds: float,
+    bright_hz: float,
+    dark_hz: float,
+    bright_tau: float,
+    dark_tau: float,
+    thump: tuple[float, float, float, float],
+) -> tuple[np.ndarray, np.ndarray]:
     """Noise that darkens as it decays, over a sine 'thump' sweeping down in pitch."""
     t = times(seconds, rate)
     hiss = noise(name, t.size)
@@ -108,14 +115,12 @@ def _boom(name: str, rate: int, seconds: float, bright_hz: float, dark_hz: float
 
 
 def _explosion(rate: int) -> np.ndarray:
-    x, _ = _boom("explosion", rate, 0.50, 2600.0, 380.0, 0.05, 0.16,
-                 (45.0, 80.0, 0.05, 0.12))
+    x, _ = _boom("explosion", rate, 0.50, 2600.0, 380.0, 0.05, 0.16, (45.0, 80.0, 0.05, 0.12))
     return _finish(np.tanh(1.6 * x), rate, 0.70, attack=0.003, release=0.080)
 
 
 def _big_explosion(rate: int) -> np.ndarray:
-    x, t = _boom("big_explosion", rate, 1.10, 1600.0, 190.0, 0.09, 0.40,
-                 (30.0, 60.0, 0.08, 0.30))
+    x, t = _boom("big_explosion", rate, 1.10, 1600.0, 190.0, 0.09, 0.40, (30.0, 60.0, 0.08, 0.30))
     # a second, later crackle so it reads as a bigger, collapsing blast
     late = fft_filter(noise("big_explosion/late", t.size), rate, high=900.0)
     late /= max(1e-12, float(np.max(np.abs(late))))
@@ -153,8 +158,9 @@ def _select(rate: int) -> np.ndarray:
     for f, start, tau in ((1318.5, 0.0, 0.06), (1760.0, 0.075, 0.09)):
         local = np.maximum(t - start, 0.0)
         on = t >= start
-        note = sum(a * np.sin(2.0 * np.pi * float(_cap(k * f, rate)) * local)
-                   for k, a in ((1, 1.0), (2, 0.25), (3, 0.08)))
+        note = sum(
+            a * np.sin(2.0 * np.pi * float(_cap(k * f, rate)) * local) for k, a in ((1, 1.0), (2, 0.25), (3, 0.08))
+        )
         attack = 0.5 - 0.5 * np.cos(np.pi * np.clip(local / 0.003, 0.0, 1.0))
         x += np.where(on, note * attack * np.exp(-local / tau), 0.0)
     return _finish(x, rate, 0.35, attack=0.002, release=0.030)
@@ -167,16 +173,18 @@ def _pause(rate: int) -> np.ndarray:
     return _finish(x * np.exp(-t / 0.05), rate, 0.30, attack=0.008, release=0.030)
 
 
-_BUILDERS: Mapping[str, Callable[[int], np.ndarray]] = MappingProxyType({
-    "shot": _shot,
-    "hit": _hit,
-    "explosion": _explosion,
-    "big_explosion": _big_explosion,
-    "graze": _graze,
-    "player_hit": _player_hit,
-    "select": _select,
-    "pause": _pause,
-})
+_BUILDERS: Mapping[str, Callable[[int], np.ndarray]] = MappingProxyType(
+    {
+        "shot": _shot,
+        "hit": _hit,
+        "explosion": _explosion,
+        "big_explosion": _big_explosion,
+        "graze": _graze,
+        "player_hit": _player_hit,
+        "select": _select,
+        "pause": _pause,
+    }
+)
 
 
 def synth(name: str, rate: int = 44100) -> np.ndarray:
@@ -220,19 +228,27 @@ class Audio:
 
     NAMES = NAMES
     #: Minimum seconds between two starts of the same sound; requests inside it are dropped.
-    MIN_INTERVAL: Mapping[str, float] = MappingProxyType({
-        "shot": 0.060,
-        "hit": 0.030,
-        "explosion": 0.050,
-        "big_explosion": 0.150,
-        "graze": 0.050,
-        "player_hit": 0.150,
-        "select": 0.040,
-        "pause": 0.100,
-    })
+    MIN_INTERVAL: Mapping[str, float] = MappingProxyType(
+        {
+            "shot": 0.060,
+            "hit": 0.030,
+            "explosion": 0.050,
+            "big_explosion": 0.150,
+            "graze": 0.050,
+            "player_hit": 0.150,
+            "select": 0.040,
+            "pause": 0.100,
+        }
+    )
 
-    def __init__(self, enabled: bool = True, *, clock: Callable[[], float] = time.monotonic,
-                 music_cache: MusicCache | None = None, music_in_background: bool = True):
+    def __init__(
+        self,
+        enabled: bool = True,
+        *,
+        clock: Callable[[], float] = time.monotonic,
+        music_cache: MusicCache | None = None,
+        music_in_background: bool = True,
+    ):
         self.available: bool = False
         self.problem: str | None = None  # why there is no sound, when a device was wanted
         self._muted = False
@@ -271,8 +287,7 @@ class Audio:
             frequency, size, channels = spec
             sounds = {}
             for name in NAMES:
-                samples = to_mixer_format(synth(name, max(_MIN_RATE, int(frequency))), size,
-                                           channels)
+                samples = to_mixer_format(synth(name, max(_MIN_RATE, int(frequency))), size, channels)
                 sounds[name] = pygame.sndarray.make_sound(samples)
         except (pygame.error, NotImplementedError, ImportError, ValueError):
             # e.g. a mixer sample format we cannot feed

@@ -33,8 +33,14 @@ from .images import read_alpha, sprite_alpha
 __all__ = ["check", "fit_of", "generate", "main", "sprite_alpha"]
 
 
-def generate(sprite: str | Path, max_vertices: int = 8, inset: int = 0, shape: str = "hit",
-             out: str | Path | None = None, frames: int | None = None) -> armature_tools.Generated:
+def generate(
+    sprite: str | Path,
+    max_vertices: int = 8,
+    inset: int = 0,
+    shape: str = "hit",
+    out: str | Path | None = None,
+    frames: int | None = None,
+) -> armature_tools.Generated:
     """:func:`broadsword.authoring.armature_tools.generate`, reading the PNG with pygame."""
     return armature_tools.generate(sprite, read_alpha, max_vertices, inset, shape, out, frames)
 
@@ -50,12 +56,20 @@ def _parser() -> argparse.ArgumentParser:
     g = sub.add_parser("generate", help="trace a sprite's alpha into an armature shape")
     g.add_argument("sprite", help="the sprite PNG")
     g.add_argument("--max-vertices", type=int, default=8, help="at most this many vertices (>= 3; default 8)")
-    g.add_argument("--inset", type=int, default=0,
-                   help="shrink the outline by this many px for a fair hit box (negative grows it, for graze)")
+    g.add_argument(
+        "--inset",
+        type=int,
+        default=0,
+        help="shrink the outline by this many px for a fair hit box (negative grows it, for graze)",
+    )
     g.add_argument("--shape", default="hit", help="which shape to write (default hit; e.g. graze)")
-    g.add_argument("--frames", type=int, default=None,
-                   help="the sprite is a strip of this many frames (default: the existing file's count, else 1, "
-                        "with a warning if the image looks like a strip)")
+    g.add_argument(
+        "--frames",
+        type=int,
+        default=None,
+        help="the sprite is a strip of this many frames (default: the existing file's count, else 1, "
+        "with a warning if the image looks like a strip)",
+    )
     g.add_argument("--out", help="the armature file (default: <sprite>.armature.toml beside it)")
     c = sub.add_parser("check", help="report vertex count, validity, coverage and IoU of armature files")
     c.add_argument("paths", nargs="*", help="files or folders (default: the shipped sprites)")
@@ -73,12 +87,16 @@ def main(argv: list[str] | None = None) -> int:
             f = made.file
             for i, (shapes, fit) in enumerate(zip(f.frames, made.fits, strict=True)):
                 arm = shapes[args.shape]
-                print(f"{f.path}: {args.shape}{f'[{i}]' if len(f.frames) > 1 else ''}: {len(arm)} vertices, "
-                      f"area {arm.area:.1f} px, {'concave' if not arm.convex else 'convex'}, on opaque "
-                      f"{fit.on_opaque:.3f}, coverage {fit.coverage:.3f}, IoU {fit.iou:.3f}")
+                print(
+                    f"{f.path}: {args.shape}{f'[{i}]' if len(f.frames) > 1 else ''}: {len(arm)} vertices, "
+                    f"area {arm.area:.1f} px, {'concave' if not arm.convex else 'convex'}, on opaque "
+                    f"{fit.on_opaque:.3f}, coverage {fit.coverage:.3f}, IoU {fit.iou:.3f}"
+                )
             if made.strip is not None:
-                print(f"broadsword: warning: {armature_tools.strip_warning(Path(args.sprite), made.strip)}",
-                      file=sys.stderr)
+                print(
+                    f"broadsword: warning: {armature_tools.strip_warning(Path(args.sprite), made.strip)}",
+                    file=sys.stderr,
+                )
             return 0
         bad = check(args.paths)
         if bad:

@@ -70,8 +70,9 @@ def value_noise(rng: np.random.Generator, width: int, height: int, cells: tuple[
     return across(top) * (1 - fy)[:, None] + across(bottom) * fy[:, None]
 
 
-def fractal_noise(rng: np.random.Generator, width: int, height: int, base: tuple[int, int] = (3, 4),
-                  octaves: int = 4) -> np.ndarray:
+def fractal_noise(
+    rng: np.random.Generator, width: int, height: int, base: tuple[int, int] = (3, 4), octaves: int = 4
+) -> np.ndarray:
     """Octaves of :func:`value_noise`, each twice as fine and half as strong, in [0, 1]."""
     total = np.zeros((height, width))
     weight = 0.0

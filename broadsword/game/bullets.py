@@ -10,7 +10,7 @@ Round sprites (``ROUND_BULLETS``) are never turned.
 
 from __future__ import annotations
 
-from typing import Iterator, Sequence
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 import pygame
@@ -70,8 +70,14 @@ class BulletSprites:
         return zip(map(self.images.__getitem__, e.tolist()), corners.tolist())
 
 
-def blit_one_by_one(bank: SpriteBank, names: Sequence[str], frames: np.ndarray, kinds: np.ndarray,
-                     angles: np.ndarray, centres: np.ndarray) -> list:
+def blit_one_by_one(
+    bank: SpriteBank,
+    names: Sequence[str],
+    frames: np.ndarray,
+    kinds: np.ndarray,
+    angles: np.ndarray,
+    centres: np.ndarray,
+) -> list:
     """The reference the batch replaced: the same blit list, made one bullet at a time in
     Python (kept for the benchmark and the tests, which compare the two)."""
     out = []

@@ -58,8 +58,7 @@ class Action(Enum):
         return self.value.capitalize()
 
 
-REBINDABLE = (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN, Action.FIRE, Action.SLOW, Action.BOMB,
-              Action.PAUSE)
+REBINDABLE = (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN, Action.FIRE, Action.SLOW, Action.BOMB, Action.PAUSE)
 
 
 class PadButton(IntEnum):
@@ -77,23 +76,39 @@ class PadButton(IntEnum):
 
 #: Keys that always mean the same thing, whatever the bindings say.
 FIXED_KEYS: dict[int, Action] = {
-    pygame.K_RETURN: Action.CONFIRM, pygame.K_KP_ENTER: Action.CONFIRM, pygame.K_ESCAPE: Action.BACK,
-    pygame.K_F1: Action.OVERLAY, pygame.K_F2: Action.STEP, pygame.K_F3: Action.SLOW_MOTION,
-    pygame.K_F4: Action.ROTATION, pygame.K_F11: Action.FULLSCREEN, pygame.K_m: Action.MUTE,
+    pygame.K_RETURN: Action.CONFIRM,
+    pygame.K_KP_ENTER: Action.CONFIRM,
+    pygame.K_ESCAPE: Action.BACK,
+    pygame.K_F1: Action.OVERLAY,
+    pygame.K_F2: Action.STEP,
+    pygame.K_F3: Action.SLOW_MOTION,
+    pygame.K_F4: Action.ROTATION,
+    pygame.K_F11: Action.FULLSCREEN,
+    pygame.K_m: Action.MUTE,
 }
 FIXED_BUTTONS: dict[int, Action] = {PadButton.START: Action.CONFIRM, PadButton.BACK: Action.BACK}
 #: The arrow keys always move through menus, whatever movement is bound to.
-MENU_KEYS: dict[int, Action] = {pygame.K_LEFT: Action.LEFT, pygame.K_RIGHT: Action.RIGHT, pygame.K_UP: Action.UP,
-                                pygame.K_DOWN: Action.DOWN}
+MENU_KEYS: dict[int, Action] = {
+    pygame.K_LEFT: Action.LEFT,
+    pygame.K_RIGHT: Action.RIGHT,
+    pygame.K_UP: Action.UP,
+    pygame.K_DOWN: Action.DOWN,
+}
 
 DEFAULT_KEYS: dict[Action, tuple[int, ...]] = {
-    Action.LEFT: (pygame.K_LEFT, pygame.K_a), Action.RIGHT: (pygame.K_RIGHT, pygame.K_d),
-    Action.UP: (pygame.K_UP, pygame.K_w), Action.DOWN: (pygame.K_DOWN, pygame.K_s),
-    Action.FIRE: (pygame.K_z, pygame.K_SPACE), Action.SLOW: (pygame.K_LSHIFT, pygame.K_RSHIFT),
-    Action.BOMB: (pygame.K_x,), Action.PAUSE: (pygame.K_ESCAPE, pygame.K_p),
+    Action.LEFT: (pygame.K_LEFT, pygame.K_a),
+    Action.RIGHT: (pygame.K_RIGHT, pygame.K_d),
+    Action.UP: (pygame.K_UP, pygame.K_w),
+    Action.DOWN: (pygame.K_DOWN, pygame.K_s),
+    Action.FIRE: (pygame.K_z, pygame.K_SPACE),
+    Action.SLOW: (pygame.K_LSHIFT, pygame.K_RSHIFT),
+    Action.BOMB: (pygame.K_x,),
+    Action.PAUSE: (pygame.K_ESCAPE, pygame.K_p),
 }
 DEFAULT_BUTTONS: dict[Action, tuple[int, ...]] = {
-    Action.FIRE: (PadButton.A,), Action.SLOW: (PadButton.B,), Action.BOMB: (PadButton.X,),
+    Action.FIRE: (PadButton.A,),
+    Action.SLOW: (PadButton.B,),
+    Action.BOMB: (PadButton.X,),
     Action.PAUSE: (PadButton.START,),
 }
 
@@ -147,18 +162,21 @@ class Bindings:
     def describe(self, action: Action) -> str:
         """What presses ``action``, for the options screen ("Z, Space / pad A")."""
         keys = ", ".join(key_label(k) for k in self.keys.get(action, ())) or "no key"
-        pads = ", ".join(PadButton(b).name if b in PadButton._value2member_map_ else str(b)
-                         for b in self.buttons.get(action, ()))
+        pads = ", ".join(
+            PadButton(b).name if b in PadButton._value2member_map_ else str(b) for b in self.buttons.get(action, ())
+        )
         return f"{keys} / pad {pads}" if pads else keys
 
     # ------------------------------------------------------------------ the file
     def to_json(self) -> dict:
-        return {"version": FORMAT_VERSION,
-                "keys": {a.value: [pygame.key.name(k) for k in self.keys.get(a, ())] for a in REBINDABLE},
-                "buttons": {a.value: [_button_name(b) for b in self.buttons.get(a, ())] for a in REBINDABLE}}
+        return {
+            "version": FORMAT_VERSION,
+            "keys": {a.value: [pygame.key.name(k) for k in self.keys.get(a, ())] for a in REBINDABLE},
+            "buttons": {a.value: [_button_name(b) for b in self.buttons.get(a, ())] for a in REBINDABLE},
+        }
 
     @classmethod
-    def from_json(cls, doc) -> "Bindings":
+    def from_json(cls, doc) -> Bindings:
         """The bindings ``doc`` describes; ``ValueError`` naming the field for anything else.
         An action the file leaves out keeps its default."""
         if not isinstance(doc, dict) or doc.get("version") != FORMAT_VERSION:
@@ -269,8 +287,11 @@ class Controls:
             return self.bindings.button_actions(event.button)
         if event.type == pygame.JOYHATMOTION:
             x, y = event.value
-            return {a for a, on in ((Action.LEFT, x < 0), (Action.RIGHT, x > 0), (Action.UP, y > 0),
-                                    (Action.DOWN, y < 0)) if on}
+            return {
+                a
+                for a, on in ((Action.LEFT, x < 0), (Action.RIGHT, x > 0), (Action.UP, y > 0), (Action.DOWN, y < 0))
+                if on
+            }
         return set()
 
     def holding(self, action: Action) -> bool:

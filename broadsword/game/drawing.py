@@ -6,7 +6,7 @@ below 255 is drawn on one transparent layer and blended over the surface once.
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 import pygame
@@ -38,8 +38,9 @@ class PygameDraw:
         for a, b in zip(np.asarray(starts).tolist(), np.asarray(ends).tolist()):
             draw(surf, colour, a, b, width)
 
-    def boxes(self, boxes: np.ndarray | Sequence[Sequence[float]], colours: Colours, width: int = 1,
-              alpha: int = 255) -> None:
+    def boxes(
+        self, boxes: np.ndarray | Sequence[Sequence[float]], colours: Colours, width: int = 1, alpha: int = 255
+    ) -> None:
         boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
         target = self.surface if alpha >= 255 else pygame.Surface(self.surface.get_size(), pygame.SRCALPHA)
         rects = np.column_stack([boxes[:, :2], boxes[:, 2:] - boxes[:, :2]]).tolist()

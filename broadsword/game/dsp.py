@@ -27,8 +27,9 @@ def noise(name: str, n: int) -> np.ndarray:
     return rng.uniform(-1.0, 1.0, n)
 
 
-def fft_filter(x: np.ndarray, rate: int, low: float | None = None, high: float | None = None,
-               order: int = 2) -> np.ndarray:
+def fft_filter(
+    x: np.ndarray, rate: int, low: float | None = None, high: float | None = None, order: int = 2
+) -> np.ndarray:
     """Zero-phase Butterworth-shaped filter done in the frequency domain, along axis 0.
 
     ``low`` is a high-pass corner and ``high`` a low-pass corner (Hz); either may be None.

@@ -17,9 +17,15 @@ from .drawing import PygameDraw
 from .render import LAYER_COLOURS
 
 SCALES = [(20, 200), (100, 2000), (200, 10_000)]
-TIER_MIXES = [("bins", "aabb", "armature"), ("bins", "circle", "armature"), ("quadtree", "aabb", "armature"),
-              ("loose_quadtree", "aabb", "armature"), ("brute", "aabb", "armature"), ("bins", "aabb", "paper"),
-              ("bins", "aabb")]
+TIER_MIXES = [
+    ("bins", "aabb", "armature"),
+    ("bins", "circle", "armature"),
+    ("quadtree", "aabb", "armature"),
+    ("loose_quadtree", "aabb", "armature"),
+    ("brute", "aabb", "armature"),
+    ("bins", "aabb", "paper"),
+    ("bins", "aabb"),
+]
 
 
 class Lab:
@@ -36,13 +42,17 @@ class Lab:
 
     def reset(self, enemies: int, bullets: int) -> None:
         self.scene = ReferenceScene(enemies=enemies, bullets=bullets, seed=self.seed)
-        self.pipeline = Pipeline(self.scene.shapes, self.scene.table, tiers=TIER_MIXES[self.mix], rotation=self.rotation)
+        self.pipeline = Pipeline(
+            self.scene.shapes, self.scene.table, tiers=TIER_MIXES[self.mix], rotation=self.rotation
+        )
         self.last: FrameResult | None = None
         self.frame = 0
 
     def next_mix(self) -> None:
         self.mix = (self.mix + 1) % len(TIER_MIXES)
-        self.pipeline = Pipeline(self.scene.shapes, self.scene.table, tiers=TIER_MIXES[self.mix], rotation=self.rotation)
+        self.pipeline = Pipeline(
+            self.scene.shapes, self.scene.table, tiers=TIER_MIXES[self.mix], rotation=self.rotation
+        )
 
     def toggle_rotation(self) -> None:
         self.rotation = self.pipeline.rotation = "exact" if self.rotation == "lut" else "lut"
@@ -64,6 +74,6 @@ class Lab:
         draw = PygameDraw(surf)
         start = 0
         for batch in polys:
-            who = layer[owners[start:start + len(batch)]].tolist()
+            who = layer[owners[start : start + len(batch)]].tolist()
             start += len(batch)
             draw.polygons(batch, [colour[k] for k in who], width=0)

@@ -52,7 +52,7 @@ class Options:
         return {"version": FORMAT_VERSION, **doc}
 
     @classmethod
-    def from_json(cls, doc) -> "Options":
+    def from_json(cls, doc) -> Options:
         if not isinstance(doc, dict) or doc.get("version") != FORMAT_VERSION:
             raise ValueError(f"version: must be {FORMAT_VERSION}")
         known = set(cls.__dataclass_fields__)
@@ -64,8 +64,9 @@ class Options:
             try:
                 values["difficulty"] = Difficulty(values["difficulty"])
             except ValueError:
-                raise ValueError(f"difficulty: must be one of {', '.join(d.value for d in Difficulty)}, "
-                                 f"got {values['difficulty']!r}") from None
+                raise ValueError(
+                    f"difficulty: must be one of {', '.join(d.value for d in Difficulty)}, got {values['difficulty']!r}"
+                ) from None
         return replace(cls(), **values)
 
 

@@ -192,7 +192,7 @@ class Overlay:
         fast = obj.swept & (moved > record.posed.radius)
         start = 0
         for batch in polys:
-            who = owners[start:start + len(batch)]
+            who = owners[start : start + len(batch)]
             start += len(batch)
             pick = fast[who]
             if pick.any():
@@ -202,13 +202,13 @@ class Overlay:
         """Inside the lens: full armatures, boxes, candidate pairs and hits, with lines."""
         cx, cy = centre
         pos = record.objects.positions
-        near = (pos[:, 0] - cx) ** 2 + (pos[:, 1] - cy) ** 2 <= LENS_RADIUS ** 2
+        near = (pos[:, 0] - cx) ** 2 + (pos[:, 1] - cy) ** 2 <= LENS_RADIUS**2
         layer = record.objects.layer
         if "aabb" in record.tiers:
             draw.boxes(record.boxes[near], [_dim(c) for c in colours.of_layer(layer[near])])
         start = 0
         for batch in polys:
-            who = owners[start:start + len(batch)]
+            who = owners[start : start + len(batch)]
             start += len(batch)
             pick = near[who]
             if pick.any():
@@ -259,15 +259,22 @@ class Overlay:
             bar_in = 60 * np.log10(s.pairs_in + 1) / scale
             bar_out = 60 * np.log10(s.pairs_out + 1) / scale
             x0 = left + PANEL_WIDTH - 66
-            draw.boxes(np.array([[x0, y + 3, x0 + bar_in, y + 6], [x0, y + 8, x0 + bar_out, y + 11]]),
-                       [_dim(colour), colour], width=0)
+            draw.boxes(
+                np.array([[x0, y + 3, x0 + bar_in, y + 6], [x0, y + 8, x0 + bar_out, y + 11]]),
+                [_dim(colour), colour],
+                width=0,
+            )
             y += LINE_HEIGHT
         draw.text((left + 6, y), f"total {record.ms:.2f} ms, {record.objects.n} objects; last {HISTORY // 60} s:", TEXT)
         y += LINE_HEIGHT + 2
         hist = np.array(self.history) if self.history else np.zeros((0, len(rows)))
         top_ms = float(np.percentile(hist.sum(axis=1), 95)) * 1.2 if len(hist) else 1.0
-        graph = stacked_graph(hist, [TIER_COLOURS[k % len(TIER_COLOURS)] for k in range(hist.shape[1])],
-                              (PANEL_WIDTH - 12, GRAPH_HEIGHT), top_ms)
+        graph = stacked_graph(
+            hist,
+            [TIER_COLOURS[k % len(TIER_COLOURS)] for k in range(hist.shape[1])],
+            (PANEL_WIDTH - 12, GRAPH_HEIGHT),
+            top_ms,
+        )
         surf.blit(graph, (left + 6, y))
         draw.text((left + 8, y + 1), f"{top_ms:.1f} ms", TEXT)
 

@@ -34,7 +34,9 @@ def heat_map(surf: pygame.Surface, layout: GridLayout, colours: FrameColours, al
     pygame.surfarray.pixels3d(img)[...] = rgb.transpose(1, 0, 2)
     pygame.surfarray.pixels_alpha(img)[...] = np.where(occ > 0, alpha, 0).astype(np.uint8).T
     size = layout.size
-    big = pygame.transform.scale(img, (max(1, int(round(occ.shape[1] * size))), max(1, int(round(occ.shape[0] * size)))))
+    big = pygame.transform.scale(
+        img, (max(1, int(round(occ.shape[1] * size))), max(1, int(round(occ.shape[0] * size))))
+    )
     surf.blit(big, (int(round(layout.origin[0])), int(round(layout.origin[1]))))
 
 
@@ -83,7 +85,7 @@ def stacked_graph(history: np.ndarray, colours: list, size: tuple[int, int], sca
         level = np.arange(h)[::-1] + 0.5  # each row's height above the bottom
         tier = (level[None, :, None] >= cum[:, None, :]).sum(axis=2)  # (m, h): the tier each pixel is in
         table = np.vstack([np.array(colours, np.uint8), [[18, 20, 32]]])  # past the top: background
-        img[w - len(hist):] = table[tier]
+        img[w - len(hist) :] = table[tier]
     else:
         img[:] = (18, 20, 32)
     return pygame.surfarray.make_surface(img)

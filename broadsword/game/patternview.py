@@ -58,7 +58,9 @@ class PatternView:
 
     def restart(self) -> None:
         # the game's own enemy-bullet store: bullets face where they fly, as in play
-        self.engine = bulletml.Engine(rank=self.rank, seed=self.seed, bullets=EnemyBullets(256, bulletml.limits.MAX_LIVE_BULLETS))
+        self.engine = bulletml.Engine(
+            rank=self.rank, seed=self.seed, bullets=EnemyBullets(256, bulletml.limits.MAX_LIVE_BULLETS)
+        )
         self.engine.add_emitter(self.pattern, EMITTER, self.params, tag=1 + self.bullet)
         self.record: FrameResult | None = None
         self.hits = 0
@@ -101,13 +103,17 @@ class PatternView:
         eng.step()
         b = eng.bullets
         p = b.pos
-        b.keep((p[:, 0] > -MARGIN) & (p[:, 0] < FIELD[0] + MARGIN) & (p[:, 1] > -MARGIN) & (p[:, 1] < FIELD[1] + MARGIN))
+        b.keep(
+            (p[:, 0] > -MARGIN) & (p[:, 0] < FIELD[0] + MARGIN) & (p[:, 1] > -MARGIN) & (p[:, 1] < FIELD[1] + MARGIN)
+        )
         self._collide()
 
     def _collide(self) -> None:
         b = self.engine.bullets
         arm = np.concatenate([[0], b.arm]).astype(np.int64)
-        layer = np.concatenate([[self.table.id("player")], np.full(b.n, self.table.id("enemy_bullet"))]).astype(np.int64)
+        layer = np.concatenate([[self.table.id("player")], np.full(b.n, self.table.id("enemy_bullet"))]).astype(
+            np.int64
+        )
         pos = np.concatenate([self.target[None, :], b.pos]).astype(np.float64)
         prev = np.concatenate([self.target[None, :], b.prev]).astype(np.float64)
         self.record = self.pipeline.step(arm, layer, pos, np.concatenate([[0.0], b.angle]), prev)
@@ -117,10 +123,13 @@ class PatternView:
     def lines(self) -> list[str]:
         eng = self.engine
         state = "PAUSED (S: one frame)" if self.paused else ""
-        return [f"{self.pattern.name}", f"rank {self.rank:.1f} (Up/Down)   frame {eng.frame}   {state}",
-                f"bullets {eng.bullets.n}   actions running {eng.running()}   fired {eng.fired}",
-                f"hits on target {self.hits}   bullet {BULLETS[self.bullet]} (B)",
-                "R restart  Space pause  F1 overlay  Esc quit"]
+        return [
+            f"{self.pattern.name}",
+            f"rank {self.rank:.1f} (Up/Down)   frame {eng.frame}   {state}",
+            f"bullets {eng.bullets.n}   actions running {eng.running()}   fired {eng.fired}",
+            f"hits on target {self.hits}   bullet {BULLETS[self.bullet]} (B)",
+            "R restart  Space pause  F1 overlay  Esc quit",
+        ]
 
     def draw(self, surf: pygame.Surface, font: pygame.font.Font, overlay: Overlay | None = None) -> None:
         surf.fill((8, 9, 20))
@@ -129,7 +138,7 @@ class PatternView:
             owners, polys = posed_polygons(self.record)
             start = 0
             for batch in polys:
-                who = owners[start:start + len(batch)]
+                who = owners[start : start + len(batch)]
                 start += len(batch)
                 colours = [LAYER_COLOURS["player"] if o == 0 else (255, 190, 90) for o in who.tolist()]
                 draw.polygons(batch, colours, width=0)
@@ -148,8 +157,14 @@ class PatternView:
 LEGEND_ROOM = 8 * 14 + 6 + 40
 
 
-def view(path: str, rank: float = 0.5, seed: int = 0, params: tuple[float, ...] = (), frames: int | None = None,
-         screenshot: str | None = None) -> int:
+def view(
+    path: str,
+    rank: float = 0.5,
+    seed: int = 0,
+    params: tuple[float, ...] = (),
+    frames: int | None = None,
+    screenshot: str | None = None,
+) -> int:
     """Open the viewer window; returns the exit status (1: the file failed to load or there
     is no display). ``frames`` stops after that many frames; ``screenshot`` saves the last."""
     import sys

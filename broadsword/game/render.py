@@ -11,12 +11,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
 import pygame
 
+from ..data.levels import Theme
 from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
-from ..data.levels import Theme
 from .backdrop import Backdrop
 from .bullets import BulletSprites
 from .hud import draw_boss_bar
@@ -179,8 +178,11 @@ class Renderer:
                     for k in range(4):
                         ang = k * math.pi / 2 + fx.born
                         r = 2 + age * 2.5
-                        surf.blit(spark, spark.get_rect(center=(fx.x + r * math.cos(ang), fx.y + r * math.sin(ang))),
-                                  special_flags=pygame.BLEND_RGBA_ADD)
+                        surf.blit(
+                            spark,
+                            spark.get_rect(center=(fx.x + r * math.cos(ang), fx.y + r * math.sin(ang))),
+                            special_flags=pygame.BLEND_RGBA_ADD,
+                        )
                 keep.append(fx)
         self.effects = keep
 

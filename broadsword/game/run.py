@@ -55,8 +55,13 @@ def load_stage(run: Run, levels: list[str], armatures, seed: int) -> Stage:
     path = resolve_level(ref)
     level = load_level(path)
     check_level_sprites(level, armatures)  # names the field of an unknown sprite
-    world = World(level, armatures, seed=seed + run.level_index, settings=Settings(difficulty=run.difficulty),
-                  carry=Carry(run.score, run.lives, run.continues))
+    world = World(
+        level,
+        armatures,
+        seed=seed + run.level_index,
+        settings=Settings(difficulty=run.difficulty),
+        carry=Carry(run.score, run.lives, run.continues),
+    )
     return Stage(world, ref, file_sha256(path))
 
 

@@ -40,8 +40,8 @@ import operator
 import os
 import re
 from dataclasses import dataclass
+from datetime import UTC, datetime
 from datetime import date as _date
-from datetime import datetime, timezone
 from pathlib import Path
 
 from ..fileio import locked, remove_stale_temps, write_atomic
@@ -98,7 +98,8 @@ def _problem(raw: object, index: int) -> str | None:
     if keys != expected:
         missing, extra = sorted(expected - keys), sorted(keys - expected)
         parts = ([f"missing {', '.join(missing)}"] if missing else []) + (
-            [f"unexpected {', '.join(map(repr, extra))}"] if extra else [])
+            [f"unexpected {', '.join(map(repr, extra))}"] if extra else []
+        )
         return f"{where}: {'; '.join(parts)}"
     name, score, level, day = raw["name"], raw["score"], raw["level"], raw["date"]
     if not isinstance(name, str):
@@ -194,7 +195,7 @@ class HighScores:
             return None, _one_line(reason)
         return self._ranked(entries), ""
 
-    def load(self) -> "HighScores":
+    def load(self) -> HighScores:
         """Replace ``entries`` with the file's (forgetting unsaved adds). Never raises for
         bad content (see module doc).
 
@@ -216,11 +217,15 @@ class HighScores:
                         self._corrupt_on_load(reason)
                         return self
         except OSError as exc:
-            what = "permission denied" if isinstance(exc, PermissionError) else _one_line(
-                exc.strerror or type(exc).__name__)
+            what = (
+                "permission denied"
+                if isinstance(exc, PermissionError)
+                else _one_line(exc.strerror or type(exc).__name__)
+            )
             self.warning = _one_line(
                 f"could not read high-score file {self.path} ({what}); "
-                f"starting with an empty table and not saving over it")
+                f"starting with an empty table and not saving over it"
+            )
             return self
         self.entries = entries
         self._base = list(entries)
@@ -233,15 +238,16 @@ class HighScores:
             self.warning = _one_line(
                 f"high-score file {self.path} is corrupt ({reason}) and could not be moved "
                 f"aside ({exc.strerror or type(exc).__name__}); starting with an empty table "
-                f"and not saving over it")
+                f"and not saving over it"
+            )
             return
         self.warning = _one_line(
-            f"high-score file {self.path} was corrupt ({reason}); moved it to {target.name} "
-            f"and started an empty table")
+            f"high-score file {self.path} was corrupt ({reason}); moved it to {target.name} and started an empty table"
+        )
 
     def _set_aside(self) -> Path:
         """Rename the file to a free ``<name>.corrupt-<stamp>[-n]``; OSError if impossible."""
-        stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+        stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
         base = f"{self.path.name}.corrupt-{stamp}"
         target = self.path.with_name(base)
         n = 2
@@ -294,7 +300,7 @@ class HighScores:
         clean = Entry(sanitise_name(entry.name), score, level, entry.date)
         rank = next((i for i, e in enumerate(self.entries) if e.score < score), len(self.entries))
         self.entries.insert(rank, clean)
-        del self.entries[self.MAX:]
+        del self.entries[self.MAX :]
         # the best MAX of this session's adds are all that can reach the merged table
         self._added = self._ranked(self._added + [clean])
         return rank
@@ -330,7 +336,8 @@ class HighScores:
                     target = self._set_aside()
                     warning = self.warning = _one_line(
                         f"high-score file {self.path} was corrupt ({reason}); moved it to "
-                        f"{target.name} and saved this session's table")
+                        f"{target.name} and saved this session's table"
+                    )
                     # the table we last saw is now only in the set-aside file: carry it as
                     # pending, so a retry after a failed write below still includes it
                     self._added = self._ranked(self._base + self._added)
@@ -362,9 +369,6 @@ def _encode(entries: list[Entry]) -> bytes:
     """The file's bytes for ``entries``: UTF-8 JSON, 2-space indent, trailing newline."""
     doc = {
         "version": FORMAT_VERSION,
-        "scores": [
-            {"name": e.name, "score": e.score, "level": e.level, "date": e.date}
-            for e in entries
-        ],
+        "scores": [{"name": e.name, "score": e.score, "level": e.level, "date": e.date} for e in entries],
     }
     return (json.dumps(doc, indent=2, ensure_ascii=False) + "\n").encode("utf-8")

@@ -49,8 +49,16 @@ class Painter:
             text = text[:-1]
         return font, text + "..."
 
-    def text(self, text: str, y: float, size: int = BODY, colour=WHITE, x: float | None = None,
-             anchor: str = "center", width: float | None = None) -> pygame.Rect:
+    def text(
+        self,
+        text: str,
+        y: float,
+        size: int = BODY,
+        colour=WHITE,
+        x: float | None = None,
+        anchor: str = "center",
+        width: float | None = None,
+    ) -> pygame.Rect:
         """Draw one line, anchored (``center``, ``midleft``, ``midright``) at ``(x, y)``
         (default x: the field's middle); it never crosses the field's edges (less ``MARGIN``)
         nor ``width`` px if given."""

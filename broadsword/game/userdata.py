@@ -26,8 +26,9 @@ __all__ = ["APP", "user_data_dir"]
 APP = "broadsword"
 
 
-def user_data_dir(platform: str | None = None, environ: Mapping[str, str] | None = None,
-                  home: Path | None = None) -> Path:
+def user_data_dir(
+    platform: str | None = None, environ: Mapping[str, str] | None = None, home: Path | None = None
+) -> Path:
     """The directory for Broadsword's saved data (see the module docstring for the rules).
 
     ``platform`` (a :data:`sys.platform` value), ``environ`` and ``home`` default to this

@@ -18,5 +18,22 @@ from .pool import Pool
 from .settings import Carry, Settings, Toggle, ToggleEvent
 from .world import World
 
-__all__ = ["DT", "FIELD", "IDLE", "SPAWN", "Carry", "CollisionRecord", "Events", "GameLayer", "Group", "Input", "LayerIds",
-           "Pool", "Settings", "Toggle", "ToggleEvent", "Pilot", "World"]
+__all__ = [
+    "DT",
+    "FIELD",
+    "IDLE",
+    "SPAWN",
+    "Carry",
+    "CollisionRecord",
+    "Events",
+    "GameLayer",
+    "Group",
+    "Input",
+    "LayerIds",
+    "Pool",
+    "Settings",
+    "Toggle",
+    "ToggleEvent",
+    "Pilot",
+    "World",
+]

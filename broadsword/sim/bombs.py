@@ -12,7 +12,6 @@ ship is stricken; a bomb in that window cancels the hit.
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from ..collision import Armature, detmath

@@ -46,8 +46,17 @@ class PhaseEnd(Enum):
 def parts_pool(capacity: int = 1) -> Pool:
     """A pool of boss parts: pose, armature kind, age, part index and ``next_fire``, the age
     at which the part's current pattern starts (:mod:`.emitters` runs it)."""
-    return Pool(capacity=capacity, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
-                arm=((), int), age=((), float), part=((), int), next_fire=((), float))
+    return Pool(
+        capacity=capacity,
+        pos=((2,), float),
+        prev=((2,), float),
+        vel=((2,), float),
+        angle=((), float),
+        arm=((), int),
+        age=((), float),
+        part=((), int),
+        next_fire=((), float),
+    )
 
 
 class Boss:
@@ -85,9 +94,16 @@ class Boss:
         self.pos = np.array([FIELD[0] / 2, ENTRY_Y])
         k = len(self.spec.parts)
         at = self.pos + self.offsets
-        self.parts.add(pos=at, prev=at, vel=np.zeros((k, 2)), angle=np.zeros(k),
-                       arm=[kinds_base[p.sprite] for p in self.spec.parts], age=np.zeros(k), part=np.arange(k),
-                       next_fire=[self.spec.fire_of(0, i).delay + FIRST_VOLLEY_GRACE for i in range(k)])
+        self.parts.add(
+            pos=at,
+            prev=at,
+            vel=np.zeros((k, 2)),
+            angle=np.zeros(k),
+            arm=[kinds_base[p.sprite] for p in self.spec.parts],
+            age=np.zeros(k),
+            part=np.arange(k),
+            next_fire=[self.spec.fire_of(0, i).delay + FIRST_VOLLEY_GRACE for i in range(k)],
+        )
         return True
 
     def move(self) -> None:

@@ -29,8 +29,17 @@ def enemy_bullets(capacity: int, limit: int) -> EnemyBullets:
 def bullet_pool(capacity: int, limit: int) -> Pool:
     """A pool of at most ``limit`` bullets: position, last position, velocity (px/s), angle
     (degrees), armature kind, damage, and whether it has grazed the player already."""
-    return Pool(capacity=capacity, limit=limit, pos=((2,), float), prev=((2,), float), vel=((2,), float),
-                angle=((), float), arm=((), int), damage=((), int), grazed=((), bool))
+    return Pool(
+        capacity=capacity,
+        limit=limit,
+        pos=((2,), float),
+        prev=((2,), float),
+        vel=((2,), float),
+        angle=((), float),
+        arm=((), int),
+        damage=((), int),
+        grazed=((), bool),
+    )
 
 
 class EnemyBullets(Movers):
@@ -45,8 +54,16 @@ class EnemyBullets(Movers):
     """
 
     def __init__(self, capacity: int, limit: int):
-        super().__init__(capacity, limit, prev=((2,), float), vel=((2,), float), angle=((), float), arm=((), int),
-                         damage=((), int), grazed=((), bool))
+        super().__init__(
+            capacity,
+            limit,
+            prev=((2,), float),
+            vel=((2,), float),
+            angle=((), float),
+            arm=((), int),
+            damage=((), int),
+            grazed=((), bool),
+        )
 
     def add(self, pos, prev, vel, angle, arm, damage, grazed) -> int:
         """Add bullets flying straight at ``vel`` (n, 2) px/s (no pattern), as a
@@ -63,11 +80,15 @@ class EnemyBullets(Movers):
         self._grow(j)
         self.n = j
         v = np.broadcast_to(np.asarray(vel, dtype=np.float64).reshape(-1, 2), (len(pos), 2))[:k]
-        for name, value in (("pos", pos[:k]), ("prev", np.asarray(prev, dtype=np.float64).reshape(-1, 2)[:k]),
-                            ("vel", v), ("angle", np.broadcast_to(angle, (len(pos),))[:k]),
-                            ("arm", np.broadcast_to(arm, (len(pos),))[:k]),
-                            ("damage", np.broadcast_to(damage, (len(pos),))[:k]),
-                            ("grazed", np.broadcast_to(grazed, (len(pos),))[:k])):
+        for name, value in (
+            ("pos", pos[:k]),
+            ("prev", np.asarray(prev, dtype=np.float64).reshape(-1, 2)[:k]),
+            ("vel", v),
+            ("angle", np.broadcast_to(angle, (len(pos),))[:k]),
+            ("arm", np.broadcast_to(arm, (len(pos),))[:k]),
+            ("damage", np.broadcast_to(damage, (len(pos),))[:k]),
+            ("grazed", np.broadcast_to(grazed, (len(pos),))[:k]),
+        ):
             getattr(self, name)[i:j] = value
         step = v * DT  # straight flight: all of it is accel velocity, no trigonometry
         self.state[i:j] = 0.0
@@ -106,8 +127,15 @@ def add_bullets(pool: Pool, pos: np.ndarray, vel: np.ndarray, kind: int, damage=
     of armature kind ``kind``, doing ``damage`` (scalar or (n,)). Returns how many were
     added (fewer than n when the pool is at its limit)."""
     n = len(pos)
-    return pool.add(pos=pos, prev=pos, vel=vel, angle=heading(vel[:, 0], vel[:, 1]), arm=np.full(n, kind),
-                    damage=np.broadcast_to(np.asarray(damage, dtype=np.int64), (n,)), grazed=np.zeros(n, dtype=bool))
+    return pool.add(
+        pos=pos,
+        prev=pos,
+        vel=vel,
+        angle=heading(vel[:, 0], vel[:, 1]),
+        arm=np.full(n, kind),
+        damage=np.broadcast_to(np.asarray(damage, dtype=np.int64), (n,)),
+        grazed=np.zeros(n, dtype=bool),
+    )
 
 
 def move_bullets(pool: Pool) -> None:

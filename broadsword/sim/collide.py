@@ -118,10 +118,13 @@ class CollisionStep:
             heads.append((Group.GRAZE, kinds.base["graze"], ids.graze, player.pos, player.prev))
         if world.bomb.active:
             heads.append((Group.BOMB, world.bomb.kind, ids.bomb, player.pos, player.pos))
-        groups = [(Group.SHIPS, world.ships.pool, ids.enemy_ship), (Group.BOSS, world.parts, ids.enemy_ship),
-                  (Group.ENEMY_BULLETS, world.enemy_bullets, ids.enemy_bullet),
-                  (Group.PLAYER_BULLETS, world.player_bullets, ids.player_bullet),
-                  (Group.ITEMS, world.items.pool, ids.item)]
+        groups = [
+            (Group.SHIPS, world.ships.pool, ids.enemy_ship),
+            (Group.BOSS, world.parts, ids.enemy_ship),
+            (Group.ENEMY_BULLETS, world.enemy_bullets, ids.enemy_bullet),
+            (Group.PLAYER_BULLETS, world.player_bullets, ids.player_bullet),
+            (Group.ITEMS, world.items.pool, ids.item),
+        ]
         nh = len(heads)
         spans = {g: slice(0, 0) for g in Group}
         for i, h in enumerate(heads):
@@ -130,10 +133,12 @@ class CollisionStep:
         for g, pool, _ in groups:
             spans[g] = slice(start, start + pool.n)
             start += pool.n
-        pos = np.concatenate([np.array([h[3] for h in heads], dtype=np.float64).reshape(nh, 2)]
-                             + [p.pos for _, p, _ in groups])
-        prev = np.concatenate([np.array([h[4] for h in heads], dtype=np.float64).reshape(nh, 2)]
-                              + [p.prev for _, p, _ in groups])
+        pos = np.concatenate(
+            [np.array([h[3] for h in heads], dtype=np.float64).reshape(nh, 2)] + [p.pos for _, p, _ in groups]
+        )
+        prev = np.concatenate(
+            [np.array([h[4] for h in heads], dtype=np.float64).reshape(nh, 2)] + [p.prev for _, p, _ in groups]
+        )
         angle = np.concatenate([np.zeros(nh)] + [p.angle for _, p, _ in groups])
         arm = np.concatenate([np.array([h[1] for h in heads], dtype=np.int64)] + [p.arm for _, p, _ in groups])
         arm = arm.astype(np.int64, copy=False)
@@ -144,8 +149,10 @@ class CollisionStep:
             animated = np.ones(len(arm), dtype=bool)
             animated[spans[Group.BOMB]] = False  # the bomb's kind is its size, not an animation frame
             arm = np.where(animated, kinds.current(arm, age), arm)
-        layer = np.concatenate([np.array([h[2] for h in heads], dtype=np.int64)]
-                               + [np.full(p.n, lid, dtype=np.int64) for _, p, lid in groups])
+        layer = np.concatenate(
+            [np.array([h[2] for h in heads], dtype=np.int64)]
+            + [np.full(p.n, lid, dtype=np.int64) for _, p, lid in groups]
+        )
         # Every bullet that moved is swept from its last pose to this one (the paper's "quick
         # gun" fix, at every speed): a bullet's hull translated along its step covers exactly
         # the ground it crossed, so no contact between two frames is missed, not even a

@@ -61,8 +61,9 @@ class Combat:
         pb_dead[on_boss[:, 1] - p0] = True
         w.score.landed += len(on_ships) + len(on_boss)
         s0 = spans[Group.SHIPS].start
-        damage = np.bincount(on_ships[:, 0] - s0, weights=pb.damage[on_ships[:, 1] - p0],
-                             minlength=w.ships.pool.n).astype(np.int64)
+        damage = np.bincount(
+            on_ships[:, 0] - s0, weights=pb.damage[on_ships[:, 1] - p0], minlength=w.ships.pool.n
+        ).astype(np.int64)
         boss_damage = int(pb.damage[on_boss[:, 1] - p0].sum())
         if w.bomb.damaging():
             bombed_ships = bombed[(bombed >= s0) & (bombed < spans[Group.SHIPS].stop)] - s0

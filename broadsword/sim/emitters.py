@@ -57,8 +57,7 @@ class EnemyGuns:
 
     def __init__(self, bullets, fires: RankedFire, seed: int):
         self.fires = fires
-        self.engine = Engine(rank=fires.rank, seed=np.random.SeedSequence(seed, spawn_key=(0xB011E7,)),
-                             bullets=bullets)
+        self.engine = Engine(rank=fires.rank, seed=np.random.SeedSequence(seed, spawn_key=(0xB011E7,)), bullets=bullets)
         self.ship_uid_seen = -1  # ships with a larger uid have no emitter yet
         self.boss_phase = None  # the phase whose patterns the parts run (None: not armed)
 

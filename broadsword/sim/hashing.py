@@ -30,9 +30,25 @@ def state_hash(world) -> str:
     boss = world.boss
     boss_state = (boss.hp, boss.phase, list(type(boss.state)).index(boss.state)) if boss else (0, 0, -1)  # type: ignore[call-overload]
     p, s = world.player, world.score
-    tallies = [world.frame, s.points, s.grazes, s.hits, s.items, s.landed, s.extends, p.lives, p.bombs, p.power, p.stricken,
-               p.misses, world.bomb.age, world.progress.bombs_used, world.progress.continues_used, *boss_state,
-               ROTATIONS.index(world.rotation)]  # the mode in force is state: it shapes what comes
+    tallies = [
+        world.frame,
+        s.points,
+        s.grazes,
+        s.hits,
+        s.items,
+        s.landed,
+        s.extends,
+        p.lives,
+        p.bombs,
+        p.power,
+        p.stricken,
+        p.misses,
+        world.bomb.age,
+        world.progress.bombs_used,
+        world.progress.continues_used,
+        *boss_state,
+        ROTATIONS.index(world.rotation),
+    ]  # the mode in force is state: it shapes what comes
     h.update(np.array(tallies, np.int64).tobytes())
     h.update(_quantised(p.pos))
     if boss:

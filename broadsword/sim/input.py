@@ -27,7 +27,7 @@ class Input:
         return encode_input(self.dx, self.dy, self.fire, self.slow, self.bomb)
 
     @classmethod
-    def from_byte(cls, b: int) -> "Input":
+    def from_byte(cls, b: int) -> Input:
         return cls(*decode_input(b))
 
 

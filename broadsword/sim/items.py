@@ -62,8 +62,17 @@ class Items:
 
     def __init__(self, kinds_base: dict[str, int]):
         self.arm_of = np.array([kinds_base[SPRITES[k]] for k in ItemKind], dtype=np.int64)
-        self.pool = Pool(capacity=256, limit=ITEMS_LIMIT, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
-                         arm=((), int), kind=((), int), homing=((), bool))
+        self.pool = Pool(
+            capacity=256,
+            limit=ITEMS_LIMIT,
+            pos=((2,), float),
+            prev=((2,), float),
+            vel=((2,), float),
+            angle=((), float),
+            arm=((), int),
+            kind=((), int),
+            homing=((), bool),
+        )
 
     def drop(self, at, kinds: list[ItemKind]) -> None:
         """Drop ``kinds`` at ``at`` (x, y), fanned out sideways, popping up."""
@@ -75,16 +84,24 @@ class Items:
         vel[:, 0] = (np.arange(n) - (n - 1) / 2) * FAN
         vel[:, 1] = -POP_SPEED
         k = np.array([int(x) for x in kinds], dtype=np.int64)
-        self.pool.add(pos=pos, prev=pos, vel=vel, angle=np.zeros(n), arm=self.arm_of[k], kind=k,
-                      homing=np.zeros(n, dtype=bool))
+        self.pool.add(
+            pos=pos, prev=pos, vel=vel, angle=np.zeros(n), arm=self.arm_of[k], kind=k, homing=np.zeros(n, dtype=bool)
+        )
 
     def drop_many(self, at: np.ndarray, kind: ItemKind, homing: bool = False) -> None:
         """One item of ``kind`` at each of ``at`` (m, 2), still (homing, if asked)."""
         m = len(at)
         if not m:
             return
-        self.pool.add(pos=at, prev=at, vel=np.zeros((m, 2)), angle=np.zeros(m), arm=np.full(m, self.arm_of[kind]),
-                      kind=np.full(m, int(kind)), homing=np.full(m, homing))
+        self.pool.add(
+            pos=at,
+            prev=at,
+            vel=np.zeros((m, 2)),
+            angle=np.zeros(m),
+            arm=np.full(m, self.arm_of[kind]),
+            kind=np.full(m, int(kind)),
+            homing=np.full(m, homing),
+        )
 
     def call_all(self) -> None:
         """Every item on the field homes in on the player from now on."""

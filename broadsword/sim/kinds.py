@@ -7,7 +7,7 @@ shows at its age, so the shape collided is always the shape drawn.
 
 from __future__ import annotations
 
-from typing import Mapping
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -71,9 +71,16 @@ class Kinds:
                 time.append(frame_time)
 
         for n in sorted(ALWAYS | set(names)):
-            add(n, [fs["hit"] for fs in frame_sets(armatures[n])], getattr(armatures[n], "frame_time", DEFAULT_FRAME_TIME))
-        add("graze", [fs.get("graze") or Armature.box(*DEFAULT_GRAZE, name="graze") for fs in frame_sets(armatures["player"])],
-            getattr(armatures["player"], "frame_time", DEFAULT_FRAME_TIME))
+            add(
+                n,
+                [fs["hit"] for fs in frame_sets(armatures[n])],
+                getattr(armatures[n], "frame_time", DEFAULT_FRAME_TIME),
+            )
+        add(
+            "graze",
+            [fs.get("graze") or Armature.box(*DEFAULT_GRAZE, name="graze") for fs in frame_sets(armatures["player"])],
+            getattr(armatures["player"], "frame_time", DEFAULT_FRAME_TIME),
+        )
         for n, shapes_of in (extra or {}).items():
             add(n, list(shapes_of), DEFAULT_FRAME_TIME)
         self.frame = np.array(frame, dtype=np.int64)

@@ -31,8 +31,12 @@ def game_layer_table(graze: bool = True) -> LayerTable:
     tests = [(GameLayer.PLAYER, GameLayer.ENEMY_SHIP), (GameLayer.PLAYER, GameLayer.ENEMY_BULLET)]
     if graze:
         tests.append((GameLayer.GRAZE, GameLayer.ENEMY_BULLET))
-    tests += [(GameLayer.ENEMY_SHIP, GameLayer.PLAYER_BULLET), (GameLayer.GRAZE, GameLayer.ITEM),
-              (GameLayer.BOMB, GameLayer.ENEMY_BULLET), (GameLayer.BOMB, GameLayer.ENEMY_SHIP)]
+    tests += [
+        (GameLayer.ENEMY_SHIP, GameLayer.PLAYER_BULLET),
+        (GameLayer.GRAZE, GameLayer.ITEM),
+        (GameLayer.BOMB, GameLayer.ENEMY_BULLET),
+        (GameLayer.BOMB, GameLayer.ENEMY_SHIP),
+    ]
     return LayerTable([g.value for g in GameLayer], [(a.value, b.value) for a, b in tests])
 
 
@@ -49,5 +53,5 @@ class LayerIds:
     bomb: int
 
     @classmethod
-    def of(cls, table: LayerTable) -> "LayerIds":
+    def of(cls, table: LayerTable) -> LayerIds:
         return cls(*(table.id(g.value) for g in GameLayer))

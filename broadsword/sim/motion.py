@@ -8,7 +8,7 @@ at their current ages; :func:`move_wave_ships` applies them. Mirrored ships (``m
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
@@ -81,7 +81,10 @@ def _hold(p: PathSpec, ships: Pool, sel: np.ndarray, player: np.ndarray) -> np.n
 
 #: The velocity function of each path kind.
 PATHS: dict[PathKind, Callable[[PathSpec, Pool, np.ndarray, np.ndarray], np.ndarray]] = {
-    PathKind.STRAIGHT: _straight, PathKind.SINE: _sine, PathKind.ARC: _arc, PathKind.DIVE: _dive,
+    PathKind.STRAIGHT: _straight,
+    PathKind.SINE: _sine,
+    PathKind.ARC: _arc,
+    PathKind.DIVE: _dive,
     PathKind.HOLD: _hold,
 }
 

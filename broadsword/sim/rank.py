@@ -46,7 +46,11 @@ class RankedFire:
             if self.rank == 0.5 or not spec.fires:
                 out = spec
             else:
-                out = replace(spec, every=spec.every / rate_factor(self.rank),
-                              speed=spec.speed * speed_factor(self.rank), shots=shots_at(spec.shots, self.rank))
+                out = replace(
+                    spec,
+                    every=spec.every / rate_factor(self.rank),
+                    speed=spec.speed * speed_factor(self.rank),
+                    shots=shots_at(spec.shots, self.rank),
+                )
             self._scaled[spec] = out
         return out

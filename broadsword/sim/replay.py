@@ -36,9 +36,17 @@ class Recorder:
     def recording(self) -> Recording:
         toggles = tuple((t.frame, t.toggle.value, t.value) for t in self.world.toggles)
         carry = self.world.carry
-        return Recording(self.level_ref, self.world.seed, dict(self.settings), bytes(self.inputs), toggles,
-                         tuple(self.checkpoints), self.world.state_hash(), self.level_sha256,
-                         carry={"score": carry.score, "lives": carry.lives, "continues": carry.continues})
+        return Recording(
+            self.level_ref,
+            self.world.seed,
+            dict(self.settings),
+            bytes(self.inputs),
+            toggles,
+            tuple(self.checkpoints),
+            self.world.state_hash(),
+            self.level_sha256,
+            carry={"score": carry.score, "lives": carry.lives, "continues": carry.continues},
+        )
 
 
 @dataclass(frozen=True)

@@ -25,8 +25,9 @@ class WaveTimeline:
     ship, in time order."""
 
     def __init__(self, waves: tuple[WaveSpec, ...], difficulty: Difficulty = Difficulty.NORMAL):
-        self.schedule = sorted((w.at + k * w.every, i) for i, w in enumerate(waves) if difficulty in w.difficulties
-                               for k in range(w.count))
+        self.schedule = sorted(
+            (w.at + k * w.every, i) for i, w in enumerate(waves) if difficulty in w.difficulties for k in range(w.count)
+        )
         self.sent = 0
 
     @property
@@ -45,15 +46,31 @@ class WaveTimeline:
 class WaveShips:
     """The ships the waves have sent: a pool, its spawning, motion and culling."""
 
-    def __init__(self, waves: tuple[WaveSpec, ...], kinds_base: dict[str, int],
-                 difficulty: DifficultySpec = DEFAULT_SPECS[Difficulty.NORMAL]):
+    def __init__(
+        self,
+        waves: tuple[WaveSpec, ...],
+        kinds_base: dict[str, int],
+        difficulty: DifficultySpec = DEFAULT_SPECS[Difficulty.NORMAL],
+    ):
         self.waves = waves
         self.hp = [difficulty.scale_hp(w.hp) for w in waves]  # under the difficulty
         self.paths = [w.path for w in waves]
         self.kind = [kinds_base[w.enemy] for w in waves]  # each wave's armature kind
-        self.pool = Pool(limit=SHIPS_LIMIT, pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float),
-                         arm=((), int), hp=((), int), age=((), float), wave=((), int), mirror=((), float),
-                         dive=((2,), float), next_fire=((), float), uid=((), int))
+        self.pool = Pool(
+            limit=SHIPS_LIMIT,
+            pos=((2,), float),
+            prev=((2,), float),
+            vel=((2,), float),
+            angle=((), float),
+            arm=((), int),
+            hp=((), int),
+            age=((), float),
+            wave=((), int),
+            mirror=((), float),
+            dive=((2,), float),
+            next_fire=((), float),
+            uid=((), int),
+        )
         self.next_uid = 0  # every ship sent gets the next id (its emitter follows it by id)
 
     def spawn(self, w: int, rng: np.random.Generator) -> None:
@@ -67,10 +84,20 @@ class WaveShips:
             mirrors.append(-1.0)
         k = len(xs)
         pos = np.array([[x, ENTRY_Y] for x in xs])
-        self.pool.add(pos=pos, prev=pos, vel=np.zeros((k, 2)), angle=np.full(k, 180.0), arm=np.full(k, self.kind[w]),
-                      hp=np.full(k, self.hp[w]), age=np.zeros(k), wave=np.full(k, w), mirror=mirrors,
-                      dive=np.zeros((k, 2)), next_fire=np.full(k, spec.fire.delay),
-                      uid=np.arange(self.next_uid, self.next_uid + k))
+        self.pool.add(
+            pos=pos,
+            prev=pos,
+            vel=np.zeros((k, 2)),
+            angle=np.full(k, 180.0),
+            arm=np.full(k, self.kind[w]),
+            hp=np.full(k, self.hp[w]),
+            age=np.zeros(k),
+            wave=np.full(k, w),
+            mirror=mirrors,
+            dive=np.zeros((k, 2)),
+            next_fire=np.full(k, spec.fire.delay),
+            uid=np.arange(self.next_uid, self.next_uid + k),
+        )
         self.next_uid += k
 
     def move(self, player: np.ndarray) -> None:
@@ -86,4 +113,3 @@ class WaveShips:
         p = e.pos
         gone = (e.age > 1.0) & ((p[:, 1] > h + bottom) | (p[:, 1] < -top) | (p[:, 0] < -side) | (p[:, 0] > w + side))
         e.keep(~gone)
-

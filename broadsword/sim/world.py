@@ -25,13 +25,13 @@ import numpy as np
 from ..collision import Pipeline
 from ..data.levels import Level
 from . import hashing
-from .bombs import NAME as BOMB, Bomb, bomb_armatures
+from .bombs import NAME as BOMB
+from .bombs import Bomb, bomb_armatures
 from .boss import Boss, parts_pool
-from .rank import RankedFire
 from .bullets import bullet_pool, cull_bullets, enemy_bullets, move_bullets
-from .emitters import EnemyGuns
 from .collide import CollisionRecord, CollisionStep
 from .combat import Combat
+from .emitters import EnemyGuns
 from .events import Events
 from .field import DT, FIELD
 from .input import Input
@@ -39,8 +39,8 @@ from .items import Items
 from .kinds import ALWAYS, Kinds
 from .layers import LayerIds, game_layer_table
 from .player import Player
-from .pool import Pool
 from .progress import Progress
+from .rank import RankedFire
 from .scoring import Score
 from .settings import Carry, Settings, Toggle, ToggleEvent
 from .waves import WaveShips, WaveTimeline
@@ -99,8 +99,9 @@ class World:
         Every live switch made, with its frame (for recordings).
     """
 
-    def __init__(self, level: Level, armatures, seed: int = 0, settings: Settings | None = None,
-                 carry: Carry | None = None):
+    def __init__(
+        self, level: Level, armatures, seed: int = 0, settings: Settings | None = None, carry: Carry | None = None
+    ):
         self.level, self.seed = level, int(seed)
         self.settings = settings or Settings()
         self.carry = carry or Carry()
@@ -111,9 +112,14 @@ class World:
         self.kinds = Kinds(armatures, level.sprites, extra={BOMB: bomb_armatures()})
         table = game_layer_table(level.scene.graze)
         self.layers = LayerIds.of(table)
-        pipeline = Pipeline(self.kinds.shapes, table, tiers=level.scene.tiers,
-                            rotation=self.settings.rotation or level.scene.rotation, bin_size=level.scene.bin_size,
-                            field=(0.0, 0.0, *FIELD))
+        pipeline = Pipeline(
+            self.kinds.shapes,
+            table,
+            tiers=level.scene.tiers,
+            rotation=self.settings.rotation or level.scene.rotation,
+            bin_size=level.scene.bin_size,
+            field=(0.0, 0.0, *FIELD),
+        )
         self.collide = CollisionStep(pipeline, table, self.kinds, level.scene.graze)
         self.frame = 0
         self.over = False
@@ -249,8 +255,12 @@ class World:
         self.items.cull()
 
     def _check_limits(self) -> None:
-        for pool, what in ((self.enemy_bullets, "enemy bullets"), (self.player_bullets, "player bullets"),
-                           (self.ships.pool, "ships"), (self.items.pool, "items")):
+        for pool, what in (
+            (self.enemy_bullets, "enemy bullets"),
+            (self.player_bullets, "player bullets"),
+            (self.ships.pool, "ships"),
+            (self.items.pool, "items"),
+        ):
             message = f"more than {pool.limit:,} {what} at once: the rest were not made"
             if pool.refused and message not in self.warnings:
                 self.warnings.append(message)
@@ -266,9 +276,21 @@ class World:
 
     def summary(self) -> dict:
         """The headline numbers of the run so far."""
-        return {"frames": self.frame, "score": self.score.points, "lives": self.player.lives,
-                "hits": self.score.hits, "grazes": self.score.grazes, "enemy_bullets": self.enemy_bullets.n,
-                "enemies": self.ships.pool.n + self.parts.n, "complete": self.complete, "game_over": self.over,
-                "stage_cleared": self.complete, "bombs_used": self.progress.bombs_used,
-                "continues_used": self.progress.continues_used, "misses": self.player.misses,
-                "items": self.score.items, "shots_landed": self.score.landed, "power": self.player.power / 100}
+        return {
+            "frames": self.frame,
+            "score": self.score.points,
+            "lives": self.player.lives,
+            "hits": self.score.hits,
+            "grazes": self.score.grazes,
+            "enemy_bullets": self.enemy_bullets.n,
+            "enemies": self.ships.pool.n + self.parts.n,
+            "complete": self.complete,
+            "game_over": self.over,
+            "stage_cleared": self.complete,
+            "bombs_used": self.progress.bombs_used,
+            "continues_used": self.progress.continues_used,
+            "misses": self.player.misses,
+            "items": self.score.items,
+            "shots_landed": self.score.landed,
+            "power": self.player.power / 100,
+        }

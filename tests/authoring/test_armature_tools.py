@@ -15,10 +15,12 @@ from broadsword.data.armatures import save_armature_file
 
 def reader(images: dict[str, np.ndarray]):
     """A ``read_alpha`` over in-memory images, by file name; a missing one is a DataError."""
+
     def read(path):
         if path.name not in images:
             raise DataError(path, "", "cannot load image: no such file")
         return images[path.name]
+
     return read
 
 
@@ -66,7 +68,10 @@ def test_check__a_one_frame_file_over_a_strip_is_invalid_naming_file_and_why(tmp
     assert check([str(tmp_path)], reader({"anim.png": strip, "ok.png": ship()}), out) == 1
     text = out.getvalue()
     line = next(x for x in text.splitlines() if x.startswith("anim.armature.toml"))
-    assert "error:" in line and "anim.armature.toml: frames: one frame, but anim.png looks like a strip of 2 frames" in line
+    assert (
+        "error:" in line
+        and "anim.armature.toml: frames: one frame, but anim.png looks like a strip of 2 frames" in line
+    )
     assert "give frames = 2" in line and "2 file(s), 1 invalid" in text
 
 
@@ -86,10 +91,12 @@ def test_check__the_shipped_files_pass_with_any_reader():
 
 
 def test_authoring_never_imports_pygame():
-    code = ("import sys; sys.modules['pygame'] = None\n"
-            "import pkgutil, importlib, broadsword.authoring as a\n"
-            "for m in pkgutil.walk_packages(a.__path__, 'broadsword.authoring.'):\n"
-            "    importlib.import_module(m.name)\n"
-            "print('ok')")
+    code = (
+        "import sys; sys.modules['pygame'] = None\n"
+        "import pkgutil, importlib, broadsword.authoring as a\n"
+        "for m in pkgutil.walk_packages(a.__path__, 'broadsword.authoring.'):\n"
+        "    importlib.import_module(m.name)\n"
+        "print('ok')"
+    )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr

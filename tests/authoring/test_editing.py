@@ -11,8 +11,8 @@ import pytest
 
 from broadsword.authoring.document import FRAME_SIDE_MAX, load_document, new_document, open_document
 from broadsword.authoring.editing import DragKind, EditSession
-from broadsword.authoring.picking import HoverKind
 from broadsword.authoring.history import History, Snapshot
+from broadsword.authoring.picking import HoverKind
 from broadsword.authoring.probe import Probe
 from broadsword.authoring.snapping import moved, place, snap_to_corner, step
 from broadsword.collision import Armature, polygons_collide
@@ -24,7 +24,7 @@ DIAMOND = [(0.0, -8.0), (8.0, 0.0), (0.0, 8.0), (-8.0, 0.0)]
 
 def solid(h=20, w=20):
     a = np.zeros((h, w), dtype=np.uint8)
-    a[2:h - 2, 2:w - 2] = 255
+    a[2 : h - 2, 2 : w - 2] = 255
     return a
 
 
@@ -33,14 +33,19 @@ def reader(**images):
         if path.name not in images:
             raise DataError(path, "", "cannot load image: no such file")
         return images[path.name]
+
     return read
 
 
 @pytest.fixture
 def session(tmp_path):
     (tmp_path / "ship.png").write_bytes(b"")  # present; the reader supplies the pixels
-    save_armature_file(tmp_path / "ship.armature.toml", "ship", "ship.png",
-                       [{"hit": DIAMOND, "graze": [(-9, -9), (9, -9), (9, 9), (-9, 9)]}])
+    save_armature_file(
+        tmp_path / "ship.armature.toml",
+        "ship",
+        "ship.png",
+        [{"hit": DIAMOND, "graze": [(-9, -9), (9, -9), (9, 9), (-9, 9)]}],
+    )
     return EditSession(load_document(tmp_path / "ship.armature.toml", reader(**{"ship.png": solid()})))
 
 
@@ -144,7 +149,9 @@ def test_picking_vertex_edge_inside_and_other_shapes(session):
 def test_undo_returns_to_the_shape_and_frame_it_changed(tmp_path):
     (tmp_path / "anim.png").write_bytes(b"")
     save_armature_file(tmp_path / "anim.armature.toml", "anim", "anim.png", [{"hit": DIAMOND}, {"hit": DIAMOND}])
-    s = EditSession(load_document(tmp_path / "anim.armature.toml", reader(**{"anim.png": np.hstack([solid(), solid()])})))
+    s = EditSession(
+        load_document(tmp_path / "anim.armature.toml", reader(**{"anim.png": np.hstack([solid(), solid()])}))
+    )
     assert s.frame_size == (20, 20) and s.next_frame()
     s.nudge(1, 0, whole=True)
     s.next_frame()

@@ -11,7 +11,7 @@ from broadsword.data import DataError
 
 def blob(h, w, top, left, bh, bw):
     a = np.zeros((h, w), dtype=np.uint8)
-    a[top:top + bh, left:left + bw] = 255
+    a[top : top + bh, left : left + bw] = 255
     return a
 
 

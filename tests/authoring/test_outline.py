@@ -8,7 +8,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from broadsword.collision import Armature
 from broadsword.authoring import (
     dilate,
     erode,
@@ -18,7 +17,7 @@ from broadsword.authoring import (
     simplify_polygon,
     trace_outline,
 )
-from broadsword.collision import rasterise
+from broadsword.collision import Armature, rasterise
 
 
 def ring_u(h=24, w=24) -> np.ndarray:
@@ -51,7 +50,7 @@ def test_largest_region__fills_holes_and_keeps_the_biggest_part():
     m = np.zeros((10, 10), dtype=bool)
     m[1:8, 1:8] = True
     m[4, 4] = False  # a hole
-    m[9, 9] = True   # a speck
+    m[9, 9] = True  # a speck
     r = largest_region(m)
     assert r[4, 4] and not r[9, 9] and r.sum() == 49
 

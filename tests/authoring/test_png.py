@@ -28,14 +28,19 @@ def test_a_shipped_sprite_reads():
     assert (h.width, h.height, h.interlaced) == (56, 28, False)
 
 
-@pytest.mark.parametrize(("make", "why"), [
-    (lambda p: p.write_bytes(b"GIF89a" + bytes(40)), "not a PNG file"),
-    (lambda p: p.write_bytes(SIG + b"\x00\x00"), "truncated"),
-    (lambda p: p.write_bytes(SIG + chunk(b"IDAT", bytes(13))), "first chunk is not a 13-byte IHDR"),
-    (lambda p: p.write_bytes(SIG + chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 6, 0, 0, 0))[:-1] + b"\x00"),
-     "checksum"),
-    (lambda p: p.write_bytes(b""), "not a PNG file"),
-])
+@pytest.mark.parametrize(
+    ("make", "why"),
+    [
+        (lambda p: p.write_bytes(b"GIF89a" + bytes(40)), "not a PNG file"),
+        (lambda p: p.write_bytes(SIG + b"\x00\x00"), "truncated"),
+        (lambda p: p.write_bytes(SIG + chunk(b"IDAT", bytes(13))), "first chunk is not a 13-byte IHDR"),
+        (
+            lambda p: p.write_bytes(SIG + chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 6, 0, 0, 0))[:-1] + b"\x00"),
+            "checksum",
+        ),
+        (lambda p: p.write_bytes(b""), "not a PNG file"),
+    ],
+)
 def test_broken_files_are_refused_naming_the_file(tmp_path, make, why):
     path = tmp_path / "bad.png"
     make(path)

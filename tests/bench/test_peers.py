@@ -18,8 +18,8 @@ from broadsword.bench.peers import (
     ShapelyPeer,
     convex_pieces,
 )
-from broadsword.collision.scenarios import ReferenceScene, random_armature
 from broadsword.collision import Pipeline, orient, pose
+from broadsword.collision.scenarios import ReferenceScene, random_armature
 
 TOUCH = 1e-6  # px: a disagreement this close to touching is a rounding tie, not an error
 
@@ -180,7 +180,9 @@ def test_exact_peer__agrees_with_broadsword_up_to_touching(scenes, report, cls):
                 polys = pose(scene.shapes, scene.armature, pos, ang, "exact").polygons()
                 for i, j in got ^ want:
                     margin = touch_margin(polys[i], polys[j])
-                    assert abs(margin) <= TOUCH, f"{cls.name}: pair {(i, j)} {'extra' if (i, j) in got else 'missed'}, {margin:+.3g} px from touching"
+                    assert abs(margin) <= TOUCH, (
+                        f"{cls.name}: pair {(i, j)} {'extra' if (i, j) in got else 'missed'}, {margin:+.3g} px from touching"
+                    )
             hits += len(want)
             extra += len(got - want)
             missed += len(want - got)
@@ -210,8 +212,10 @@ def test_pygame_masks__agree_up_to_pixels(scenes, report):
             r_missed += len(at_rounded - got)
     rate = (extra + missed) / hits
     own = (r_extra + r_missed) / rounded_hits
-    report(f"{PygameMaskPeer.name}: {hits} exact hits, {extra} extra and {missed} missed ({rate:.1%}); "
-           f"against the exact answer at the rounded poses {r_extra} extra and {r_missed} missed ({own:.1%})")
+    report(
+        f"{PygameMaskPeer.name}: {hits} exact hits, {extra} extra and {missed} missed ({rate:.1%}); "
+        f"against the exact answer at the rounded poses {r_extra} extra and {r_missed} missed ({own:.1%})"
+    )
     assert hits > 100
     assert own < 0.05  # the pixel masks themselves
     assert rate < 0.08  # plus rounding every position by up to half a pixel per axis

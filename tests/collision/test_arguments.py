@@ -113,21 +113,28 @@ def test_good_arguments_of_every_accepted_type_give_one_answer():
     assert want == [[0, 1]]
     for kinds in [(np.int32, np.float32), (np.uint8, np.int64), (int, float)]:
         ids, real = kinds
-        got = step(armature=np.array([0, 1], dtype=ids), layer=np.array([P, B], dtype=ids),
-                   positions=np.array([[0, 0], [5, 0]], dtype=real), angles=np.array([0, 0], dtype=real))
+        got = step(
+            armature=np.array([0, 1], dtype=ids),
+            layer=np.array([P, B], dtype=ids),
+            positions=np.array([[0, 0], [5, 0]], dtype=real),
+            angles=np.array([0, 0], dtype=real),
+        )
         assert got.hits.tolist() == want
     assert step(armature=[], layer=[], positions=[], angles=[]).hits.shape == (0, 2)
     # A swept list with no True entry needs no previous pose.
     assert step(swept=[False, False]).hits.tolist() == want
 
 
-@pytest.mark.parametrize("call", [
-    lambda: segments_intersect((0, 0), (1, 1 + 1j), (0, 1), (1, 0)),
-    lambda: segments_intersect((0, True), (1, 1), (0, 1), (1, 0)),
-    lambda: segments_intersect("ab", (1, 1), (0, 1), (1, 0)),
-    lambda: point_in_polygon(("1", 0), [(0, 0), (1, 0), (0, 1)]),
-    lambda: polygons_collide([(0, 0), (1, 0), (0, 1)], "abc"),
-])
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: segments_intersect((0, 0), (1, 1 + 1j), (0, 1), (1, 0)),
+        lambda: segments_intersect((0, True), (1, 1), (0, 1), (1, 0)),
+        lambda: segments_intersect("ab", (1, 1), (0, 1), (1, 0)),
+        lambda: point_in_polygon(("1", 0), [(0, 0), (1, 0), (0, 1)]),
+        lambda: polygons_collide([(0, 0), (1, 0), (0, 1)], "abc"),
+    ],
+)
 def test_predicates__wrong_types_are_type_errors(call):
     with pytest.raises(TypeError):
         call()
@@ -169,8 +176,12 @@ def q_segments(a, b, c, d):
     o1, o2, o3, o4 = q_orient(a, b, c), q_orient(a, b, d), q_orient(c, d, a), q_orient(c, d, b)
     if o1 * o2 < 0 and o3 * o4 < 0:
         return True
-    return ((o1 == 0 and q_on_box(c, a, b)) or (o2 == 0 and q_on_box(d, a, b))
-            or (o3 == 0 and q_on_box(a, c, d)) or (o4 == 0 and q_on_box(b, c, d)))
+    return (
+        (o1 == 0 and q_on_box(c, a, b))
+        or (o2 == 0 and q_on_box(d, a, b))
+        or (o3 == 0 and q_on_box(a, c, d))
+        or (o4 == 0 and q_on_box(b, c, d))
+    )
 
 
 def q_inside(p, poly):
@@ -194,6 +205,7 @@ def q_collide(p, q):
 
 def q_hull(points):
     pts = sorted(set(points))
+
     def chain(seq):
         out = []
         for p in seq:
@@ -201,6 +213,7 @@ def q_hull(points):
                 out.pop()
             out.append(p)
         return out
+
     return chain(pts)[:-1] + chain(pts[::-1])[:-1]
 
 
@@ -211,10 +224,16 @@ def q_poly(vertices, at=(0.0, 0.0)):
 WALL = Armature.box(2, 40, name="wall")
 
 
-TIER_MIXES = [("bins", "obb", "armature"), ("bins", "circle", "armature"), ("bins", "aabb", "armature"),
-              ("quadtree", "aabb", "obb", "armature"), ("loose_quadtree", "circle", "obb", "armature"),
-              ("brute", "aabb", "obb", "circle", "armature"), ("bins", "kdop", "armature"),
-              ("brute", "kdop", "obb", "armature")]
+TIER_MIXES = [
+    ("bins", "obb", "armature"),
+    ("bins", "circle", "armature"),
+    ("bins", "aabb", "armature"),
+    ("quadtree", "aabb", "obb", "armature"),
+    ("loose_quadtree", "circle", "obb", "armature"),
+    ("brute", "aabb", "obb", "circle", "armature"),
+    ("bins", "kdop", "armature"),
+    ("brute", "kdop", "obb", "armature"),
+]
 
 
 def extreme_scenes():
@@ -261,8 +280,10 @@ def brute_first_defect(v):
 
 
 @settings(max_examples=150)
-@given(st.lists(st.tuples(st.integers(-4, 4), st.integers(-4, 4)), min_size=3, max_size=9, unique=True),
-       st.sampled_from([1.0, 2.0**-1000, 2.0**1000, 0.1]))
+@given(
+    st.lists(st.tuples(st.integers(-4, 4), st.integers(-4, 4)), min_size=3, max_size=9, unique=True),
+    st.sampled_from([1.0, 2.0**-1000, 2.0**1000, 0.1]),
+)
 def test_first_defect__equals_brute_force(points, scale):
     v = np.array(points, dtype=np.float64) * scale
     assert first_defect(v) == brute_first_defect(v)
@@ -279,6 +300,10 @@ def test_first_defect__large_polygons():
     # The star was simple, so every defect now involves a changed edge: brute force over those.
     pts = [(Fraction(x), Fraction(y)) for x, y in crossed.tolist()]
     edge = lambda k: (pts[k % n], pts[(k + 1) % n])  # noqa: E731
-    meets = sorted((min(i, j), max(i, j)) for i in (9, 10, 11, 12) for j in range(n)
-                   if 1 < abs(i - j) < n - 1 and q_segments(*edge(i), *edge(j)))
+    meets = sorted(
+        (min(i, j), max(i, j))
+        for i in (9, 10, 11, 12)
+        for j in range(n)
+        if 1 < abs(i - j) < n - 1 and q_segments(*edge(i), *edge(j))
+    )
     assert meets and first_defect(crossed) == ("meet", *meets[0])

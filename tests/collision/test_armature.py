@@ -24,6 +24,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from star_polygons import star
 
 from broadsword.collision import (
     Armature,
@@ -35,7 +36,6 @@ from broadsword.collision import (
     pose,
     rotation_table,
 )
-from star_polygons import star
 
 # --------------------------------------------------------------------------- helpers
 
@@ -199,7 +199,9 @@ def test_armature__counter_clockwise_kept_as_is():
 
 def test_armature__clockwise_stored_counter_clockwise():
     rng = random.Random(1)
-    shapes = [SQUARE, L_SHAPE, regular(7, 3.0), [(0, 0), (1, 0), (0, 1)]] + [star(rng, rng.randint(3, 12)) for _ in range(50)]
+    shapes = [SQUARE, L_SHAPE, regular(7, 3.0), [(0, 0), (1, 0), (0, 1)]] + [
+        star(rng, rng.randint(3, 12)) for _ in range(50)
+    ]
     for ccw in shapes:
         cw = ccw[::-1]
         assert signed_area2_exact(cw) < 0
@@ -215,8 +217,11 @@ SLIVERS = [
     # Exact twice-area 2**-50 (> 0): float shoelace cancels to exactly 0.
     [(1.5, 1.625), (2.5, 1.625), (2.0, 1.6250000000000009)],
     # Clockwise exactly (orient < 0), float shoelace says counter-clockwise.
-    [(1.034128496197977, 1.0594365096256397), (1.0821075016700967, 1.094879071306369),
-     (1.0772519557995415, 1.0912922319728449)],
+    [
+        (1.034128496197977, 1.0594365096256397),
+        (1.0821075016700967, 1.094879071306369),
+        (1.0772519557995415, 1.0912922319728449),
+    ],
 ]
 
 
@@ -257,8 +262,11 @@ def test_armature__orientation_exact_for_thin_and_offset_polygons():
 
 def test_armature__concave_accepted():
     rng = random.Random(3)
-    concave = [L_SHAPE, [(0, 0), (4, 0), (4, 4), (2, 1), (0, 4)],
-               [(0, 0), (3, 0), (3, 3), (2, 3), (2, 1), (1, 1), (1, 3), (0, 3)]]
+    concave = [
+        L_SHAPE,
+        [(0, 0), (4, 0), (4, 4), (2, 1), (0, 4)],
+        [(0, 0), (3, 0), (3, 3), (2, 3), (2, 1), (1, 1), (1, 3), (0, 3)],
+    ]
     for v in concave:
         a = Armature(v, name="concave")
         assert not a.convex
@@ -450,8 +458,10 @@ def test_convex_hull__near_collinear_points_exact():
 
 
 @settings(max_examples=200, deadline=None, database=None)
-@given(st.lists(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=3, max_size=25),
-       st.sampled_from([1.0, 0.1, 1e-300, 1e300, 2.0**-1070]))
+@given(
+    st.lists(st.tuples(st.integers(-6, 6), st.integers(-6, 6)), min_size=3, max_size=25),
+    st.sampled_from([1.0, 0.1, 1e-300, 1e300, 2.0**-1070]),
+)
 def test_convex_hull__property(points, scale):
     pts = np.array(points, dtype=float) * scale
     distinct = {tuple(p) for p in pts.tolist()}
@@ -549,8 +559,9 @@ def test_pose_lut__bound_nearly_attained_at_half_degrees():
     bound = np.array([lut_max_displacement(arms[i].radius) for i in ids])
     assert (disp <= bound).all()
     # Rounding by exactly half a degree moves the outermost vertex by the chord itself.
-    assert (disp > 0.999 * bound).all(), [(angles[k], arms[ids[k]].name, disp[k], bound[k])
-                                          for k in np.flatnonzero(disp <= 0.999 * bound)[:5]]
+    assert (disp > 0.999 * bound).all(), [
+        (angles[k], arms[ids[k]].name, disp[k], bound[k]) for k in np.flatnonzero(disp <= 0.999 * bound)[:5]
+    ]
     # Near (not at) a half degree, still close to the bound; far from it, well below.
     near = displacements(arms, np.arange(len(arms)), np.zeros((len(arms), 2)), np.full(len(arms), 12.4999))
     b = np.array([lut_max_displacement(a.radius) for a in arms])

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from broadsword.collision import (
+    AUTO_BIN_FACTOR,
     BROAD_PHASES,
     BinGrid,
     BroadPhase,
@@ -24,10 +25,9 @@ from broadsword.collision import (
     BruteForce,
     GridLayout,
     LayerTable,
-    TreeLayout,
     LooseQuadTree,
     QuadTree,
-    AUTO_BIN_FACTOR,
+    TreeLayout,
     auto_bin_size,
 )
 
@@ -118,7 +118,9 @@ def check_contract(pairs, boxes, layers, table, exact=False, ref=None, label="")
     entries = set(table.entries)
     for i, j in rows:
         la, lb = int(layers[i]), int(layers[j])
-        assert (la, lb) in entries, f"{label}: pair ({i}, {j}) of layers ({la}, {lb}) is not a table entry in this order"
+        assert (la, lb) in entries, (
+            f"{label}: pair ({i}, {j}) of layers ({la}, {lb}) is not a table entry in this order"
+        )
         if la == lb:
             assert i < j, f"{label}: self-layer pair ({i}, {j}) not ordered"
     if ref is None:
@@ -326,8 +328,13 @@ def test_find_pairs__empty_layers_and_tiny_inputs():
     rng = np.random.default_rng(8)
     boxes = random_boxes(rng, 80, smax=100)
     # Layers 2 and 3 of the shmup table empty; layer ids the table never names.
-    for layers in [np.zeros(80, int), np.full(80, 1), np.where(rng.random(80) < 0.5, 0, 1),
-                   np.full(80, 3), np.where(rng.random(80) < 0.5, 2, 3)]:
+    for layers in [
+        np.zeros(80, int),
+        np.full(80, 1),
+        np.where(rng.random(80) < 0.5, 0, 1),
+        np.full(80, 3),
+        np.where(rng.random(80) < 0.5, 2, 3),
+    ]:
         run_all(boxes, layers, SHMUP, label="shmup partial")
     big = LayerTable(["a", "b", "c", "d", "e", "f"], [("a", "f"), ("e", "e"), ("b", "c")])
     run_all(boxes, rng.integers(0, 6, 80), big, label="six layers")
@@ -415,8 +422,15 @@ def test_find_pairs__phase_reused_across_frames():
         layers = rng.integers(0, len(table.names), n)
         ref = slow_pairs(boxes, layers, table)
         for name, phase in insts:
-            check_contract(phase.find_pairs(boxes, layers, table), boxes, layers, table,
-                           exact=name.startswith("brute"), ref=ref, label=f"frame {frame} {name}")
+            check_contract(
+                phase.find_pairs(boxes, layers, table),
+                boxes,
+                layers,
+                table,
+                exact=name.startswith("brute"),
+                ref=ref,
+                label=f"frame {frame} {name}",
+            )
 
 
 def test_find_pairs__input_types():
@@ -554,12 +568,20 @@ def test_auto_bin_size__factor_is_modest():
 
 
 def test_auto_bin_size__factor_times_the_larger_group_median():
-    boxes = np.array([
-        # group 0: extents (max of w, h) 1, 2, 3 -> median 2
-        (0, 0, 1, 0.5), (0, 0, 0.5, 2), (0, 0, 3, 3),
-        # group 1: extents 4, 10, 10, 100 -> median 10
-        (0, 0, 4, 1), (5, 5, 15, 6), (0, 0, 2, 10), (0, 0, 100, 100),
-    ], float)
+    boxes = np.array(
+        [
+            # group 0: extents (max of w, h) 1, 2, 3 -> median 2
+            (0, 0, 1, 0.5),
+            (0, 0, 0.5, 2),
+            (0, 0, 3, 3),
+            # group 1: extents 4, 10, 10, 100 -> median 10
+            (0, 0, 4, 1),
+            (5, 5, 15, 6),
+            (0, 0, 2, 10),
+            (0, 0, 100, 100),
+        ],
+        float,
+    )
     g0, g1 = np.arange(3), np.arange(3, 7)
     assert auto_bin_size(boxes, [g0, g1]) == FACTOR * 10.0
     assert auto_bin_size(boxes, [g0]) == FACTOR * 2.0
@@ -618,7 +640,7 @@ def test_query__grid_layout_and_occupancy_match_a_slow_count():
         for x0, y0, x1, y1 in boxes[np.isin(layers, [0, 1, 2])]:
             c0, c1 = (int(np.clip(np.floor((v - ox) / lay.size), 0, cols - 1)) for v in (x0, x1))
             r0, r1 = (int(np.clip(np.floor((v - oy) / lay.size), 0, rows - 1)) for v in (y0, y1))
-            slow[r0:r1 + 1, c0:c1 + 1] += 1
+            slow[r0 : r1 + 1, c0 : c1 + 1] += 1
         assert np.array_equal(lay.occupancy, slow)
 
 

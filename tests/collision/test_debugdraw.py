@@ -95,8 +95,9 @@ def test_draw_frame__swept_volumes_in_their_own_colour():
 
 
 def test_draw_layout__trees_draw_their_nodes():
-    r = Pipeline(SHAPES, TABLE, tiers=("quadtree", "aabb")).step([0, 1, 1], [0, 1, 1], [[0, 0], [5, 5], [200, 90]],
-                                                                  [0, 0, 0])
+    r = Pipeline(SHAPES, TABLE, tiers=("quadtree", "aabb")).step(
+        [0, 1, 1], [0, 1, 1], [[0, 0], [5, 5], [200, 90]], [0, 0, 0]
+    )
     rec = RecordingDraw()
     draw_layout(rec, r.broad.layout, COLOURS)
     (call,) = rec.calls

@@ -16,13 +16,22 @@ import numpy as np
 import pytest
 
 from broadsword.collision import detmath
-from broadsword.collision.detmath import (atan2_deg, cos_deg, heading_deg, norm, rotation_table, sin_deg, sincos_deg,
-                                          velocity_deg)
+from broadsword.collision.detmath import (
+    atan2_deg,
+    cos_deg,
+    heading_deg,
+    norm,
+    rotation_table,
+    sin_deg,
+    sincos_deg,
+    velocity_deg,
+)
 
 PREC = 80
 
 
 # --- the oracle --------------------------------------------------------------------------
+
 
 def _pi() -> Decimal:
     """pi to PREC digits (Machin's formula)."""
@@ -107,6 +116,7 @@ def ulps(got: float, true: Decimal) -> float:
 
 # --- the test points ---------------------------------------------------------------------
 
+
 def angle_points() -> np.ndarray:
     rng = np.random.default_rng(1234)
     pts = [
@@ -117,8 +127,24 @@ def angle_points() -> np.ndarray:
         np.concatenate([k * 45.0 + np.array([-1e-9, -1e-13, 5e-15, 3e-12]) for k in range(-8, 9)]),
         np.array([np.nextafter(k * 90.0, s) for k in range(-4, 5) for s in (-np.inf, np.inf)]),
         rng.choice([-1.0, 1.0], 300) * 10.0 ** rng.uniform(-320, 308, 300),  # tiny to huge, subnormal too
-        np.array([1e300, -1e300, 1e22, 2.0**60 + 1.0, 1.7976931348623157e308, -1.7976931348623157e308,
-                  5e-324, -5e-324, 1e-310, 2.2250738585072014e-308, 1e-300, 0.1, 1e-5, 359.99999999999994]),
+        np.array(
+            [
+                1e300,
+                -1e300,
+                1e22,
+                2.0**60 + 1.0,
+                1.7976931348623157e308,
+                -1.7976931348623157e308,
+                5e-324,
+                -5e-324,
+                1e-310,
+                2.2250738585072014e-308,
+                1e-300,
+                0.1,
+                1e-5,
+                359.99999999999994,
+            ]
+        ),
     ]
     return np.concatenate(pts)
 
@@ -140,6 +166,7 @@ def atan_points() -> tuple[np.ndarray, np.ndarray]:
 
 
 # --- accuracy ----------------------------------------------------------------------------
+
 
 def test_sin_and_cos_are_within_one_ulp_of_the_truth():
     d = angle_points()
@@ -164,8 +191,10 @@ def test_atan2_is_within_one_ulp_of_the_truth():
 def test_the_constants_match_the_oracle():
     with localcontext() as ctx:
         ctx.prec = PREC
-        for (hi, lo), true in [((detmath._PI180_HI, detmath._PI180_LO), PI / 180),
-                               ((detmath._DEG_HI, detmath._DEG_LO), 180 / PI)]:
+        for (hi, lo), true in [
+            ((detmath._PI180_HI, detmath._PI180_LO), PI / 180),
+            ((detmath._DEG_HI, detmath._DEG_LO), 180 / PI),
+        ]:
             assert abs(Decimal(hi) + Decimal(lo) - true) < abs(true) * Decimal(2) ** -105
             assert abs(lo) <= math.ulp(hi) / 2
         for k in range(9):
@@ -175,6 +204,7 @@ def test_the_constants_match_the_oracle():
 
 
 # --- exact values and conventions --------------------------------------------------------
+
 
 def test_multiples_of_ninety_are_exact():
     k = np.arange(-40, 41)
@@ -237,6 +267,7 @@ def test_norm_avoids_overflow_and_underflow():
 
 # --- identities, symmetry, kinds ---------------------------------------------------------
 
+
 def test_symmetries_hold_bit_for_bit():
     d = angle_points()
     s, c = sincos_deg(d)
@@ -275,15 +306,16 @@ def test_arrays_and_scalars_give_the_same_bits_and_their_own_kinds():
     assert all(atan2_deg(yi, xi) == ai for yi, xi, ai in zip(y.tolist(), x.tolist(), a.tolist()))
     for k in (0, 1, 5, 16):  # small arrays, element by element
         for i in range(0, len(d) - k, 97):
-            ss, cc = sincos_deg(d[i:i + k])
-            assert np.array_equal(ss, s[i:i + k]) and np.array_equal(cc, c[i:i + k]) and ss.shape == (k,)
+            ss, cc = sincos_deg(d[i : i + k])
+            assert np.array_equal(ss, s[i : i + k]) and np.array_equal(cc, c[i : i + k]) and ss.shape == (k,)
         for i in range(0, len(y) - k, 53):
-            assert np.array_equal(atan2_deg(y[i:i + k], x[i:i + k]), a[i:i + k])
-            assert np.array_equal(heading_deg(y[i:i + k], x[i:i + k]), heading_deg(y, x)[i:i + k])
+            assert np.array_equal(atan2_deg(y[i : i + k], x[i : i + k]), a[i : i + k])
+            assert np.array_equal(heading_deg(y[i : i + k], x[i : i + k]), heading_deg(y, x)[i : i + k])
     assert np.array_equal(np.signbit(sincos_deg(-d[:5])[0]), np.signbit(-s[:5]))
     big = np.tile(np.arange(-3.0, 3.0), 10)  # heading of zero and signed-zero velocities, both paths
-    assert np.array_equal(heading_deg(big, -big[::-1]),
-                          [heading_deg(u, v) for u, v in zip(big.tolist(), (-big[::-1]).tolist())])
+    assert np.array_equal(
+        heading_deg(big, -big[::-1]), [heading_deg(u, v) for u, v in zip(big.tolist(), (-big[::-1]).tolist())]
+    )
     assert sincos_deg(np.float64(30.0)) == (0.5, sincos_deg(30.0)[1]) and type(sin_deg(np.float32(1.0))) is float
     assert sincos_deg(np.zeros((2, 0)))[0].shape == (2, 0) and atan2_deg(np.ones((3, 2)), 1.0).shape == (3, 2)
     grid = atan2_deg(np.ones((3, 1)), np.arange(4.0))  # broadcasting
@@ -311,10 +343,38 @@ def test_rotation_table_is_the_oracle_checked_sincos_of_each_step():
 
 # --- no libm -----------------------------------------------------------------------------
 
-ALLOWED_NUMPY = {"abs", "any", "arange", "array", "asarray", "broadcast_arrays", "copysign", "empty", "errstate",
-                 "float64", "fmod", "frexp", "generic", "inf", "int64", "integer", "intp", "isfinite", "isinf",
-                 "isnan", "ldexp", "maximum", "minimum", "nan", "ndarray", "rint", "signbit", "sqrt", "take",
-                 "where"}
+ALLOWED_NUMPY = {
+    "abs",
+    "any",
+    "arange",
+    "array",
+    "asarray",
+    "broadcast_arrays",
+    "copysign",
+    "empty",
+    "errstate",
+    "float64",
+    "fmod",
+    "frexp",
+    "generic",
+    "inf",
+    "int64",
+    "integer",
+    "intp",
+    "isfinite",
+    "isinf",
+    "isnan",
+    "ldexp",
+    "maximum",
+    "minimum",
+    "nan",
+    "ndarray",
+    "rint",
+    "signbit",
+    "sqrt",
+    "take",
+    "where",
+}
 
 
 #: ``math`` names that are exact (fmod, frexp, ldexp, copysign) or tests (the scalar path).

@@ -49,20 +49,29 @@ magnitudes = st.sampled_from([1e-300, 1e-8, 1.0, 1e6, 1e150, 1e300])
 
 @settings(max_examples=60, deadline=None)
 @given(
-    k1=st.integers(3, 9), k2=st.integers(3, 9), scale=magnitudes, offset=magnitudes,
-    phase=st.floats(0, 7), spread=st.floats(0, 2.5), angles=st.lists(st.floats(-720, 720), min_size=6, max_size=6),
-    sweep=st.booleans(), rotation=st.sampled_from(["lut", "exact"]), seed=st.integers(0, 2**32 - 1),
+    k1=st.integers(3, 9),
+    k2=st.integers(3, 9),
+    scale=magnitudes,
+    offset=magnitudes,
+    phase=st.floats(0, 7),
+    spread=st.floats(0, 2.5),
+    angles=st.lists(st.floats(-720, 720), min_size=6, max_size=6),
+    sweep=st.booleans(),
+    rotation=st.sampled_from(["lut", "exact"]),
+    seed=st.integers(0, 2**32 - 1),
 )
-def test_kdop_tier__never_rejects_a_pair_the_armature_test_accepts(k1, k2, scale, offset, phase, spread, angles, sweep,
-                                                                   rotation, seed):
+def test_kdop_tier__never_rejects_a_pair_the_armature_test_accepts(
+    k1, k2, scale, offset, phase, spread, angles, sweep, rotation, seed
+):
     with np.errstate(over="ignore", invalid="ignore"):  # 1e300 poses overflow: the exact test copes, quietly here
         _check_kdop(k1, k2, scale, offset, phase, spread, angles, sweep, rotation, seed)
 
 
 def _check_kdop(k1, k2, scale, offset, phase, spread, angles, sweep, rotation, seed):
     rng = np.random.default_rng(seed)
-    shapes = ArmatureSet([Armature(_polygon(k1, scale, phase), name="p"), Armature(_polygon(k2, 0.7 * scale, -phase),
-                                                                               name="q")])
+    shapes = ArmatureSet(
+        [Armature(_polygon(k1, scale, phase), name="p"), Armature(_polygon(k2, 0.7 * scale, -phase), name="q")]
+    )
     n = 6
     centre = np.array([offset, -offset])
     pos = centre + rng.uniform(-spread, spread, (n, 2)) * scale

@@ -29,12 +29,11 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-
-from broadsword.collision import polygons_collide, polygons_collide_padded
-from broadsword.collision import narrow
-from broadsword.collision.workspace import Workspace
-from star_polygons import star
 from shipped import dn, up
+from star_polygons import star
+
+from broadsword.collision import narrow, polygons_collide, polygons_collide_padded
+from broadsword.collision.workspace import Workspace
 
 M = 1.7976931348623157e308
 
@@ -164,10 +163,20 @@ def touching_pairs(rng: random.Random, n: int):
 def random_pairs(rng: random.Random, n: int):
     out = []
     for _ in range(n):
-        p = transform(star(rng, rng.randint(3, 8)), rng.uniform(0.5, 3), rng.uniform(0, 6.3),
-                      rng.uniform(-2, 2), rng.uniform(-2, 2))
-        q = transform(star(rng, rng.randint(3, 8)), rng.uniform(0.5, 3), rng.uniform(0, 6.3),
-                      rng.uniform(-2, 2), rng.uniform(-2, 2))
+        p = transform(
+            star(rng, rng.randint(3, 8)),
+            rng.uniform(0.5, 3),
+            rng.uniform(0, 6.3),
+            rng.uniform(-2, 2),
+            rng.uniform(-2, 2),
+        )
+        q = transform(
+            star(rng, rng.randint(3, 8)),
+            rng.uniform(0.5, 3),
+            rng.uniform(0, 6.3),
+            rng.uniform(-2, 2),
+            rng.uniform(-2, 2),
+        )
         out.append((p, q))
     return out
 
@@ -339,11 +348,17 @@ def test_polygons_collide_padded__extremes_mixed_within_one_polygon():
     tiny = [(0.0, 0.0), (5e-324, 0.0), (0.0, 5e-324)]
     tri = [(1.0, 1.0), (2.0, 1.0), (1.0, 2.0)]
     far = [(M, M), (dn(M), M), (M, dn(M))]
-    shapes = [big, sliver, tiny, tri, far,
-              [(-M, 0.0), (M, 0.0), (0.0, 1e-300)],
-              [(1e-308, 1e-308), (M, 1e-308), (1e-308, M)],
-              [(-1e300, -1e-300), (1e300, -1e-300), (1e300, 1e-300), (-1e300, 1e-300)],
-              [(0.0, -1.0), (1e-320, 0.0), (0.0, 1.0), (-1e-320, 0.0)]]
+    shapes = [
+        big,
+        sliver,
+        tiny,
+        tri,
+        far,
+        [(-M, 0.0), (M, 0.0), (0.0, 1e-300)],
+        [(1e-308, 1e-308), (M, 1e-308), (1e-308, M)],
+        [(-1e300, -1e-300), (1e300, -1e-300), (1e300, 1e-300), (-1e300, 1e-300)],
+        [(0.0, -1.0), (1e-320, 0.0), (0.0, 1.0), (-1e-320, 0.0)],
+    ]
     pairs = [(p, q) for p in shapes for q in shapes]
     check(pairs, label="within")
 
@@ -438,8 +453,11 @@ def test_polygons_collide_padded__ray_through_vertices():
 
 def test_polygons_collide_padded__padding_to_4_8_16_agrees():
     rng = random.Random(8)
-    small = [(p, q) for p, q in touching_pairs(rng, 60) + simple_grid_pairs(rng, 100) + grid_pairs(rng, 100, kmax=4)
-             if len(p) <= 4 and len(q) <= 4]
+    small = [
+        (p, q)
+        for p, q in touching_pairs(rng, 60) + simple_grid_pairs(rng, 100) + grid_pairs(rng, 100, kmax=4)
+        if len(p) <= 4 and len(q) <= 4
+    ]
     assert len(small) > 50
     results = []
     for k1, k2 in [(4, 4), (8, 8), (16, 16), (4, 16), (16, 4), (8, 4)]:
@@ -457,8 +475,22 @@ def test_polygons_collide_padded__single_point_columns():
     """A column whose polygon is one point repeated equals the scalar answer for that point x3."""
     sq = [(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)]
     u = notch_cases()[0][0]
-    points = [(2.0, 2.0), (4.0, 2.0), (4.0, 4.0), (up(4.0), 2.0), (dn(4.0), 2.0), (5.0, 5.0), (0.0, 0.0),
-              (-1.0, 2.0), (1.5, 2.0), (1.5, 1.0), (1.5, dn(1.0)), (2.0, 3.0), (1.0, 3.0), (0.5, 3.0)]
+    points = [
+        (2.0, 2.0),
+        (4.0, 2.0),
+        (4.0, 4.0),
+        (up(4.0), 2.0),
+        (dn(4.0), 2.0),
+        (5.0, 5.0),
+        (0.0, 0.0),
+        (-1.0, 2.0),
+        (1.5, 2.0),
+        (1.5, 1.0),
+        (1.5, dn(1.0)),
+        (2.0, 3.0),
+        (1.0, 3.0),
+        (0.5, 3.0),
+    ]
     for k in (3, 4, 8, 16):
         pairs = []
         for pt in points:
@@ -484,10 +516,18 @@ def test_polygons_collide_padded__degenerate_segments_and_collinear_polygons():
     back = [(0.0, 0.0), (2.0, 2.0), (1.0, 1.0)]
     sq = [(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)]
     dup = [(0.0, 0.0), (0.0, 0.0), (4.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0), (0.0, 4.0)]
-    shapes = [seg, line, back, sq, dup,
-              [(1.0, 1.0), (1.0, 1.0), (3.0, 1.0)], [(5.0, 5.0), (6.0, 6.0), (5.0, 5.0)],
-              [(2.0, 2.0), (2.0, 2.0), (2.0, 2.0)], [(4.0, 4.0), (4.0, 4.0), (4.0, 4.0)],
-              [(-1.0, 1.0), (-1.0, 1.0), (5.0, 1.0)]]
+    shapes = [
+        seg,
+        line,
+        back,
+        sq,
+        dup,
+        [(1.0, 1.0), (1.0, 1.0), (3.0, 1.0)],
+        [(5.0, 5.0), (6.0, 6.0), (5.0, 5.0)],
+        [(2.0, 2.0), (2.0, 2.0), (2.0, 2.0)],
+        [(4.0, 4.0), (4.0, 4.0), (4.0, 4.0)],
+        [(-1.0, 1.0), (-1.0, 1.0), (5.0, 1.0)],
+    ]
     pairs = [(p, q) for p in shapes for q in shapes]
     for k in (None, 8, 16):
         check(pairs, k, k, label=f"degenerate K={k}")
@@ -568,8 +608,10 @@ poly_st = st.lists(st.tuples(small_int, small_int), min_size=3, max_size=7)
 @settings(max_examples=300, deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     st.lists(st.tuples(poly_st, poly_st), min_size=1, max_size=6),
-    st.sampled_from(SCALES), st.sampled_from(OFFSETS),
-    st.sampled_from(SCALES), st.sampled_from(OFFSETS),
+    st.sampled_from(SCALES),
+    st.sampled_from(OFFSETS),
+    st.sampled_from(SCALES),
+    st.sampled_from(OFFSETS),
     st.sampled_from([None, 8, 16]),
 )
 def test_polygons_collide_padded__property_matches_scalar(pairs, s1, o1, s2, o2, k):
@@ -585,11 +627,15 @@ def test_polygons_collide_padded__property_matches_scalar(pairs, s1, o1, s2, o2,
 @given(
     st.lists(
         st.tuples(
-            st.lists(st.tuples(st.floats(-4, 4, allow_nan=False, width=16), st.floats(-4, 4, width=16)),
-                     min_size=3, max_size=6),
+            st.lists(
+                st.tuples(st.floats(-4, 4, allow_nan=False, width=16), st.floats(-4, 4, width=16)),
+                min_size=3,
+                max_size=6,
+            ),
             st.lists(st.tuples(st.floats(-4, 4, width=16), st.floats(-4, 4, width=16)), min_size=3, max_size=6),
         ),
-        min_size=1, max_size=8,
+        min_size=1,
+        max_size=8,
     )
 )
 def test_polygons_collide_padded__property_half_precision_coordinates(pairs):
@@ -626,8 +672,10 @@ def ulp_wedges(rng: random.Random, n: int, spread=10.0, offset=0.0):
     return out
 
 
-@pytest.mark.parametrize("spread, offset", [(10.0, 0.0), (1.0, 0.0), (1.0, 100.0), (1e-3, 1.0), (1e10, 0.0),
-                                            (1e-200, 0.0), (1e200, 0.0), (1.0, 1e15)])
+@pytest.mark.parametrize(
+    "spread, offset",
+    [(10.0, 0.0), (1.0, 0.0), (1.0, 100.0), (1e-3, 1.0), (1e10, 0.0), (1e-200, 0.0), (1e200, 0.0), (1.0, 1e15)],
+)
 def test_polygons_collide_padded__apex_within_ulps_of_an_edge(spread, offset):
     rng = random.Random(12)
     pairs = ulp_wedges(rng, 400, spread, offset)

@@ -9,7 +9,6 @@ import sys
 import numpy as np
 import pytest
 
-from broadsword.collision.scenarios import ENEMY, PLAYER_BULLET, ReferenceScene
 from broadsword.collision import (
     BROAD_PHASES,
     Armature,
@@ -19,16 +18,19 @@ from broadsword.collision import (
     polygons_collide,
     pose,
 )
+from broadsword.collision.scenarios import ENEMY, PLAYER_BULLET, ReferenceScene
 
 BOUNDS = ("aabb", "circle", "obb")
-TIER_MIXES = [
-    (broad,) + bounds + ("armature",)
-    for broad in BROAD_PHASES
-    for r in range(len(BOUNDS) + 1)
-    for bounds in itertools.combinations(BOUNDS, r)
-] + [(broad, "kdop", "armature") for broad in BROAD_PHASES] + [
-    (broad, "aabb", "kdop", "circle", "obb", "armature") for broad in BROAD_PHASES
-]
+TIER_MIXES = (
+    [
+        (broad,) + bounds + ("armature",)
+        for broad in BROAD_PHASES
+        for r in range(len(BOUNDS) + 1)
+        for bounds in itertools.combinations(BOUNDS, r)
+    ]
+    + [(broad, "kdop", "armature") for broad in BROAD_PHASES]
+    + [(broad, "aabb", "kdop", "circle", "obb", "armature") for broad in BROAD_PHASES]
+)
 
 
 def brute_exact(posed, layer, table):
@@ -90,8 +92,13 @@ def test_pipeline__equals_brute_exact_with_sweeps(scene_frame, oracle, broad):
     scene, pos, ang, prev_pos, prev_ang = scene_frame
     swept = scene.layer >= 2
     for rotation in ("lut", "exact"):
-        p = Pipeline(scene.shapes, scene.table, tiers=(broad, "aabb", "circle", "obb", "kdop", "armature"),
-                     rotation=rotation, keep_tier_pairs=True)
+        p = Pipeline(
+            scene.shapes,
+            scene.table,
+            tiers=(broad, "aabb", "circle", "obb", "kdop", "armature"),
+            rotation=rotation,
+            keep_tier_pairs=True,
+        )
         r = p.step(scene.armature, scene.layer, pos, ang, prev_pos, prev_ang, swept)
         expected = oracle[rotation, True]
         assert as_set(r.hits) == expected
@@ -189,15 +196,25 @@ def fire(speed, direction_deg=0.0, offset=0.0, turn=0.0, sweep=True, tiers=("bin
     table = LayerTable(("ship", "bullet"), [("ship", "bullet")])
     p = Pipeline(ArmatureSet([WALL, BULLET]), table, tiers=tiers, rotation="exact")
     return p.step(
-        armature=[0, 1], layer=[0, 1],
-        positions=[[0.0, 0.0], end], angles=[0.0, direction_deg + turn],
-        prev_positions=[[0.0, 0.0], start], prev_angles=[0.0, direction_deg],
+        armature=[0, 1],
+        layer=[0, 1],
+        positions=[[0.0, 0.0], end],
+        angles=[0.0, direction_deg + turn],
+        prev_positions=[[0.0, 0.0], start],
+        prev_angles=[0.0, direction_deg],
         swept=[False, True] if sweep else None,
     ).hits
 
 
-@pytest.mark.parametrize("tiers", [("bins", "circle", "armature"), ("quadtree", "aabb", "obb", "armature"),
-                                   ("loose_quadtree", "armature"), ("brute", "circle", "obb", "armature")])
+@pytest.mark.parametrize(
+    "tiers",
+    [
+        ("bins", "circle", "armature"),
+        ("quadtree", "aabb", "obb", "armature"),
+        ("loose_quadtree", "armature"),
+        ("brute", "circle", "obb", "armature"),
+    ],
+)
 def test_sweep__fast_bullet_through_thin_wall_registers(tiers):
     # 100,000 px/s at 60 Hz is 1,667 px a frame: the bullet is far on either side of the
     # 2 px wall at both frames, and only the sweep can see it pass.

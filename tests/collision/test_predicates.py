@@ -37,6 +37,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
+from shipped import dn, up
 
 from broadsword.collision import (
     paper_segments_intersect,
@@ -44,7 +45,6 @@ from broadsword.collision import (
     polygons_collide,
     segments_intersect,
 )
-from shipped import dn, up
 
 M = sys.float_info.max  # 1.7976931348623157e308
 T = math.ulp(0.0)  # 5e-324, the smallest subnormal
@@ -95,9 +95,7 @@ def _orient(a, b, c):
 
 
 def _in_box(p, a, b):
-    return min(a[0], b[0]) <= p[0] <= max(a[0], b[0]) and min(a[1], b[1]) <= p[1] <= max(
-        a[1], b[1]
-    )
+    return min(a[0], b[0]) <= p[0] <= max(a[0], b[0]) and min(a[1], b[1]) <= p[1] <= max(a[1], b[1])
 
 
 def _on_segment(p, a, b):
@@ -120,12 +118,7 @@ def _seg_int(a, b, c, d):
     d4 = _orient(a, b, d)
     if d1 * d2 < 0 and d3 * d4 < 0:
         return True
-    return (
-        _on_segment(a, c, d)
-        or _on_segment(b, c, d)
-        or _on_segment(c, a, b)
-        or _on_segment(d, a, b)
-    )
+    return _on_segment(a, c, d) or _on_segment(b, c, d) or _on_segment(c, a, b) or _on_segment(d, a, b)
 
 
 def _edges(qpoly):
@@ -358,9 +351,37 @@ SMALL = st.integers(-4, 4)
 SMALL_ANY = st.one_of(SMALL, SMALL.map(float), st.integers(-8, 8).map(lambda k: k / 2))
 FINITE = st.floats(allow_nan=False, allow_infinity=False)
 POOL = [
-    0.0, -0.0, 1.0, -1.0, 2.0, 0.5, T, -T, 2 * T, 3 * T, 1e-300, -1e-300, 2e-300,
-    sys.float_info.min, 1e300, -1e300, M, -M, dn(M), -dn(M), 1.7e308, -1.7e308,
-    0.1, 0.2, 0.3, 0.1 + 0.2, 0.05, 0.95, 2.0**53, 2.0**53 + 2, 1 / 3,
+    0.0,
+    -0.0,
+    1.0,
+    -1.0,
+    2.0,
+    0.5,
+    T,
+    -T,
+    2 * T,
+    3 * T,
+    1e-300,
+    -1e-300,
+    2e-300,
+    sys.float_info.min,
+    1e300,
+    -1e300,
+    M,
+    -M,
+    dn(M),
+    -dn(M),
+    1.7e308,
+    -1.7e308,
+    0.1,
+    0.2,
+    0.3,
+    0.1 + 0.2,
+    0.05,
+    0.95,
+    2.0**53,
+    2.0**53 + 2,
+    1 / 3,
 ]
 EXTREME = st.sampled_from(POOL)
 MIXED = st.one_of(EXTREME, FINITE, SMALL.map(float))
@@ -1293,7 +1314,12 @@ COLLIDE_NESTED = [
     P(HUGE_SQUARE, [(0, 0), (1, 0), (0, 1)], True, id="unit_triangle_in_max_square"),
     P(HUGE_SQUARE, rect(-dn(M), -dn(M), dn(M), dn(M)), True, id="max_square_in_max_square_by_ulp"),
     P([(0, 0), (1, 0), (0, 1)], [(T, T), (2 * T, T), (T, 2 * T)], True, id="subnormal_triangle_in_unit"),
-    P([(-1e300, -1e300), (1e300, -1e300), (0, 1e300)], rect(-1e-300, -1e-300, 1e-300, 1e-300), True, id="tiny_square_in_huge_triangle"),
+    P(
+        [(-1e300, -1e300), (1e300, -1e300), (0, 1e300)],
+        rect(-1e-300, -1e-300, 1e-300, 1e-300),
+        True,
+        id="tiny_square_in_huge_triangle",
+    ),
 ]
 
 COLLIDE_VERTEX = [
@@ -1317,9 +1343,24 @@ COLLIDE_EDGES = [
     P([(0, 0), (1, 0), (0, 1)], [(5, 5), (6, 5), (5, 6)], False, id="far_apart"),
     P(HUGE_TRI, [(-M, up(-M)), (-M, M), (dn(M), M)], False, id="max_triangles_ulp_apart"),
     P(HUGE_TRI, [(-M, up(-M)), (-M, M), (M, M)], True, id="max_triangles_touch"),
-    P([(-1e300, -1e-300), (1e300, 1e-300), (0, -1e300)], [(1e-300, 0), (2e-300, 0), (1e-300, T)], True, id="mixed_thin_below"),
-    P([(-1e300, -1e-300), (1e300, 1e-300), (0, -1e300)], [(-2e-300, 0), (-1e-300, 0), (-1e-300, 1e-300)], False, id="mixed_thin_above"),
-    P([(0, 0), (1e-300, 1e-300), (0, 1e-300)], [(1e-300, 0), (0, 1e-300), (1e-300, 1e-300)], True, id="tiny_crossing_edges"),
+    P(
+        [(-1e300, -1e-300), (1e300, 1e-300), (0, -1e300)],
+        [(1e-300, 0), (2e-300, 0), (1e-300, T)],
+        True,
+        id="mixed_thin_below",
+    ),
+    P(
+        [(-1e300, -1e-300), (1e300, 1e-300), (0, -1e300)],
+        [(-2e-300, 0), (-1e-300, 0), (-1e-300, 1e-300)],
+        False,
+        id="mixed_thin_above",
+    ),
+    P(
+        [(0, 0), (1e-300, 1e-300), (0, 1e-300)],
+        [(1e-300, 0), (0, 1e-300), (1e-300, 1e-300)],
+        True,
+        id="tiny_crossing_edges",
+    ),
 ]
 
 

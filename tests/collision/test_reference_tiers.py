@@ -5,10 +5,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from broadsword.collision.scenarios import ReferenceScene, random_armature
 from broadsword.collision import (
-    Armature, ArmatureSet, MaskCache, Pipeline, paper_collide_padded, paper_segments_intersect, pose, rasterise,
+    Armature,
+    ArmatureSet,
+    MaskCache,
+    Pipeline,
+    paper_collide_padded,
+    paper_segments_intersect,
+    pose,
+    rasterise,
 )
+from broadsword.collision.scenarios import ReferenceScene, random_armature
 
 
 def padded(polys, k):
@@ -31,8 +38,14 @@ def test_paper_tier__equals_figure_8_edge_by_edge():
     ps += [big] * 3
     qs += [small, small + 5, small - 7]
     got = paper_collide_padded(*padded(ps, 8), *padded(qs, 8))
-    want = [any(paper_segments_intersect(p[i], p[(i + 1) % len(p)], q[j], q[(j + 1) % len(q)])
-                for i in range(len(p)) for j in range(len(q))) for p, q in zip(ps, qs)]
+    want = [
+        any(
+            paper_segments_intersect(p[i], p[(i + 1) % len(p)], q[j], q[(j + 1) % len(q)])
+            for i in range(len(p))
+            for j in range(len(q))
+        )
+        for p, q in zip(ps, qs)
+    ]
     assert got.tolist() == want
     assert not got[-3:].any()
 

@@ -6,8 +6,18 @@ from pathlib import Path
 
 import pytest
 
-from broadsword.collision import (BOUND_TIERS, BROAD_PHASES, BROAD_TIERS, LAST_TIERS, TIERS, Armature, Pipeline, Tier,
-                                  TierKind, check_tiers)
+from broadsword.collision import (
+    BOUND_TIERS,
+    BROAD_PHASES,
+    BROAD_TIERS,
+    LAST_TIERS,
+    TIERS,
+    Armature,
+    Pipeline,
+    Tier,
+    TierKind,
+    check_tiers,
+)
 from broadsword.data import DataError
 from broadsword.data.levels.load import _tiers
 
@@ -26,8 +36,13 @@ def test_tier__compares_and_prints_as_its_name():
     assert Tier.BINS == "bins" and f"{Tier.KDOP}" == "kdop" and "+".join((Tier.BINS, Tier.AABB)) == "bins+aabb"
 
 
-GOOD = [("bins",), ("brute", "aabb"), ("quadtree", "circle", "kdop", "armature"), ("loose_quadtree", "paper"),
-        ("bins", "obb", "aabb", "pixel")]
+GOOD = [
+    ("bins",),
+    ("brute", "aabb"),
+    ("quadtree", "circle", "kdop", "armature"),
+    ("loose_quadtree", "paper"),
+    ("bins", "obb", "aabb", "pixel"),
+]
 BAD = [
     ((), "first tier must be a broad phase"),
     (("circle", "armature"), "first tier must be a broad phase"),

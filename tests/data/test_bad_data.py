@@ -23,8 +23,16 @@ from pathlib import Path
 import pytest
 
 from broadsword import cli, headless
-from broadsword.data import recordings
-from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
+from broadsword.data import (
+    DataError,
+    data_dir,
+    list_levels,
+    load_armature_file,
+    load_armatures,
+    load_level,
+    recordings,
+    resolve_level,
+)
 from broadsword.data.armatures import FILE_MAX_BYTES, SUFFIX
 from broadsword.data.errors import FIELD_MAX_CHARS, MESSAGE_MAX_CHARS
 from broadsword.data.levels import LEVEL_MAX_BYTES, check_level_sprites
@@ -56,38 +64,83 @@ def ring(n: int, r: float = 100.0) -> str:
     return "[" + ", ".join(pts) + "]"
 
 
-RECORDING = {"version": 2, "game_version": "test", "level": "1-picket", "seed": 9, "settings": {"rotation": "lut", "difficulty": "normal"},
-             "frames": 4, "inputs": "05050505"}
+RECORDING = {
+    "version": 2,
+    "game_version": "test",
+    "level": "1-picket",
+    "seed": 9,
+    "settings": {"rotation": "lut", "difficulty": "normal"},
+    "frames": 4,
+    "inputs": "05050505",
+}
 
 #: (kind, file name) -> (text maker, field, expected words): faults too big to commit.
 #: Each text is made only when its test runs.
 GENERATED = {
     ("levels", "huge.toml"): (lambda: padded(WAVE, MB20), "", f"at most {LEVEL_MAX_BYTES:,}"),
-    ("levels", "deep-nesting-arrays.toml"): (lambda: WAVE + "count = " + "[" * DEEP + "]" * DEEP + "\n", "",
-                                            "nested too deeply"),
-    ("levels", "deep-nesting-inline-tables.toml"): (lambda: WAVE + "path = " + "{a = " * DEEP + "1" + "}" * DEEP + "\n",
-                                                   "", "nested too deeply"),
-    ("levels", "deep-nesting-dotted-table.toml"): (lambda: "[wave" + ".a" * DEEP + "]\nx = 1\n", "", "nested too deeply"),
+    ("levels", "deep-nesting-arrays.toml"): (
+        lambda: WAVE + "count = " + "[" * DEEP + "]" * DEEP + "\n",
+        "",
+        "nested too deeply",
+    ),
+    ("levels", "deep-nesting-inline-tables.toml"): (
+        lambda: WAVE + "path = " + "{a = " * DEEP + "1" + "}" * DEEP + "\n",
+        "",
+        "nested too deeply",
+    ),
+    ("levels", "deep-nesting-dotted-table.toml"): (
+        lambda: "[wave" + ".a" * DEEP + "]\nx = 1\n",
+        "",
+        "nested too deeply",
+    ),
     ("levels", "deep-nesting-dotted-key.toml"): (lambda: WAVE + "a" + ".a" * DEEP + " = 1\n", "", "nested too deeply"),
     ("levels", "too-many-waves.toml"): (lambda: WAVE * 300, "wave", "at most 256 waves"),
-    ("levels", "too-many-ships.toml"): (lambda: (WAVE + "count = 1000\nmirror = true\n") * 6, "wave[5].count",
-                                        "12,000 ships; a level sends at most 10,000"),
-    ("levels", "too-many-boss-parts.toml"): (lambda: "[boss]\nhp = 100\n" + '[[boss.part]]\nsprite = "boss_core"\n' * 20,
-                                            "boss.part", "at most 16 parts"),
-    ("armatures", "huge" + SUFFIX): (lambda: padded(f"[shapes]\nhit = {TRI}\n", MB20), "", f"at most {FILE_MAX_BYTES:,}"),
-    ("armatures", "deep-nesting-arrays" + SUFFIX): (lambda: "[shapes]\nhit = " + "[" * DEEP + "]" * DEEP + "\n", "",
-                                                   "nested too deeply"),
-    ("armatures", "deep-nesting-dotted-table" + SUFFIX): (lambda: "[shapes" + ".a" * DEEP + "]\nx = 1\n", "",
-                                                         "nested too deeply"),
-    ("armatures", "too-many-vertices" + SUFFIX): (lambda: f"[shapes]\nhit = {ring(300)}\n", "shapes.hit",
-                                                 "3 to 256 vertices"),
-    ("armatures", "too-many-shapes" + SUFFIX): (lambda: "[shapes]\n" + "".join(f"s{i} = {TRI}\n" for i in range(20))
-                                               + f"hit = {TRI}\n", "shapes", "at most 16 shapes"),
-    ("recordings", "huge.json"): (lambda: json.dumps({**RECORDING, "frames": MB20 // 2, "inputs": "05" * (MB20 // 2)}), "",
-                                  f"at most {RECORDING_MAX_BYTES:,}"),
+    ("levels", "too-many-ships.toml"): (
+        lambda: (WAVE + "count = 1000\nmirror = true\n") * 6,
+        "wave[5].count",
+        "12,000 ships; a level sends at most 10,000",
+    ),
+    ("levels", "too-many-boss-parts.toml"): (
+        lambda: "[boss]\nhp = 100\n" + '[[boss.part]]\nsprite = "boss_core"\n' * 20,
+        "boss.part",
+        "at most 16 parts",
+    ),
+    ("armatures", "huge" + SUFFIX): (
+        lambda: padded(f"[shapes]\nhit = {TRI}\n", MB20),
+        "",
+        f"at most {FILE_MAX_BYTES:,}",
+    ),
+    ("armatures", "deep-nesting-arrays" + SUFFIX): (
+        lambda: "[shapes]\nhit = " + "[" * DEEP + "]" * DEEP + "\n",
+        "",
+        "nested too deeply",
+    ),
+    ("armatures", "deep-nesting-dotted-table" + SUFFIX): (
+        lambda: "[shapes" + ".a" * DEEP + "]\nx = 1\n",
+        "",
+        "nested too deeply",
+    ),
+    ("armatures", "too-many-vertices" + SUFFIX): (
+        lambda: f"[shapes]\nhit = {ring(300)}\n",
+        "shapes.hit",
+        "3 to 256 vertices",
+    ),
+    ("armatures", "too-many-shapes" + SUFFIX): (
+        lambda: "[shapes]\n" + "".join(f"s{i} = {TRI}\n" for i in range(20)) + f"hit = {TRI}\n",
+        "shapes",
+        "at most 16 shapes",
+    ),
+    ("recordings", "huge.json"): (
+        lambda: json.dumps({**RECORDING, "frames": MB20 // 2, "inputs": "05" * (MB20 // 2)}),
+        "",
+        f"at most {RECORDING_MAX_BYTES:,}",
+    ),
     ("recordings", "deep-nesting.json"): (lambda: "[" * DEEP + "]" * DEEP, "", "nested too deeply"),
-    ("recordings", "giant-number.json"): (lambda: '{"version": 2, "level": "1-picket", "seed": ' + "9" * 5000
-                                          + ', "inputs": ""}', "", "bad JSON"),
+    ("recordings", "giant-number.json"): (
+        lambda: '{"version": 2, "level": "1-picket", "seed": ' + "9" * 5000 + ', "inputs": ""}',
+        "",
+        "bad JSON",
+    ),
 }
 
 CASES = [(kind, name, False) for kind in ("levels", "armatures", "recordings") for name in EXPECTED[kind]]
@@ -136,7 +189,7 @@ def expected_error(case, tmp_path, armatures) -> tuple[Path, str]:
     message = str(info.value)
     prefix = f"{path}: {field}: " if field else f"{path}: "
     assert message.startswith(prefix), (message, prefix)
-    assert expect in message[len(prefix):], (message, expect)
+    assert expect in message[len(prefix) :], (message, expect)
     assert "\n" not in message and "\r" not in message and message.isprintable()
     assert len(message) <= len(prefix) + MESSAGE_MAX_CHARS
     return path, message
@@ -174,13 +227,33 @@ FAULTS = {
     "a file of many megabytes": ("huge.",),
     "deep nesting": ("deep-nesting",),
 }
-LEVEL_FAULTS = {"unknown enemy": ("unknown-enemy",), "unknown pattern": ("unknown-pattern",),
-                "sprite path with ../": ("sprite-path-dotdot",), "absolute sprite path": ("sprite-path-absolute",)}
-ARMATURE_FAULTS = {"self-crossing": ("self-crossing",), "degenerate": ("degenerate",), "fewer than 3 vertices": ("two-vertices",),
-                   "sprite path with ../": ("sprite-path-dotdot",), "absolute sprite path": ("sprite-path-absolute",)}
-RECORDING_FAULTS = ("not TOML or JSON", "empty", "binary", "truncated", "wrong types", "missing fields",
-                    "a file of many megabytes", "deep nesting", "negative counts or times", "absurd counts or times", "nan",
-                    "inf")
+LEVEL_FAULTS = {
+    "unknown enemy": ("unknown-enemy",),
+    "unknown pattern": ("unknown-pattern",),
+    "sprite path with ../": ("sprite-path-dotdot",),
+    "absolute sprite path": ("sprite-path-absolute",),
+}
+ARMATURE_FAULTS = {
+    "self-crossing": ("self-crossing",),
+    "degenerate": ("degenerate",),
+    "fewer than 3 vertices": ("two-vertices",),
+    "sprite path with ../": ("sprite-path-dotdot",),
+    "absolute sprite path": ("sprite-path-absolute",),
+}
+RECORDING_FAULTS = (
+    "not TOML or JSON",
+    "empty",
+    "binary",
+    "truncated",
+    "wrong types",
+    "missing fields",
+    "a file of many megabytes",
+    "deep nesting",
+    "negative counts or times",
+    "absurd counts or times",
+    "nan",
+    "inf",
+)
 
 
 @pytest.mark.parametrize("kind", ["levels", "armatures", "recordings"])
@@ -238,7 +311,9 @@ def test_headless_replay__exit_2_and_the_loader_line(case, tmp_path, shipped_arm
 
 
 @pytest.mark.parametrize("case", [c for c in CASES if c[0] == "armatures"], ids=case_id)
-def test_headless_with_a_bad_armature__exit_2_and_the_loader_line(case, tmp_path, shipped_armatures, capsys, monkeypatch):
+def test_headless_with_a_bad_armature__exit_2_and_the_loader_line(
+    case, tmp_path, shipped_armatures, capsys, monkeypatch
+):
     made = tmp_path / "made"
     made.mkdir()
     path, message = expected_error(case, made, shipped_armatures)
@@ -265,17 +340,26 @@ def test_armature_check__fails_with_one_error_line(case, tmp_path, shipped_armat
     assert one_error_line(err) == "broadsword armature check: 1 invalid file(s)"
 
 
-SUBPROCESS_CASES = [("levels", "binary-png.toml", False), ("levels", "unknown-enemy.toml", False),
-                    ("levels", "sprite-path-dotdot.toml", False), ("levels", "deep-nesting-arrays.toml", True),
-                    ("levels", "huge.toml", True), ("recordings", "not-json.json", False)]
+SUBPROCESS_CASES = [
+    ("levels", "binary-png.toml", False),
+    ("levels", "unknown-enemy.toml", False),
+    ("levels", "sprite-path-dotdot.toml", False),
+    ("levels", "deep-nesting-arrays.toml", True),
+    ("levels", "huge.toml", True),
+    ("recordings", "not-json.json", False),
+]
 
 
 @pytest.mark.parametrize("case", SUBPROCESS_CASES, ids=case_id)
 def test_headless_in_a_fresh_process__exit_2_one_line_no_traceback(case, tmp_path, shipped_armatures):
     path, message = expected_error(case, tmp_path, shipped_armatures)
     flag = "--level" if case[0] == "levels" else "--replay"
-    run = subprocess.run([sys.executable, "-m", "broadsword", "--headless", flag, str(path), "--frames", "5"],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "broadsword", "--headless", flag, str(path), "--frames", "5"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert run.returncode == 2 and run.stdout == ""
     assert "Traceback" not in run.stderr
     assert one_error_line(run.stderr) == f"broadsword: {message}"
@@ -283,12 +367,17 @@ def test_headless_in_a_fresh_process__exit_2_one_line_no_traceback(case, tmp_pat
 
 def test_armature_check_in_a_fresh_process__one_error_no_traceback(shipped_armatures):
     path = BAD / "armatures" / "self-crossing.armature.toml"
-    run = subprocess.run([sys.executable, "-m", "broadsword", "armature", "check", str(path)],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        [sys.executable, "-m", "broadsword", "armature", "check", str(path)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert run.returncode == 1 and "Traceback" not in run.stderr
     assert [line for line in run.stdout.splitlines() if "error:" in line][0].endswith(
         f"error: {path}: shapes.hit: armature 'self-crossing': edge 0 [0.0, 0.0]-[4.0, 4.0] meets edge 2 "
-        "[4.0, 0.0]-[0.0, 4.0]; an armature must be a simple polygon")
+        "[4.0, 0.0]-[0.0, 4.0]; an armature must be a simple polygon"
+    )
 
 
 # ---------------------------------------------------------------------- size limits
@@ -296,8 +385,9 @@ def test_armature_check_in_a_fresh_process__one_error_no_traceback(shipped_armat
     "kind, limit, valid",
     [("levels", LEVEL_MAX_BYTES, WAVE), ("armatures", FILE_MAX_BYTES, f"[shapes]\nhit = {TRI}\n")],
 )
-def test_size_limit__refused_by_size_before_parsing_and_a_file_at_the_limit_loads(kind, limit, valid, tmp_path,
-                                                                                   shipped_armatures, monkeypatch):
+def test_size_limit__refused_by_size_before_parsing_and_a_file_at_the_limit_loads(
+    kind, limit, valid, tmp_path, shipped_armatures, monkeypatch
+):
     at_limit = padded(valid, limit - 200)
     at_limit += "#" * (limit - len(at_limit.encode()) - 1) + "\n"
     path = tmp_path / ("x" + (SUFFIX if kind == "armatures" else ".toml"))
@@ -371,7 +461,11 @@ def test_check_level_sprites__every_shipped_level_passes_and_a_missing_armature_
     path.write_text(WAVE + 'fire = "aimed"\nbullet = "needle"\n[boss]\n[[boss.part]]\nsprite = "boss_turret"\n')
     level = load_level(path)
     check_level_sprites(level, shipped_armatures)
-    for gone, field in (("scout", "wave[0].enemy"), ("needle", "wave[0].bullet"), ("boss_turret", "boss.part[0].sprite")):
+    for gone, field in (
+        ("scout", "wave[0].enemy"),
+        ("needle", "wave[0].bullet"),
+        ("boss_turret", "boss.part[0].sprite"),
+    ):
         without = {k: v for k, v in shipped_armatures.items() if k != gone}
         with pytest.raises(DataError) as info:
             check_level_sprites(level, without)
@@ -417,12 +511,19 @@ def executing_uses(tree: ast.AST) -> list[str]:
     for node in ast.walk(tree):
         if isinstance(node, ast.Call):
             f = node.func
-            if (isinstance(f, ast.Name) and f.id in EXECUTING_BUILTINS
-                    or isinstance(f, ast.Attribute) and f.attr in EXECUTING_METHODS):
+            if (
+                isinstance(f, ast.Name)
+                and f.id in EXECUTING_BUILTINS
+                or isinstance(f, ast.Attribute)
+                and f.attr in EXECUTING_METHODS
+            ):
                 found.append(f"call {f.id if isinstance(f, ast.Name) else f.attr}")
         elif isinstance(node, ast.Import):
-            found += [f"import {a.name}" for a in node.names
-                      if a.name.split(".")[0] in EXECUTING_MODULES and a.name not in READING_MODULES]
+            found += [
+                f"import {a.name}"
+                for a in node.names
+                if a.name.split(".")[0] in EXECUTING_MODULES and a.name not in READING_MODULES
+            ]
         elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] in EXECUTING_MODULES:
             if node.module in READING_MODULES:
                 continue
@@ -441,11 +542,19 @@ def test_nothing_executed__the_loaders_parse_with_tomllib_and_json_only():
     for name, source in sources.items():
         assert executing_uses(ast.parse(source)) == [], name
     # The check itself can fail: it finds each kind of use.
-    probe = ("import pickle\nfrom importlib import x\neval(s)\nobj.exec(s)\ncompile(s, 'f', 'exec')\nre.compile(s)\n"
-             "import importlib\nimport importlib.resources\nfrom importlib import resources\n"
-             "from importlib.resources import files\nimport importlib.util\n")
-    assert sorted(executing_uses(ast.parse(probe))) == ["call compile", "call eval", "call exec", "from importlib",
-                                                       "import importlib", "import importlib.util", "import pickle"]
+    probe = (
+        "import pickle\nfrom importlib import x\neval(s)\nobj.exec(s)\ncompile(s, 'f', 'exec')\nre.compile(s)\n"
+        "import importlib\nimport importlib.resources\nfrom importlib import resources\n"
+        "from importlib.resources import files\nimport importlib.util\n"
+    )
+    assert sorted(executing_uses(ast.parse(probe))) == [
+        "call compile",
+        "call eval",
+        "call exec",
+        "from importlib",
+        "import importlib",
+        "import importlib.util",
+        "import pickle",
+    ]
     # The parsers are the standard ones.
     assert "tomllib.loads(" in sources["resources.py"] and "json.loads(" in sources["load_recording"]
-

@@ -34,8 +34,20 @@ def test_shipped__levels_load_and_name_known_sprites():
 def test_shipped__every_sprite_has_an_armature_and_image():
     folder = data_dir("assets") / "sprites"
     armatures = load_armatures(folder)
-    needed = {"player", "shot", "scout", "wasp", "lancer", "gunship", "boss_core", "boss_turret", "boss_wing",
-              "pellet", "needle", "orb"}
+    needed = {
+        "player",
+        "shot",
+        "scout",
+        "wasp",
+        "lancer",
+        "gunship",
+        "boss_core",
+        "boss_turret",
+        "boss_wing",
+        "pellet",
+        "needle",
+        "orb",
+    }
     assert needed <= set(armatures)
     for f in armatures.values():
         assert (folder / f.sprite).is_file()
@@ -54,19 +66,23 @@ BOSS = '[boss]\n[[boss.part]]\nsprite = "boss_core"\n[[boss.part]]\nsprite = "bo
         ("[scene]\nbin_size = -3\n", "scene.bin_size"),
         ('[scene]\ntiers = ["circle", "armature"]\n', "scene.tiers"),
         ("[player]\nlives = 0\n", "player.lives"),
-        ("[player]\nspeed = \"fast\"\n", "player.speed"),
+        ('[player]\nspeed = "fast"\n', "player.speed"),
         ('[[wave]]\nenemy = "scout"\npath = "loop"\n', "wave[0].path"),
         ('[[wave]]\nenemy = "scout"\nfire = "aimed"\nshots = 0\n', "wave[0].shots"),
         ('[[wave]]\nenemy = "scout"\ncuont = 3\n', "wave[0].cuont"),
-        ('[boss]\nhp = 10\n', "boss.part"),
+        ("[boss]\nhp = 10\n", "boss.part"),
         ('[[boss.part]]\nsprite = "x"\noffset = [1]\n[boss]\n', "boss"),
         ("colour = 3\n", "colour"),
         ('[level]\ntheme = "jungle"\n', "level.theme"),
-        (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 3\nfire = \"ring\"\n", "boss.phase[0].fire[0].part"),
-        (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\n[[boss.phase.fire]]\npart = 1\n",
-         "boss.phase[0].fire[1].part"),
-        (BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\nfire = \"ring\"\nshots = 0\n",
-         "boss.phase[0].fire[0].shots"),
+        (BOSS + '[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 3\nfire = "ring"\n', "boss.phase[0].fire[0].part"),
+        (
+            BOSS + "[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\n[[boss.phase.fire]]\npart = 1\n",
+            "boss.phase[0].fire[1].part",
+        ),
+        (
+            BOSS + '[[boss.phase]]\nhp = 5\n[[boss.phase.fire]]\npart = 1\nfire = "ring"\nshots = 0\n',
+            "boss.phase[0].fire[0].shots",
+        ),
         (BOSS + "[[boss.phase]]\nhp = 5\nfire = 3\n", "boss.phase[0].fire"),
     ],
 )
@@ -84,8 +100,10 @@ TRI = "[[0, 0], [4, 0], [0, 4]]"
 
 def test_level__each_boss_phase_names_what_its_parts_fire(tmp_path):
     path = tmp_path / "phases.toml"
-    path.write_text(BOSS + "[[boss.phase]]\nhp = 5\n"
-                    "[[boss.phase]]\nhp = 7\n[[boss.phase.fire]]\npart = 2\nfire = \"ring\"\nshots = 12\n")
+    path.write_text(
+        BOSS + "[[boss.phase]]\nhp = 5\n"
+        '[[boss.phase]]\nhp = 7\n[[boss.phase.fire]]\npart = 2\nfire = "ring"\nshots = 12\n'
+    )
     boss = load_level(path).boss
     assert [p.hp for p in boss.phases] == [5, 7] and boss.hp == 12
     assert boss.fire_of(0, 0) == boss.parts[0].fire  # a phase naming nothing: each part's own
@@ -156,8 +174,11 @@ def test_armature_file__save_refuses_an_invalid_shape_and_writes_nothing(tmp_pat
     assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["x.armature.toml"]
 
 
-@given(st.lists(st.tuples(st.floats(-300, 300, allow_nan=False), st.floats(-300, 300, allow_nan=False)),
-                min_size=3, max_size=12))
+@given(
+    st.lists(
+        st.tuples(st.floats(-300, 300, allow_nan=False), st.floats(-300, 300, allow_nan=False)), min_size=3, max_size=12
+    )
+)
 @settings(max_examples=150, deadline=None)
 def test_armature_file__floats_round_trip_exactly(points):
     from broadsword.data.armatures import format_armature_file
@@ -194,7 +215,9 @@ def test_level__with_nothing_to_fight_loads_and_completes_at_once(tmp_path, caps
         load_level(tmp_path / "empty.toml")
 
 
-@pytest.mark.parametrize("name, sprite, field", [("Bad Name", "x.png", "name"), ('a"b', "x.png", "name"), ("x", "../x.png", "sprite")])
+@pytest.mark.parametrize(
+    "name, sprite, field", [("Bad Name", "x.png", "name"), ('a"b', "x.png", "name"), ("x", "../x.png", "sprite")]
+)
 def test_armature_file__save_refuses_a_bad_name_or_sprite_and_writes_nothing(tmp_path, name, sprite, field):
     path = tmp_path / "x.armature.toml"
     with pytest.raises(DataError, match=f"x.armature.toml: {field}: "):

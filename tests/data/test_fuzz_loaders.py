@@ -25,19 +25,35 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from broadsword import __version__
-from broadsword.data.recordings import load_recording
-from broadsword.sim import Input
-from broadsword.data import DataError, data_dir, list_levels, load_armature_file, load_armatures, load_level, resolve_level
+from broadsword.data import (
+    DataError,
+    data_dir,
+    list_levels,
+    load_armature_file,
+    load_level,
+    resolve_level,
+)
 from broadsword.data.armatures import COORD_MAX, FRAMES_MAX, SUFFIX, VERTICES_MAX
 from broadsword.data.levels import check_level_sprites
-from broadsword.sim import Pilot, World
+from broadsword.data.recordings import load_recording
+from broadsword.sim import Input, Pilot, World
 
 SPRITES = data_dir("assets") / "sprites"
 LEVEL_PATHS = [resolve_level(name) for name in list_levels()]
 ARMATURE_PATHS = sorted(SPRITES.glob(f"*{SUFFIX}"))
-RECORDING = {"version": 2, "game_version": __version__, "level": "1-picket", "seed": 9, "settings": {"rotation": "lut", "difficulty": "normal"},
-             "toggles": [[2, "rotation", "exact"]], "carry": {"score": 10, "lives": 2}, "frames": 6,
-             "inputs": "051525053505", "checkpoints": [], "state_hash": "0f"}
+RECORDING = {
+    "version": 2,
+    "game_version": __version__,
+    "level": "1-picket",
+    "seed": 9,
+    "settings": {"rotation": "lut", "difficulty": "normal"},
+    "toggles": [[2, "rotation", "exact"]],
+    "carry": {"score": 10, "lives": 2},
+    "frames": 6,
+    "inputs": "051525053505",
+    "checkpoints": [],
+    "state_hash": "0f",
+}
 FRAMES_PLAYED = 20
 SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
@@ -167,25 +183,130 @@ def json_value(v) -> str:
 
 
 # ---------------------------------------------------------------------- strategies
-KNOWN_KEYS = sorted({
-    "level", "title", "name", "scene", "tiers", "rotation", "bin_size", "graze", "player", "speed", "slow_speed",
-    "fire_every", "shot_speed", "lives", "wave", "at", "enemy", "count", "every", "hp", "score", "mirror", "path", "x",
-    "amplitude", "period", "radius", "turn", "dive_at", "hold_y", "hold_for", "fire", "bullet", "bullet_speed", "shots",
-    "spread", "volley_turn", "fire_delay", "boss", "y", "sway", "part", "sprite", "offset", "spin", "shapes", "hit",
-    "frames", "frame_time", "frame", "vertices", "version", "seed", "inputs", "state_hash", "pattern", "pattern_params",
-})
+KNOWN_KEYS = sorted(
+    {
+        "level",
+        "title",
+        "name",
+        "scene",
+        "tiers",
+        "rotation",
+        "bin_size",
+        "graze",
+        "player",
+        "speed",
+        "slow_speed",
+        "fire_every",
+        "shot_speed",
+        "lives",
+        "wave",
+        "at",
+        "enemy",
+        "count",
+        "every",
+        "hp",
+        "score",
+        "mirror",
+        "path",
+        "x",
+        "amplitude",
+        "period",
+        "radius",
+        "turn",
+        "dive_at",
+        "hold_y",
+        "hold_for",
+        "fire",
+        "bullet",
+        "bullet_speed",
+        "shots",
+        "spread",
+        "volley_turn",
+        "fire_delay",
+        "boss",
+        "y",
+        "sway",
+        "part",
+        "sprite",
+        "offset",
+        "spin",
+        "shapes",
+        "hit",
+        "frames",
+        "frame_time",
+        "frame",
+        "vertices",
+        "version",
+        "seed",
+        "inputs",
+        "state_hash",
+        "pattern",
+        "pattern_params",
+    }
+)
 keys = st.one_of(st.sampled_from(KNOWN_KEYS), st.text(max_size=8))
-SPECIAL_NUMBERS = [math.nan, math.inf, -math.inf, 1e300, -1e300, 5e-324, -0.0, 0, -1, -1000, 10**6, 2**63, -2**63,
-                   10**40, 1e9, -1e9, 4096.5, 3.0e-3]
-numbers = st.one_of(st.sampled_from(SPECIAL_NUMBERS), st.integers(-2**70, 2**70),
-                    st.floats(allow_nan=True, allow_infinity=True))
-NAMES = ["", "scout", "pellet", "boss_core", "player", "aimed", "ring", "sine", "hold", "auto", "bins", "armature",
-         "lut", "../x", "/abs/x", "..\\x", "x.png", "../x.png", "/etc/passwd.png", "a\nb", "\x00", "hit", "graze",
-         "__import__('os')", "1-picket", "zz", "0505", "ff", "flower.xml", "../aimed.xml", "/etc/passwd.xml", "ring"]
+SPECIAL_NUMBERS = [
+    math.nan,
+    math.inf,
+    -math.inf,
+    1e300,
+    -1e300,
+    5e-324,
+    -0.0,
+    0,
+    -1,
+    -1000,
+    10**6,
+    2**63,
+    -(2**63),
+    10**40,
+    1e9,
+    -1e9,
+    4096.5,
+    3.0e-3,
+]
+numbers = st.one_of(
+    st.sampled_from(SPECIAL_NUMBERS), st.integers(-(2**70), 2**70), st.floats(allow_nan=True, allow_infinity=True)
+)
+NAMES = [
+    "",
+    "scout",
+    "pellet",
+    "boss_core",
+    "player",
+    "aimed",
+    "ring",
+    "sine",
+    "hold",
+    "auto",
+    "bins",
+    "armature",
+    "lut",
+    "../x",
+    "/abs/x",
+    "..\\x",
+    "x.png",
+    "../x.png",
+    "/etc/passwd.png",
+    "a\nb",
+    "\x00",
+    "hit",
+    "graze",
+    "__import__('os')",
+    "1-picket",
+    "zz",
+    "0505",
+    "ff",
+    "flower.xml",
+    "../aimed.xml",
+    "/etc/passwd.xml",
+    "ring",
+]
 strings = st.one_of(st.sampled_from(NAMES), st.text(max_size=20))
 scalars = st.one_of(numbers, strings, st.booleans(), st.dates())
-values = st.recursive(scalars, lambda inner: st.lists(inner, max_size=5) | st.dictionaries(keys, inner, max_size=4),
-                      max_leaves=12)
+values = st.recursive(
+    scalars, lambda inner: st.lists(inner, max_size=5) | st.dictionaries(keys, inner, max_size=4), max_leaves=12
+)
 depths = st.one_of(st.integers(1, 300), st.sampled_from([1000, 5000, 100_000]))
 
 
@@ -242,11 +363,55 @@ def mutate(doc, data) -> dict:
 
 
 def toml_ish_line():
-    header = st.sampled_from(["[scene]", "[player]", "[[wave]]", "[boss]", "[[boss.part]]", "[level]", "[shapes]",
-                              "[[frame]]", "[", "[[", "]]", "[wave]", "[[shapes]]", "[a.b.c]"])
-    raw = st.sampled_from(["nan", "inf", "-inf", "+nan", "1e999", "-0", "0x10", "0o7", "0b1", "1979-05-27",
-                           "07:32:00", "1979-05-27T07:32:00Z", "true", "false", '""', "[]", "{}", "[[", '"unterminated',
-                           "'''", "1_000", "1__0", "[1, [2, [3]]]", "{a = {b = 1}}", '"../x"', "-1", "9" * 30])
+    header = st.sampled_from(
+        [
+            "[scene]",
+            "[player]",
+            "[[wave]]",
+            "[boss]",
+            "[[boss.part]]",
+            "[level]",
+            "[shapes]",
+            "[[frame]]",
+            "[",
+            "[[",
+            "]]",
+            "[wave]",
+            "[[shapes]]",
+            "[a.b.c]",
+        ]
+    )
+    raw = st.sampled_from(
+        [
+            "nan",
+            "inf",
+            "-inf",
+            "+nan",
+            "1e999",
+            "-0",
+            "0x10",
+            "0o7",
+            "0b1",
+            "1979-05-27",
+            "07:32:00",
+            "1979-05-27T07:32:00Z",
+            "true",
+            "false",
+            '""',
+            "[]",
+            "{}",
+            "[[",
+            '"unterminated',
+            "'''",
+            "1_000",
+            "1__0",
+            "[1, [2, [3]]]",
+            "{a = {b = 1}}",
+            '"../x"',
+            "-1",
+            "9" * 30,
+        ]
+    )
     literal = st.one_of(raw, values.map(toml_value))
     pair = st.builds(lambda k, v: f"{k} = {v}", st.one_of(st.sampled_from(KNOWN_KEYS), st.text(max_size=6)), literal)
     return st.one_of(header, pair, pair, st.text(max_size=30))
@@ -286,8 +451,11 @@ def test_try_level__a_shipped_level_plays_and_a_broken_one_is_refused(folder, ar
 @given(st.binary(max_size=3000))
 @settings(max_examples=100, **SETTINGS)
 def test_fuzz__random_bytes(folder, armatures, blob):
-    for name, load in (("bytes.toml", lambda p: try_level(p, armatures)), ("bytes" + SUFFIX, try_armature),
-                       ("bytes.json", try_recording)):
+    for name, load in (
+        ("bytes.toml", lambda p: try_level(p, armatures)),
+        ("bytes" + SUFFIX, try_armature),
+        ("bytes.json", try_recording),
+    ):
         path = folder / name
         path.write_bytes(blob)
         load(path)

@@ -81,13 +81,13 @@ def _half(fd: int) -> None:
 
 #: Where ``die-at`` kills the save, in the order save() reaches them.
 POINTS = {
-    "locked": lambda: _after(fileio.fcntl, "flock"),           # lock taken, nothing read
-    "read": lambda: _after(HighScores, "_read"),               # file re-read under the lock
-    "mkstemp": lambda: _after(tempfile, "mkstemp"),            # empty temporary created
-    "partial-write": lambda: _before(os, "fsync", _half),      # temporary half written
-    "fsync": lambda: _before(os, "fsync"),                     # written, not yet synced
-    "replace": lambda: _before(os, "replace"),                 # synced, not yet renamed
-    "replaced": lambda: _after(os, "replace"),                 # renamed, dir not synced
+    "locked": lambda: _after(fileio.fcntl, "flock"),  # lock taken, nothing read
+    "read": lambda: _after(HighScores, "_read"),  # file re-read under the lock
+    "mkstemp": lambda: _after(tempfile, "mkstemp"),  # empty temporary created
+    "partial-write": lambda: _before(os, "fsync", _half),  # temporary half written
+    "fsync": lambda: _before(os, "fsync"),  # written, not yet synced
+    "replace": lambda: _before(os, "replace"),  # synced, not yet renamed
+    "replaced": lambda: _after(os, "replace"),  # renamed, dir not synced
     "cleanup": lambda: _before(scores_mod, "remove_stale_temps"),  # written, lock still held
 }
 

@@ -16,11 +16,20 @@ from broadsword.game.run import Run, Stage
 from broadsword.game.scenes import Pause, Play, Title
 from broadsword.game.scenes.lab import LabScene
 from broadsword.game.scores import HighScores
-from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim import DT, World
+from broadsword.sim.bombs import DEATHBOMB_FRAMES
 
-LATE = WaveSpec(at=3000.0, enemy="scout", count=1, every=0.0, hp=1, score=0, path=PathSpec(),
-                fire=FireSpec(pattern="aimed", bullet="needle"), mirror=False)
+LATE = WaveSpec(
+    at=3000.0,
+    enemy="scout",
+    count=1,
+    every=0.0,
+    hp=1,
+    score=0,
+    path=PathSpec(),
+    fire=FireSpec(pattern="aimed", bullet="needle"),
+    mirror=False,
+)
 
 
 @pytest.fixture
@@ -40,7 +49,9 @@ def quiet(app: App, waves=(LATE,)) -> World:
 
 
 def key(app, k, down=True):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN if down else pygame.KEYUP, key=k, mod=0, unicode="", scancode=0))
+    pygame.event.post(
+        pygame.event.Event(pygame.KEYDOWN if down else pygame.KEYUP, key=k, mod=0, unicode="", scancode=0)
+    )
 
 
 def frames(app, n):
@@ -72,9 +83,17 @@ def test_app__player_moves_and_fires(app):
 
 
 def test_app__bullet_kills_enemy_and_score_rises(app):
-    target = WaveSpec(at=0.0, enemy="wasp", count=1, every=0.0, hp=3, score=250,
-                      path=PathSpec(kind="hold", x=240.0, speed=200.0, hold_y=250.0, hold_for=30.0),
-                      fire=FireSpec(), mirror=False)
+    target = WaveSpec(
+        at=0.0,
+        enemy="wasp",
+        count=1,
+        every=0.0,
+        hp=3,
+        score=250,
+        path=PathSpec(kind="hold", x=240.0, speed=200.0, hold_y=250.0, hold_for=30.0),
+        fire=FireSpec(),
+        mirror=False,
+    )
     w = quiet(app, (target, LATE))
     w.rng = np.random.default_rng(0)
     key(app, pygame.K_SPACE)
@@ -88,7 +107,9 @@ def test_app__bullet_kills_enemy_and_score_rises(app):
 def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
     w = quiet(app)
     bullet, vel = np.array([w.player.pos[0], w.player.pos[1] - 70.0]), np.array([0.0, 0.0])
-    w.enemy_bullets.add(pos=[bullet], prev=[bullet], vel=[vel], angle=[0.0], arm=[w.kinds.base["needle"]], damage=[1], grazed=[False])
+    w.enemy_bullets.add(
+        pos=[bullet], prev=[bullet], vel=[vel], angle=[0.0], arm=[w.kinds.base["needle"]], damage=[1], grazed=[False]
+    )
     # Independent expectation: move the player up frame by frame and ask the scalar
     # exact predicate when the posed armatures first share a point.
     ids = [w.kinds.base["player"], w.kinds.base["needle"]]

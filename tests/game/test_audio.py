@@ -64,8 +64,7 @@ class Clock:
 
 
 def test_names__match_spec():
-    assert NAMES == ("shot", "hit", "explosion", "big_explosion", "graze", "player_hit",
-                     "select", "pause")
+    assert NAMES == ("shot", "hit", "explosion", "big_explosion", "graze", "player_hit", "select", "pause")
     assert set(Audio.MIN_INTERVAL) == set(NAMES)
     assert Audio.MIN_INTERVAL["shot"] >= 0.060  # 60 Hz fire rate must not stack
 
@@ -101,7 +100,7 @@ def test_synth__deterministic(name):
 def test_synth__names_sound_different():
     arrays = {name: synth(name) for name in NAMES}
     for i, p in enumerate(NAMES):
-        for q in NAMES[i + 1:]:
+        for q in NAMES[i + 1 :]:
             assert arrays[p].shape != arrays[q].shape or not np.array_equal(arrays[p], arrays[q])
 
 

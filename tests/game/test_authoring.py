@@ -81,8 +81,10 @@ def test_check__the_shipped_armatures_are_valid(capsys):
 def test_check__an_invalid_file_is_named_and_fails(tmp_path, capsys):
     copy_sprite(tmp_path, "scout")
     shutil.copy(SPRITES / "scout.armature.toml", tmp_path / "scout.armature.toml")
-    (tmp_path / "bad.armature.toml").write_text('sprite = "scout.png"\n[shapes]\nhit = [[0, 0], [4, 4], [4, 0], [0, 4]]\n')
-    (tmp_path / "orphan.armature.toml").write_text('[shapes]\nhit = [[0, 0], [4, 0], [0, 4]]\n')
+    (tmp_path / "bad.armature.toml").write_text(
+        'sprite = "scout.png"\n[shapes]\nhit = [[0, 0], [4, 4], [4, 0], [0, 4]]\n'
+    )
+    (tmp_path / "orphan.armature.toml").write_text("[shapes]\nhit = [[0, 0], [4, 0], [0, 4]]\n")
     assert main(["armature", "check", str(tmp_path)]) == 1
     out, err = capsys.readouterr()
     assert "bad.armature.toml: shapes.hit:" in out and "meets edge" in out
@@ -101,7 +103,8 @@ def test_check__coverage_and_iou_are_the_pixel_counts():
         surf.fill((255, 255, 255, 255), pygame.Rect(2, 2, 6, 6))
         pygame.image.save(surf, str(Path(d) / "sq.png"))
         (Path(d) / "sq.armature.toml").write_text(
-            '[shapes]\nhit = [[-3, -3], [3, -3], [3, 3], [-3, 3]]\nhalf = [[-3, -3], [0, -3], [0, 3], [-3, 3]]\n')
+            "[shapes]\nhit = [[-3, -3], [3, -3], [3, 3], [-3, 3]]\nhalf = [[-3, -3], [0, -3], [0, 3], [-3, 3]]\n"
+        )
         buf = io.StringIO()
         assert check([d], out=buf) == 0
         rows = {r.split()[1]: r.split()[2:] for r in buf.getvalue().splitlines()[1:-1]}
@@ -153,8 +156,13 @@ def zero_png(path):
     def chunk(kind, body):
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
 
-    return write_png_bytes(path, b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 0, 0, 8, 6, 0, 0, 0))
-                           + chunk(b"IDAT", zlib.compress(b"")) + chunk(b"IEND", b""))
+    return write_png_bytes(
+        path,
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", struct.pack(">IIBBBBB", 0, 0, 8, 6, 0, 0, 0))
+        + chunk(b"IDAT", zlib.compress(b""))
+        + chunk(b"IEND", b""),
+    )
 
 
 @pytest.mark.parametrize("kind", ["zero", "garbage", "truncated"])

@@ -130,17 +130,20 @@ def test_bindings_file__missing_is_the_defaults_silently(tmp_path):
     assert warning is None and b == Bindings() and b.keys == DEFAULT_KEYS
 
 
-@pytest.mark.parametrize("content, field", [
-    (b"\xff\xfe not json", "controls.json"),
-    (b"[1, 2]", "version"),
-    (b'{"version": 2}', "version"),
-    (b'{"version": 1, "keys": {"fire": ["no such key"]}}', "keys.fire"),
-    (b'{"version": 1, "keys": {"mute": ["q"]}}', "keys.mute"),
-    (b'{"version": 1, "keys": {"jump": ["q"]}}', "keys.jump"),
-    (b'{"version": 1, "buttons": {"bomb": ["Z9"]}}', "buttons.bomb"),
-    (b'{"version": 1, "keys": []}', "keys"),
-    (b"[" * 100_000, "controls.json"),
-])
+@pytest.mark.parametrize(
+    "content, field",
+    [
+        (b"\xff\xfe not json", "controls.json"),
+        (b"[1, 2]", "version"),
+        (b'{"version": 2}', "version"),
+        (b'{"version": 1, "keys": {"fire": ["no such key"]}}', "keys.fire"),
+        (b'{"version": 1, "keys": {"mute": ["q"]}}', "keys.mute"),
+        (b'{"version": 1, "keys": {"jump": ["q"]}}', "keys.jump"),
+        (b'{"version": 1, "buttons": {"bomb": ["Z9"]}}', "buttons.bomb"),
+        (b'{"version": 1, "keys": []}', "keys"),
+        (b"[" * 100_000, "controls.json"),
+    ],
+)
 def test_bindings_file__broken_falls_back_to_defaults_with_a_message(tmp_path, content, field):
     path = tmp_path / "controls.json"
     path.write_bytes(content)

@@ -120,7 +120,10 @@ def test_to_screen_and_to_sprite_are_inverse_and_the_sprite_is_drawn_there(open_
             centre = (c + 0.5 - w / 2, r + 0.5 - h / 2)
             if rgba[3] != 255 or point_in_polygon(centre, ed.points):
                 continue
-            if min(edge_distance(centre, a, b) for a, b in zip(ed.points, ed.points[1:] + ed.points[:1], strict=True)) < 1:
+            if (
+                min(edge_distance(centre, a, b) for a, b in zip(ed.points, ed.points[1:] + ed.points[:1], strict=True))
+                < 1
+            ):
                 continue
             assert pixel(ed, at(ed, *centre)) == rgba[:3]
             checked += 1
@@ -137,7 +140,7 @@ def test_drag_a_vertex__moves_it_to_the_snapped_pixel_and_saves_it_there(open_ed
     b = at(ed, *target)
     drag(ed, a, (b[0] + 3, b[1] - 2), steps=4)  # a few screen px off the grid corner
     assert ed.points[i] == target
-    assert ed.points[:i] + ed.points[i + 1:] == before[:i] + before[i + 1:]
+    assert ed.points[:i] + ed.points[i + 1 :] == before[:i] + before[i + 1 :]
     assert ed.dirty
     f = save_and_reload(ed)
     assert f.drawn[0]["hit"] == ed.points and f.drawn[0]["hit"][i] == target
@@ -465,8 +468,11 @@ def test_random_edits__every_state_valid_and_undo_all_redo_all_exact(open_editor
             release(at(ed, *pts[i]), button=3)
             ed.frame()
         else:  # move the shape
-            key(ed, [pygame.K_LEFT, pygame.K_RIGHT, pygame.K_UP, pygame.K_DOWN][int(rng.integers(4))],
-                pygame.KMOD_LSHIFT)
+            key(
+                ed,
+                [pygame.K_LEFT, pygame.K_RIGHT, pygame.K_UP, pygame.K_DOWN][int(rng.integers(4))],
+                pygame.KMOD_LSHIFT,
+            )
         Armature(ed.points)  # always a valid shape
         if ed.frames != history[-1]:
             history.append(ed.frames)
@@ -538,11 +544,14 @@ def solid_png(path, w, h):
     return path
 
 
-@pytest.mark.parametrize(("size", "why"), [
-    ((1, 100000), "a 1 x 100000 px image is too large for a sprite"),
-    ((100000, 1), "a 100000 x 1 px image is too large for a sprite"),
-    ((1, 5000), "a 1 x 5000 px frame is too large for the editor (at most 4096 px a side)"),
-])
+@pytest.mark.parametrize(
+    ("size", "why"),
+    [
+        ((1, 100000), "a 1 x 100000 px image is too large for a sprite"),
+        ((100000, 1), "a 100000 x 1 px image is too large for a sprite"),
+        ((1, 5000), "a 1 x 5000 px frame is too large for the editor (at most 4096 px a side)"),
+    ],
+)
 def test_main__a_huge_sprite_is_a_one_line_error(tmp_path, capfd, size, why):
     png = solid_png(tmp_path / "long.png", *size)
     assert cli_main(["edit", str(png)]) == 2
@@ -568,8 +577,12 @@ def test_main__a_corrupt_or_empty_png_prints_only_our_line(tmp_path, capfd, kind
 
     png = tmp_path / "bad.png"
     if kind == "zero":
-        png.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 0, 0, 8, 6, 0, 0, 0))
-                        + chunk(b"IDAT", zlib.compress(b"")) + chunk(b"IEND", b""))
+        png.write_bytes(
+            b"\x89PNG\r\n\x1a\n"
+            + chunk(b"IHDR", struct.pack(">IIBBBBB", 0, 0, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(b""))
+            + chunk(b"IEND", b"")
+        )
     elif kind == "garbage":
         png.write_bytes(b"\x89PNG\r\n\x1a\n" + b"garbage" * 10)
     else:
@@ -586,8 +599,9 @@ def test_as_a_scene__drawn_on_a_given_surface_driven_by_handle_event(tmp_path):
     ed = Editor(copy_pair(tmp_path, "scout"), surface=host)
     assert not ed.owns_window and ed.view.size == (900 - editor_module.theme.PANEL_W, 640)
     before = ed.points
-    ed.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_RIGHT, mod=pygame.KMOD_LSHIFT, unicode="",
-                                       scancode=0))
+    ed.handle_event(
+        pygame.event.Event(pygame.KEYDOWN, key=pygame.K_RIGHT, mod=pygame.KMOD_LSHIFT, unicode="", scancode=0)
+    )
     assert ed.points == tuple((x + 1, y) for x, y in before)
     ed.handle_event(pygame.event.Event(pygame.MOUSEMOTION, pos=at(ed, 0.0, 0.0), rel=(0, 0), buttons=(0, 0, 0)))
     ed.handle_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_b, mod=0, unicode="b", scancode=0))

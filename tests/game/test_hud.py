@@ -32,6 +32,7 @@ def boss_world():
     world = World(level, SpriteBank().armatures, seed=1)
     world.player.invulnerable = 1e9
     from broadsword.sim import Input
+
     for _ in range(3):
         world.step(Input())
     assert world.boss.fighting
@@ -59,7 +60,7 @@ def test_boss_bar__one_segment_a_phase_the_current_one_shows_its_hp(boss_world):
     boss.phase, boss.hp = 1, boss.phase_hp[1] // 2
     row, _ = bar_row(boss)
     assert runs(row, SPENT) == 2  # the spent first phase, and the lost half of the second
-    (x, w), = [segments(FIELD[0] - 2 * BAR_MARGIN, n)[1]]
+    ((x, w),) = [segments(FIELD[0] - 2 * BAR_MARGIN, n)[1]]
     full = (row == FULL).all(axis=1).nonzero()[0]
     assert full.min() == round(BAR_MARGIN + x) and len(full) == pytest.approx(round(w) / 2, abs=1)
     assert runs(row, WHOLE) == n - 2

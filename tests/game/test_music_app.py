@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pygame
 import pytest
+from music_fakes import FakeRender
 
 from broadsword.game.app import App
 from broadsword.game.music import MusicPlayer, Track
 from broadsword.game.scores import HighScores
-from music_fakes import FakeRender
 
 
 def test_app__title_then_stage_music_and_mute_icon(tmp_path):

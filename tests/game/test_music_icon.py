@@ -17,11 +17,11 @@ def test_draws_speaker_and_slash_inside_its_rect(size):
     assert rect.topleft == (30, 11) and rect.width == rect.height == max(12, size)
     px = pygame.surfarray.array3d(surf).astype(int)
     inside = np.zeros(px.shape[:2], bool)
-    inside[rect.left:rect.right, rect.top:rect.bottom] = True
+    inside[rect.left : rect.right, rect.top : rect.bottom] = True
     assert (px[~inside] == (0, 90, 0)).all()  # nothing drawn outside the rect
     red = (px[..., 0] > 200) & (px[..., 1] < 130)
     light = (px[..., 0] > 200) & (px[..., 1] > 200) & (px[..., 2] > 200)
     assert red[inside].sum() >= rect.width and light[inside].sum() >= rect.width
     # the slash runs corner to corner: red in the lower-left and upper-right quarters
     cx, cy = rect.center
-    assert red[rect.left:cx, cy:rect.bottom].any() and red[cx:rect.right, rect.top:cy].any()
+    assert red[rect.left : cx, cy : rect.bottom].any() and red[cx : rect.right, rect.top : cy].any()

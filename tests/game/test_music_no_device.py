@@ -31,11 +31,22 @@ NO_CARD = not Path("/dev/snd").exists()
 
 
 def launch(tmp_path, *args):
-    env = {**os.environ, "SDL_AUDIODRIVER": "alsa", "SDL_VIDEODRIVER": "dummy",
-           "BROADSWORD_DATA_DIR": str(tmp_path / "data"), "BROADSWORD_CACHE_DIR": str(tmp_path / "cache"),
-           "PYGAME_HIDE_SUPPORT_PROMPT": "1"}
-    return subprocess.run([sys.executable, "-c", LAUNCH, *args], capture_output=True, text=True,
-                          env=env, timeout=60, cwd=Path(__file__).resolve().parents[2])
+    env = {
+        **os.environ,
+        "SDL_AUDIODRIVER": "alsa",
+        "SDL_VIDEODRIVER": "dummy",
+        "BROADSWORD_DATA_DIR": str(tmp_path / "data"),
+        "BROADSWORD_CACHE_DIR": str(tmp_path / "cache"),
+        "PYGAME_HIDE_SUPPORT_PROMPT": "1",
+    }
+    return subprocess.run(
+        [sys.executable, "-c", LAUNCH, *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=60,
+        cwd=Path(__file__).resolve().parents[2],
+    )
 
 
 def test_launch__at_most_one_line_of_our_own(tmp_path):
@@ -80,12 +91,15 @@ def test_filtered_stderr__nests_and_restores_on_error(capfd):
     assert capfd.readouterr().err == "inner\nouter\nfree\n"
 
 
-@pytest.mark.parametrize("line,noise", [
-    ("ALSA lib confmisc.c:855:(parse_card) cannot find card '0'\n", True),
-    ("  ALSA lib pcm.c:2666:(snd_pcm_open_noupdate) Unknown PCM default", True),
-    ("broadsword: no audio device (x); sound off\n", False),
-    ("Traceback (most recent call last):\n", False),
-    ("", False),
-])
+@pytest.mark.parametrize(
+    "line,noise",
+    [
+        ("ALSA lib confmisc.c:855:(parse_card) cannot find card '0'\n", True),
+        ("  ALSA lib pcm.c:2666:(snd_pcm_open_noupdate) Unknown PCM default", True),
+        ("broadsword: no audio device (x); sound off\n", False),
+        ("Traceback (most recent call last):\n", False),
+        ("", False),
+    ],
+)
 def test_is_audio_noise(line, noise):
     assert is_audio_noise(line) is noise

@@ -19,6 +19,7 @@ import threading
 import numpy as np
 import pygame
 import pytest
+from music_fakes import FakeRender
 
 from broadsword.game.audio import DEFAULT_MUSIC_VOLUME, Audio
 from broadsword.game.dsp import to_mixer_format
@@ -27,7 +28,6 @@ from broadsword.game.music.cache import cache_home
 from broadsword.game.music.player import MUSIC_CHANNELS
 from broadsword.game.music.renderer import render
 from broadsword.game.music.songs import SONGS
-from music_fakes import FakeRender
 
 
 @pytest.fixture(autouse=True)
@@ -175,6 +175,7 @@ def test_cache__real_render_round_trips(tmp_path):
     assert cache.load(Track.CLEAR, song, 11025) is None  # another rate: another file
     # an edited song is another file, and saving it removes the stale one
     import dataclasses
+
     edited = dataclasses.replace(song, bpm=song.bpm + 1)
     assert cache.path(Track.CLEAR, edited, 8000) != cache.path(Track.CLEAR, song, 8000)
     assert cache.save(Track.CLEAR, edited, 8000, render(edited, 8000))
@@ -226,8 +227,9 @@ def test_cache_home__precedence(monkeypatch, tmp_path):
     assert cache_home() == tmp_path / "mine"
 
 
-@pytest.mark.parametrize("platform,expected", [("darwin", ("Library", "Caches", "broadsword")),
-                                               ("linux", (".cache", "broadsword"))])
+@pytest.mark.parametrize(
+    "platform,expected", [("darwin", ("Library", "Caches", "broadsword")), ("linux", (".cache", "broadsword"))]
+)
 def test_cache_home__platform_defaults(monkeypatch, tmp_path, platform, expected):
     for var in ("BROADSWORD_CACHE_DIR", "XDG_CACHE_HOME", "LOCALAPPDATA"):
         monkeypatch.delenv(var, raising=False)

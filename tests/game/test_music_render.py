@@ -49,8 +49,10 @@ def rotated_render(song, rate: int, bars: int, monkeypatch) -> np.ndarray:
 
     def shifted(s):
         notes, hits = real(s)
-        return ([dataclasses.replace(n, start=(n.start + half) % steps) for n in notes if n.start < steps],
-                [dataclasses.replace(h, start=(h.start + half) % steps) for h in hits if h.start < steps])
+        return (
+            [dataclasses.replace(n, start=(n.start + half) % steps) for n in notes if n.start < steps],
+            [dataclasses.replace(h, start=(h.start + half) % steps) for h in hits if h.start < steps],
+        )
 
     monkeypatch.setattr(render_mod, "compose", shifted)
     try:
@@ -140,8 +142,12 @@ def test_render__full_loop_at_game_rate(monkeypatch):
     song = SONGS[Track.BOSS]  # the shortest loop, full length, at a real mixer rate
     x = render(song, 22050)
     assert x.shape[0] == loop_samples(song, 22050) and abs(x.shape[0] / 22050 - 8 * 240 / song.bpm) < 0.12
-    assert np.abs(rotated_render(song, 22050, song.bars, monkeypatch).astype(np.int32)
-                  - np.roll(x, x.shape[0] // 2, axis=0)).max() <= 1
+    assert (
+        np.abs(
+            rotated_render(song, 22050, song.bars, monkeypatch).astype(np.int32) - np.roll(x, x.shape[0] // 2, axis=0)
+        ).max()
+        <= 1
+    )
     assert seam_jump_is_ordinary(x)
 
 

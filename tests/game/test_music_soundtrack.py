@@ -37,22 +37,25 @@ def app(*scenes):
     return SimpleNamespace(stack=stack, levels=LEVELS)
 
 
-@pytest.mark.parametrize("scenes,track", [
-    ((scene(Title),), Track.TITLE),
-    ((scene(Title), scene(OptionsScene)), Track.TITLE),
-    ((play(0),), Track.STAGE_1),
-    ((play(2),), Track.STAGE_3),
-    ((play(2), scene(Pause)), Track.STAGE_3),
-    ((play(4, fighting=False),), Track.STAGE_5),
-    ((play(1, fighting=True),), Track.BOSS),
-    ((play(4, fighting=True),), Track.FINAL_BOSS),
-    ((play(0, fighting=True, custom="my.toml"),), Track.BOSS),  # a custom level is no final stage
-    ((play(1), scene(Results)), Track.CLEAR),
-    ((play(1), scene(GameOver, victory=False)), Track.GAME_OVER),
-    ((play(4), scene(GameOver, victory=True)), Track.CLEAR),
-    ((play(1), scene(NameEntry)), None),
-    ((scene(LabScene),), None),
-])
+@pytest.mark.parametrize(
+    "scenes,track",
+    [
+        ((scene(Title),), Track.TITLE),
+        ((scene(Title), scene(OptionsScene)), Track.TITLE),
+        ((play(0),), Track.STAGE_1),
+        ((play(2),), Track.STAGE_3),
+        ((play(2), scene(Pause)), Track.STAGE_3),
+        ((play(4, fighting=False),), Track.STAGE_5),
+        ((play(1, fighting=True),), Track.BOSS),
+        ((play(4, fighting=True),), Track.FINAL_BOSS),
+        ((play(0, fighting=True, custom="my.toml"),), Track.BOSS),  # a custom level is no final stage
+        ((play(1), scene(Results)), Track.CLEAR),
+        ((play(1), scene(GameOver, victory=False)), Track.GAME_OVER),
+        ((play(4), scene(GameOver, victory=True)), Track.CLEAR),
+        ((play(1), scene(NameEntry)), None),
+        ((scene(LabScene),), None),
+    ],
+)
 def test_soundtrack__follows_the_stack(scenes, track):
     assert soundtrack(app(*scenes)) is track
 

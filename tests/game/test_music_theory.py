@@ -59,7 +59,9 @@ def test_track_stage__rejects_non_stages(bad):
 
 
 def test_tracks__every_track_has_a_song_and_a_place_in_play_order():
-    assert set(SONGS) == set(Track) and sorted(PLAY_ORDER, key=lambda t: t.value) == sorted(Track, key=lambda t: t.value)
+    assert set(SONGS) == set(Track) and sorted(PLAY_ORDER, key=lambda t: t.value) == sorted(
+        Track, key=lambda t: t.value
+    )
     for track, song in SONGS.items():
         assert song.loop is track.loops, track
     assert not Track.CLEAR.loops and not Track.GAME_OVER.loops and Track.BOSS.loops
@@ -89,10 +91,16 @@ def test_songs__intensity_rises_through_the_game():
     assert notes_per_second(Track.FINAL_BOSS) > 2 * notes_per_second(Track.TITLE)
 
 
-@pytest.mark.parametrize("field,value,message", [
-    ("bpm", 10, "bpm"), ("form", "AB", "form"), ("progression", (1, 9), "degree"), ("density", 4, "density"),
-    ("tail", 1.0, "tail"),
-])
+@pytest.mark.parametrize(
+    "field,value,message",
+    [
+        ("bpm", 10, "bpm"),
+        ("form", "AB", "form"),
+        ("progression", (1, 9), "degree"),
+        ("density", 4, "density"),
+        ("tail", 1.0, "tail"),
+    ],
+)
 def test_song__bad_data_names_the_song_and_field(field, value, message):
     with pytest.raises(ValueError, match=message) as info:
         dataclasses.replace(SONGS[Track.STAGE_1], **{field: value})
@@ -176,8 +184,8 @@ def test_music_modules__hold_no_mutable_globals():
     import numpy as np
 
     from broadsword.game import dsp, mute_icon
-    from broadsword.game.music import cache, compose as compose_mod, grooves, instruments, notes, player, renderer, \
-        songs, tracks
+    from broadsword.game.music import cache, grooves, instruments, notes, player, renderer, songs, tracks
+    from broadsword.game.music import compose as compose_mod
 
     for module in (dsp, mute_icon, cache, compose_mod, grooves, instruments, notes, player, renderer, songs, tracks):
         for key, value in vars(module).items():

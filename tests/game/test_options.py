@@ -29,16 +29,19 @@ def test_options__a_file_leaving_fields_out_keeps_their_defaults(tmp_path):
     assert load_options(path) == (Options(music=3), None)
 
 
-@pytest.mark.parametrize("content, field", [
-    ("not json", "options.json"),
-    ('{"version": 1, "music": 11}', "music"),
-    ('{"version": 1, "sound": -1}', "sound"),
-    ('{"version": 1, "sound": 2.5}', "sound"),
-    ('{"version": 1, "fullscreen": 1}', "fullscreen"),
-    ('{"version": 1, "difficulty": "insane"}', "difficulty"),
-    ('{"version": 1, "volume": 3}', "volume"),
-    ('{"music": 3}', "version"),
-])
+@pytest.mark.parametrize(
+    "content, field",
+    [
+        ("not json", "options.json"),
+        ('{"version": 1, "music": 11}', "music"),
+        ('{"version": 1, "sound": -1}', "sound"),
+        ('{"version": 1, "sound": 2.5}', "sound"),
+        ('{"version": 1, "fullscreen": 1}', "fullscreen"),
+        ('{"version": 1, "difficulty": "insane"}', "difficulty"),
+        ('{"version": 1, "volume": 3}', "volume"),
+        ('{"music": 3}', "version"),
+    ],
+)
 def test_options__broken_file_falls_back_with_a_message(tmp_path, content, field):
     path = tmp_path / "options.json"
     path.write_text(content)

@@ -44,8 +44,9 @@ def parse_xwd(data: bytes) -> np.ndarray:
     if version != 7 or pixmap_format != 2 or bits_per_pixel != 32:
         raise ValueError(f"unsupported xwd: version {version}, format {pixmap_format}, {bits_per_pixel} bpp")
     start = header_size + 12 * ncolors  # the header (with the window name), then the colour map
-    raw = np.frombuffer(data, dtype="<u4" if byte_order == 0 else ">u4", count=height * bytes_per_line // 4,
-                        offset=start).reshape(height, bytes_per_line // 4)[:, :width]
+    raw = np.frombuffer(
+        data, dtype="<u4" if byte_order == 0 else ">u4", count=height * bytes_per_line // 4, offset=start
+    ).reshape(height, bytes_per_line // 4)[:, :width]
     channels = []
     for mask in masks:
         shift = (mask & -mask).bit_length() - 1
@@ -76,13 +77,23 @@ class Session:
     def __init__(self, tmp_path: Path):
         self.tmp, self.procs = tmp_path, []
         self.display = self._start_xvfb()
-        self.env = dict(os.environ, DISPLAY=self.display, SDL_VIDEODRIVER="x11", SDL_AUDIODRIVER="dummy",
-                        BROADSWORD_DATA_DIR=str(tmp_path / "data"))
+        self.env = dict(
+            os.environ,
+            DISPLAY=self.display,
+            SDL_VIDEODRIVER="x11",
+            SDL_AUDIODRIVER="dummy",
+            BROADSWORD_DATA_DIR=str(tmp_path / "data"),
+        )
         self.log = tmp_path / "game.log"
         try:
             with open(self.log, "wb") as out:
-                self.game = subprocess.Popen([sys.executable, "-m", "broadsword", "--mute", "--seed", "3"],
-                                             cwd=ROOT, env=self.env, stdout=out, stderr=subprocess.STDOUT)
+                self.game = subprocess.Popen(
+                    [sys.executable, "-m", "broadsword", "--mute", "--seed", "3"],
+                    cwd=ROOT,
+                    env=self.env,
+                    stdout=out,
+                    stderr=subprocess.STDOUT,
+                )
             self.procs.append(self.game)
             self.window = self._find_window()
         except BaseException:  # a failed start (pytest.fail is an exception too) leaves nothing running
@@ -93,8 +104,12 @@ class Session:
         r, w = os.pipe()
         try:
             with open(self.tmp / "xvfb.log", "wb") as log:
-                xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "800x1000x24", "-nolisten", "tcp"],
-                                        pass_fds=(w,), stdout=log, stderr=log)
+                xvfb = subprocess.Popen(
+                    ["Xvfb", "-displayfd", str(w), "-screen", "0", "800x1000x24", "-nolisten", "tcp"],
+                    pass_fds=(w,),
+                    stdout=log,
+                    stderr=log,
+                )
         finally:
             os.close(w)
         self.procs.append(xvfb)
@@ -122,13 +137,17 @@ class Session:
         except subprocess.TimeoutExpired:
             pytest.fail(f"{' '.join(args)}: no answer in {timeout} s; game log:\n{self.game_log()}")
         if done.returncode:
-            pytest.fail(f"{' '.join(args)}: exit {done.returncode}: {done.stderr.strip()}; game log:\n{self.game_log()}")
+            pytest.fail(
+                f"{' '.join(args)}: exit {done.returncode}: {done.stderr.strip()}; game log:\n{self.game_log()}"
+            )
         return done.stdout
 
     def game_log(self) -> str:
         xvfb = "running" if self.xvfb.poll() is None else f"exited {self.xvfb.returncode}"
-        return (f"[DISPLAY {self.display}, Xvfb {xvfb}: {(self.tmp / 'xvfb.log').read_text(errors='replace')[-500:]}]\n"
-                + self.log.read_text(errors="replace")[-2000:])
+        return (
+            f"[DISPLAY {self.display}, Xvfb {xvfb}: {(self.tmp / 'xvfb.log').read_text(errors='replace')[-500:]}]\n"
+            + self.log.read_text(errors="replace")[-2000:]
+        )
 
     def _find_window(self) -> str:
         # By process id: xdotool 3.2016 cannot match a UTF-8 window name (SDL sets it as UTF8_STRING).
@@ -140,8 +159,9 @@ class Session:
     def screenshot(self) -> np.ndarray | str:
         """The window's pixels (h, w, 3), or why ``xwd`` could not take them."""
         try:
-            done = subprocess.run(["xwd", "-silent", "-id", self.window], env=self.env, capture_output=True,
-                                  timeout=10, check=False)
+            done = subprocess.run(
+                ["xwd", "-silent", "-id", self.window], env=self.env, capture_output=True, timeout=10, check=False
+            )
         except subprocess.TimeoutExpired:
             return "xwd: no answer in 10 s"
         if done.returncode:
@@ -185,8 +205,10 @@ class Session:
 def session(tmp_path):
     missing = [tool for tool in TOOLS if shutil.which(tool) is None]
     if missing:
-        pytest.skip(f"the real-window smoke test needs {', '.join(missing)} on PATH "
-                    "(Debian: apt-get install xvfb xdotool x11-apps; .ci/run does it where it may)")
+        pytest.skip(
+            f"the real-window smoke test needs {', '.join(missing)} on PATH "
+            "(Debian: apt-get install xvfb xdotool x11-apps; .ci/run does it where it may)"
+        )
     s = Session(tmp_path)
     try:
         yield s
@@ -217,8 +239,9 @@ def test_real_window__title_play_move_fire_pause(session):
     shots_y = (armed == SHOT).all(axis=-1).nonzero()[0]
     assert (shots_y < ship_y).all()  # the shots fly up from the ship
     s.run("xdotool", "keydown", "Left")
-    moved = s.wait_for("ship moving left",
-                       lambda img: count(img, OUTLINE) > 5 and xs_of(img, OUTLINE).mean() < ship_x - 20 * SCALE)
+    moved = s.wait_for(
+        "ship moving left", lambda img: count(img, OUTLINE) > 5 and xs_of(img, OUTLINE).mean() < ship_x - 20 * SCALE
+    )
     s.save(moved, "moved")
     s.run("xdotool", "keyup", "Left", "z", "shift")
 
@@ -226,6 +249,6 @@ def test_real_window__title_play_move_fire_pause(session):
     band = (0, int(250 * SCALE), width, int(310 * SCALE))  # "PAUSED" at the field's y 280
     paused = s.wait_for("pause screen", lambda img: count(img, PAUSED_WHITE, band) > 150)
     s.save(paused, "paused")
-    outside = np.r_[0:band[1], band[3]:height]  # rows away from the pause screen's text
+    outside = np.r_[0 : band[1], band[3] : height]  # rows away from the pause screen's text
     assert paused[outside].mean() < 0.75 * play[outside].mean()  # the field is veiled
     assert s.game.poll() is None  # still running

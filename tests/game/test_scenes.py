@@ -161,8 +161,12 @@ def fits(app) -> None:
 def test_text__never_clipped_at_the_right_edge(app):
     frames(app)
     fits(app)
-    assert "shows your hit shape" in "".join(r for _, r in __import__(
-        "broadsword.game.scenes.title", fromlist=["controls_list"]).controls_list(app.controls.bindings))
+    assert "shows your hit shape" in "".join(
+        r
+        for _, r in __import__("broadsword.game.scenes.title", fromlist=["controls_list"]).controls_list(
+            app.controls.bindings
+        )
+    )
     # the widest strings each screen can draw, fitted
     app.custom_level = "/a/very/long/path/" * 8 + "level.toml"
     frames(app)
@@ -174,10 +178,16 @@ def test_text__never_clipped_at_the_right_edge(app):
     frames(app)
     assert isinstance(app.scene, Pause)
     fits(app)
-    for scene in (Results(app, app.play), Continue(app, app.play), GameOver(app, app.play, True),
-                  NameEntry(app, 123456789, "x"), OptionsScene(app), HighScoresScene(app)):
+    for scene in (
+        Results(app, app.play),
+        Continue(app, app.play),
+        GameOver(app, app.play, True),
+        NameEntry(app, 123456789, "x"),
+        OptionsScene(app),
+        HighScoresScene(app),
+    ):
         app.stack.push(scene)
-        app.scores.entries = [Entry("W" * 12, 10 ** 12, "w" * 40, "2024-01-01")]
+        app.scores.entries = [Entry("W" * 12, 10**12, "w" * 40, "2024-01-01")]
         app.render()
         fits(app)
         app.stack.pop()

@@ -29,10 +29,10 @@ import re
 from pathlib import Path
 
 import pytest
+from score_rows import DAY, entry
 
 from broadsword.game import scores as scores_mod
 from broadsword.game.scores import Entry, HighScores, sanitise_name
-from score_rows import DAY, entry
 
 CORRUPT_RE = re.compile(r"^highscores\.json\.corrupt-\d{8}T\d{6}Z(-\d+)?$")
 LOCK = "highscores.json.lock"  # the sidecar save() (and a corrupt-file load) locks
@@ -326,8 +326,7 @@ CORRUPT = {
     "float_score": json.dumps({"version": 1, "scores": [row(score=10.0)]}).encode(),
     "bool_score": json.dumps({"version": 1, "scores": [row(score=True)]}).encode(),
     "string_score": json.dumps({"version": 1, "scores": [row(score="10")]}).encode(),
-    "nan_score": b'{"version": 1, "scores": [{"name": "A", "score": NaN, "level": "x", '
-                 b'"date": "2024-01-01"}]}',
+    "nan_score": b'{"version": 1, "scores": [{"name": "A", "score": NaN, "level": "x", "date": "2024-01-01"}]}',
     "huge_int": b'{"version": 1, "scores": [{"name": "A", "score": 1' + b"0" * 5000 + b"}]}",
     "long_name": json.dumps({"version": 1, "scores": [row(name="N" * 13)]}).encode(),
     "control_in_name": json.dumps({"version": 1, "scores": [row(name="A\nB")]}).encode(),
@@ -415,8 +414,7 @@ def test_load__permission_denied_warns_without_renaming(tmp_path, monkeypatch):
     assert path.read_bytes() == before
 
 
-@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0,
-                    reason="needs POSIX permissions and a non-root user")
+@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0, reason="needs POSIX permissions and a non-root user")
 def test_load__real_chmod_000_file(tmp_path):
     path = tmp_path / "highscores.json"
     write_doc(path, [row()])

@@ -26,12 +26,12 @@ from pathlib import Path
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from score_rows import entry
 
 from broadsword import fileio
 from broadsword.fileio import locked, remove_stale_temps, write_atomic
 from broadsword.game import scores as scores_mod
 from broadsword.game.scores import Entry, HighScores
-from score_rows import DAY, entry
 
 LOCK = "highscores.json.lock"
 try:
@@ -127,8 +127,11 @@ def test_merge__keeps_the_best_max_of_the_union(tmp_path):
     saved_table(path, *[entry(f"O{s}", s) for s in range(100, 1100, 100)])  # another instance: 10
     mine.save()
     assert [(e.name, e.score) for e in on_disk(path)] == (
-        [("M1050", 1050)] + [(f"O{s}", s) for s in range(1000, 500, -100)] + [("M550", 550)]
-        + [(f"O{s}", s) for s in range(500, 200, -100)])
+        [("M1050", 1050)]
+        + [(f"O{s}", s) for s in range(1000, 500, -100)]
+        + [("M550", 550)]
+        + [(f"O{s}", s) for s in range(500, 200, -100)]
+    )
 
 
 def test_merge__adds_beyond_max_before_one_save(tmp_path):
@@ -250,8 +253,7 @@ OP = st.tuples(st.integers(0, 2), st.sampled_from(["add", "add", "save", "load"]
 
 
 @settings(max_examples=60, deadline=None)
-@given(ops=st.lists(OP, max_size=60), scores=st.lists(st.integers(0, 10_000), min_size=60,
-                                                       max_size=60, unique=True))
+@given(ops=st.lists(OP, max_size=60), scores=st.lists(st.integers(0, 10_000), min_size=60, max_size=60, unique=True))
 def test_merge__any_interleaving_of_three_instances(ops, scores):
     """Three instances on one file, any sequence of add/save/load (distinct scores). After
     each save the file and the saver's table are exactly the best MAX of every entry that
@@ -362,9 +364,14 @@ def test_remove_stale_temps__only_write_atomics_temporaries(tmp_path):
     target = tmp_path / "highscores.json"
     target.write_text("{}")
     stale = [".highscores.json.abc123_x.tmp", ".highscores.json.k9q2w8e7.tmp"]
-    keep = ["highscores.json.corrupt-20240101T000000Z", ".highscores.json.tmp",
-            "highscores.json.abc.tmp", ".other.json.abc123.tmp", ".highscores.json.abc.tmp.bak",
-            LOCK]
+    keep = [
+        "highscores.json.corrupt-20240101T000000Z",
+        ".highscores.json.tmp",
+        "highscores.json.abc.tmp",
+        ".other.json.abc123.tmp",
+        ".highscores.json.abc.tmp.bak",
+        LOCK,
+    ]
     for name in stale + keep:
         (tmp_path / name).write_text("x")
     (tmp_path / ".highscores.json.dir12345.tmp").mkdir()  # not a regular file: kept

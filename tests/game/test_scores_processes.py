@@ -32,7 +32,8 @@ import pytest
 from broadsword.game.scores import Entry, HighScores
 
 pytestmark = pytest.mark.skipif(
-    os.name != "posix" or not hasattr(signal, "SIGKILL"), reason="needs POSIX processes and SIGKILL")
+    os.name != "posix" or not hasattr(signal, "SIGKILL"), reason="needs POSIX processes and SIGKILL"
+)
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
@@ -50,8 +51,14 @@ HANG_GUARD = 120.0  # seconds: only ever reached if something is stuck
 def spawn(*args: str, stdin=subprocess.DEVNULL) -> subprocess.Popen:
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT)] + [p for p in [env.get("PYTHONPATH")] if p])
-    return subprocess.Popen([sys.executable, str(CHILD), *args], env=env, stdin=stdin,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        [sys.executable, str(CHILD), *args],
+        env=env,
+        stdin=stdin,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def read_line(proc: subprocess.Popen) -> str:
@@ -75,8 +82,9 @@ def temps(directory: Path) -> list[str]:
 
 def others(directory: Path) -> list[str]:
     """Everything but the table, its lock and write_atomic temporaries (e.g. corrupt-*)."""
-    return sorted(p.name for p in directory.iterdir()
-                  if p.name not in ("highscores.json", LOCK) and not TEMP_RE.match(p.name))
+    return sorted(
+        p.name for p in directory.iterdir() if p.name not in ("highscores.json", LOCK) and not TEMP_RE.match(p.name)
+    )
 
 
 def grown(k: int) -> list[Entry]:
@@ -202,8 +210,7 @@ def test_concurrent_writers__no_lost_update(tmp_path, workers, per_worker):
     for w in range(workers):
         mine = [w + workers * i for i in range(per_worker)]
         everything += [Entry(f"W{w}-{s}", s, LEVEL, DAY) for s in mine]
-        procs.append(spawn("writer", str(path), str(w), str(100 + w), *map(str, mine),
-                           stdin=subprocess.PIPE))
+        procs.append(spawn("writer", str(path), str(w), str(100 + w), *map(str, mine), stdin=subprocess.PIPE))
     for p in procs:
         assert read_line(p) == "ready\n", p.stderr.read()
     for p in procs:  # release them as close together as we can

@@ -26,9 +26,9 @@ from pathlib import Path
 
 import pygame
 import pytest
+from score_rows import entry
 
 from broadsword.game.scores import Entry, HighScores
-from score_rows import DAY, entry
 
 LOCK = "highscores.json.lock"
 EROFS = errno.EROFS
@@ -37,8 +37,9 @@ _WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_TRUNC | os.O_APPEND
 
 def tree(directory: Path) -> dict[str, bytes | None]:
     """Every path under ``directory`` with its bytes (None for a directory)."""
-    return {str(p.relative_to(directory)): (None if p.is_dir() else p.read_bytes())
-            for p in sorted(directory.rglob("*"))}
+    return {
+        str(p.relative_to(directory)): (None if p.is_dir() else p.read_bytes()) for p in sorted(directory.rglob("*"))
+    }
 
 
 class ReadOnlyMount:
@@ -53,8 +54,7 @@ class ReadOnlyMount:
     def __init__(self, monkeypatch):
         self.roots: list[str] = []
         self.refused: list[str] = []
-        real = {name: getattr(os, name) for name in
-                ("open", "mkdir", "rename", "replace", "unlink", "remove", "rmdir")}
+        real = {name: getattr(os, name) for name in ("open", "mkdir", "rename", "replace", "unlink", "remove", "rmdir")}
         real_io_open = io.open
 
         def guard(name, *paths):
@@ -72,12 +72,14 @@ class ReadOnlyMount:
             def fake(path, *args, **kwargs):
                 guard(name, path)
                 return real[name](path, *args, **kwargs)
+
             return fake
 
         def two(name):
             def fake(src, dst, *args, **kwargs):
                 guard(name, src, dst)
                 return real[name](src, dst, *args, **kwargs)
+
             return fake
 
         def fake_io_open(file, mode="r", *args, **kwargs):
@@ -115,11 +117,13 @@ def test_read_only_mount__refuses_writes_like_the_kernel(tmp_path, read_only):
     (tmp_path / "ro" / "f").write_bytes(b"x")
     read_only.mount(tmp_path / "ro")
     assert (tmp_path / "ro" / "f").read_bytes() == b"x"
-    for attempt in (lambda: (tmp_path / "ro" / "g").write_bytes(b"y"),  # builtin open
-                    lambda: os.open(tmp_path / "ro" / "g", os.O_RDWR | os.O_CREAT),
-                    lambda: (tmp_path / "ro" / "d").mkdir(),
-                    lambda: os.replace(tmp_path / "ro" / "f", tmp_path / "ro" / "h"),
-                    lambda: (tmp_path / "ro" / "f").unlink()):
+    for attempt in (
+        lambda: (tmp_path / "ro" / "g").write_bytes(b"y"),  # builtin open
+        lambda: os.open(tmp_path / "ro" / "g", os.O_RDWR | os.O_CREAT),
+        lambda: (tmp_path / "ro" / "d").mkdir(),
+        lambda: os.replace(tmp_path / "ro" / "f", tmp_path / "ro" / "h"),
+        lambda: (tmp_path / "ro" / "f").unlink(),
+    ):
         with pytest.raises(OSError) as info:
             attempt()
         assert info.value.errno == EROFS
@@ -139,8 +143,7 @@ def saved(path: Path, *entries: Entry) -> bytes:
 
 
 @pytest.mark.parametrize("with_lock_file", [True, False])
-def test_read_only__load_works_save_fails_cleanly_and_scores_stay_in_memory(
-        tmp_path, read_only, with_lock_file):
+def test_read_only__load_works_save_fails_cleanly_and_scores_stay_in_memory(tmp_path, read_only, with_lock_file):
     path = tmp_path / "highscores.json"
     before = saved(path, entry("OLD", 50))
     if not with_lock_file:  # e.g. a table copied in by hand, never saved by the game here
@@ -197,8 +200,9 @@ def test_read_only__corrupt_file_warns_and_is_left_alone(tmp_path, read_only):
     assert tree(tmp_path) == {"highscores.json": b"{not json"}
 
 
-@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0,
-                    reason="needs POSIX permissions and a non-root user (root ignores chmod)")
+@pytest.mark.skipif(
+    os.name != "posix" or os.geteuid() == 0, reason="needs POSIX permissions and a non-root user (root ignores chmod)"
+)
 def test_read_only__real_chmod_555_directory(tmp_path):
     data = tmp_path / "data"
     path = data / "highscores.json"
@@ -274,8 +278,7 @@ def test_app__read_only_save_shows_a_message_and_the_game_goes_on(tmp_path, read
     assert path.read_bytes() == before
 
     app.frame(0.0)  # the scores screen draws
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_RETURN, mod=0, unicode="\r",
-                                         scancode=0))
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_RETURN, mod=0, unicode="\r", scancode=0))
     app.frame(0.0)
     assert isinstance(app.scene, Title)  # the title shows the message
     app.start_run()
@@ -284,8 +287,7 @@ def test_app__read_only_save_shows_a_message_and_the_game_goes_on(tmp_path, read
     assert isinstance(app.scene, Play) and app.running
 
 
-def test_app__corrupt_table_on_read_only_disk_is_reported_on_the_title(
-        tmp_path, read_only, app_factory):
+def test_app__corrupt_table_on_read_only_disk_is_reported_on_the_title(tmp_path, read_only, app_factory):
     path = tmp_path / "highscores.json"
     path.write_bytes(b"\xff\xfe garbage")
     read_only.mount(tmp_path)

@@ -47,8 +47,10 @@ def test_relative_xdg_and_empty_variables_count_as_unset(platform, expected):
 
 
 def test_windows_uses_appdata():
-    assert user_data_dir("win32", {"APPDATA": r"C:\Users\ada\AppData\Roaming"}, HOME) == \
-        Path(r"C:\Users\ada\AppData\Roaming") / "broadsword"
+    assert (
+        user_data_dir("win32", {"APPDATA": r"C:\Users\ada\AppData\Roaming"}, HOME)
+        == Path(r"C:\Users\ada\AppData\Roaming") / "broadsword"
+    )
 
 
 def test_appdata_is_ignored_off_windows():

@@ -12,16 +12,19 @@ from broadsword.game.scores import HighScores
 from broadsword.game.window import NoDisplay, Window, display_problem
 
 
-@pytest.mark.parametrize("environ, platform, problem", [
-    ({}, "linux", True),
-    ({"DISPLAY": ":0"}, "linux", False),
-    ({"WAYLAND_DISPLAY": "wayland-0"}, "linux", False),
-    ({"SDL_VIDEODRIVER": "dummy"}, "linux", False),  # chosen explicitly: trusted
-    ({"DISPLAY": ""}, "linux", True),  # set but empty counts as unset
-    ({}, "win32", False),
-    ({}, "darwin", False),
-    ({}, "freebsd13", True),
-])
+@pytest.mark.parametrize(
+    "environ, platform, problem",
+    [
+        ({}, "linux", True),
+        ({"DISPLAY": ":0"}, "linux", False),
+        ({"WAYLAND_DISPLAY": "wayland-0"}, "linux", False),
+        ({"SDL_VIDEODRIVER": "dummy"}, "linux", False),  # chosen explicitly: trusted
+        ({"DISPLAY": ""}, "linux", True),  # set but empty counts as unset
+        ({}, "win32", False),
+        ({}, "darwin", False),
+        ({}, "freebsd13", True),
+    ],
+)
 def test_display_problem(environ, platform, problem):
     said = display_problem(environ, platform)
     assert (said is not None) == problem

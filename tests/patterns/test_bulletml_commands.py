@@ -9,7 +9,6 @@ frame's move) and is complete at frame t + n.
 import math
 
 import numpy as np
-
 from bml import absolute, close, fire, pattern, run, top, track
 
 S = math.sqrt(0.5)
@@ -117,8 +116,10 @@ def test_change_direction__relative_is_from_the_current_direction():
 
 def test_change_direction__aim_reaims_from_the_bullets_position():
     # the command runs on frame 2, before that frame's move, at (1, 0): the target is straight down
-    p = child("<wait>1</wait><changeDirection><direction>0</direction><term>1</term></changeDirection>",
-              direction=absolute(90))
+    p = child(
+        "<wait>1</wait><changeDirection><direction>0</direction><term>1</term></changeDirection>",
+        direction=absolute(90),
+    )
     frames = run(p, 4, origin=(0, 0), target=(1, 100))
     close(track(frames), [[0, 0], [1, 0], [2, 0], [2, 1]])
 
@@ -138,9 +139,12 @@ def test_accel__adds_to_the_polar_velocity():
 
 
 def test_accel__horizontal_type_swaps_the_axes():
-    p = pattern('<action label="top"><fire>' + absolute(90) + '<speed>0</speed><bullet><action>'
-                "<accel><horizontal>1</horizontal><vertical>2</vertical><term>0</term></accel>"
-                "</action></bullet></fire></action>", "horizontal")
+    p = pattern(
+        '<action label="top"><fire>' + absolute(90) + "<speed>0</speed><bullet><action>"
+        "<accel><horizontal>1</horizontal><vertical>2</vertical><term>0</term></accel>"
+        "</action></bullet></fire></action>",
+        "horizontal",
+    )
     close(run(p, 3)[2][0], (2, -1))  # vertical -> x, horizontal -> -y
 
 
@@ -163,16 +167,24 @@ def test_child__appears_where_its_parent_is_before_the_parent_moves():
 
 def test_child__a_bullets_actions_run_in_turn_actions_before_actionrefs():
     extra = f'<action label="r">{fire(absolute(270))}</action>'
-    p = top(fire(absolute(180), "<speed>0</speed>",
-                 f'<bullet><actionRef label="r"/><action>{fire(absolute(90))}</action></bullet>'), extra)
+    p = top(
+        fire(
+            absolute(180),
+            "<speed>0</speed>",
+            f'<bullet><actionRef label="r"/><action>{fire(absolute(90))}</action></bullet>',
+        ),
+        extra,
+    )
     frames = run(p, 4)
     assert [len(f) for f in frames] == [1, 2, 3, 3]
     close(frames[3], [[0, 0], [2, 0], [-1, 0]])  # the inline action first (frame 1), the ref next frame
 
 
 def test_top_actions__run_together_in_file_order():
-    p = pattern(f'<action label="top2">{fire(absolute(270))}</action>'
-                f'<action label="top1">{fire(absolute(90))}<wait>1</wait>{fire(absolute(180))}</action>')
+    p = pattern(
+        f'<action label="top2">{fire(absolute(270))}</action>'
+        f'<action label="top1">{fire(absolute(90))}<wait>1</wait>{fire(absolute(180))}</action>'
+    )
     frames = run(p, 2)
     close(frames[1], [[-1, 0], [1, 0], [0, 0]])
 
@@ -198,9 +210,14 @@ def test_expression__precedence_and_unary_minus():
 
 
 def test_change_speed__an_absolute_change_resets_the_speed_sequence_but_a_turn_does_not_reset_direction():
-    body = (fire(absolute(90), "<speed>1</speed>") + "<changeSpeed><speed>5</speed><term>1</term></changeSpeed>"
-            + "<changeDirection>" + absolute(0) + "<term>1</term></changeDirection>"
-            + fire('<direction type="sequence">0</direction>', '<speed type="sequence">1</speed>'))
+    body = (
+        fire(absolute(90), "<speed>1</speed>")
+        + "<changeSpeed><speed>5</speed><term>1</term></changeSpeed>"
+        + "<changeDirection>"
+        + absolute(0)
+        + "<term>1</term></changeDirection>"
+        + fire('<direction type="sequence">0</direction>', '<speed type="sequence">1</speed>')
+    )
     close(run(top(body), 2)[1], [[1, 0], [6, 0]])  # speed 5 + 1, direction 90 + 0
 
 

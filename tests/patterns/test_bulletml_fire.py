@@ -8,7 +8,6 @@ it is fired and first moves on the next frame.
 import math
 
 import pytest
-
 from bml import absolute, close, fire, run, top, track
 
 S = math.sqrt(0.5)
@@ -49,8 +48,9 @@ def test_sequence__first_fire_aims_and_first_speed_is_one_then_they_add():
 
 
 def test_sequence__follows_the_previous_fire_of_the_same_runner_whatever_its_type():
-    body = fire(absolute(180), "<speed>3</speed>") + fire('<direction type="sequence">90</direction>',
-                                                           '<speed type="sequence">-1</speed>')
+    body = fire(absolute(180), "<speed>3</speed>") + fire(
+        '<direction type="sequence">90</direction>', '<speed type="sequence">-1</speed>'
+    )
     frames = run(top(body), 2)
     close(frames[1], [[0, 3], [-2, 0]])  # 180 + 90 = 270 at 3 - 1 = 2
 
@@ -94,8 +94,10 @@ def test_vertical_and_none__absolute_directions_as_written(type_):
 
 
 def test_fireref_and_bulletref__pass_params():
-    extra = ('<fire label="f"><direction type="absolute">$1</direction><bulletRef label="b"><param>$2*2</param>'
-             '</bulletRef></fire><bullet label="b"><speed>$1</speed></bullet>')
+    extra = (
+        '<fire label="f"><direction type="absolute">$1</direction><bulletRef label="b"><param>$2*2</param>'
+        '</bulletRef></fire><bullet label="b"><speed>$1</speed></bullet>'
+    )
     frames = run(top('<fireRef label="f"><param>90</param><param>1.5</param></fireRef>', extra), 2)
     close(frames[1], [[3, 0]])
 

@@ -1,15 +1,14 @@
 """Hostile and broken files are data: each is refused with 'FILE: ELEMENT-PATH (line N): what',
 or runs within its bounds; nothing crashes, hangs or reaches outside the file."""
 
-
 import numpy as np
 import pytest
+from bml import fire, run, top
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from broadsword.patterns import bulletml
 from broadsword.patterns.bulletml import limits
-from bml import fire, run, top
 
 GOOD = '<bulletml><action label="top"><fire><bullet/></fire></action></bulletml>'
 
@@ -23,36 +22,79 @@ def refused(text, name="bad.xml") -> str:
     return msg
 
 
-@pytest.mark.parametrize("text, path, what", [
-    ('<bulletml><action label="top"><fire><bulet/></fire></action></bulletml>', "bulletml/action/fire/bulet",
-     "not allowed inside <fire>"),
-    ('<bulletml><action label="top"><fire/></action></bulletml>', "bulletml/action/fire", "needs a <bullet> or <bulletRef>"),
-    ('<bulletml><action label="top"><wait>1+</wait></action></bulletml>', "bulletml/action/wait", "ends too early"),
-    ('<bulletml><action label="top"><wait>$foo</wait></action></bulletml>', "bulletml/action/wait", "unknown variable"),
-    ('<bulletml><action label="top"><wait>1e999</wait></action></bulletml>', "bulletml/action/wait", "out of range"),
-    ('<bulletml><action label="top"><wait>1/0</wait></action></bulletml>', "bulletml/action/wait", "division by zero"),
-    ('<bulletml><action label="top"><wait>' + "1+" * 5000 + "1</wait></action></bulletml>", "bulletml/action/wait",
-     "characters long"),
-    ('<bulletml><action label="top"><wait>' + "(" * 100 + "1" + ")" * 100 + "</wait></action></bulletml>",
-     "bulletml/action/wait", "nested deeper"),
-    ('<bulletml><action label="top"><fire><direction type="up">1</direction><bullet/></fire></action></bulletml>',
-     "bulletml/action/fire/direction", "type 'up'"),
-    ('<bulletml type="diagonal"><action label="top"/></bulletml>', "bulletml", "type 'diagonal'"),
-    ('<bulletml><action label="x"/></bulletml>', "bulletml", "no top action"),
-    ('<bulletml><action label="top"><fireRef label="nope"/></action></bulletml>', "bulletml/action/fireRef",
-     "no fire labelled 'nope'"),
-    ('<bulletml><action label="top"/><action label="top"/></bulletml>', "bulletml/action[2]", "already used"),
-    ('<bulletml><action label="top"><repeat><times>1e9</times><action/></repeat></action></bulletml>',
-     "bulletml/action/repeat/times", "at most"),
-    ('<bulletml><action label="top"><repeat><action/></repeat></action></bulletml>', "bulletml/action/repeat",
-     "needs a <times>"),
-    ('<bulletml><action label="top"><changeSpeed><speed>1</speed></changeSpeed></action></bulletml>',
-     "bulletml/action/changeSpeed", "needs a <term>"),
-    ('<bulletml><action label="top"><vanish>x</vanish></action></bulletml>', "bulletml/action/vanish", "text"),
-    ('<bulletml><action label="top" colour="red"/></bulletml>', "bulletml/action", "unknown attribute"),
-    ('<bml/>', "bml", "expected <bulletml>"),
-    ('<bulletml><action label="top"><actionRef/></action></bulletml>', "bulletml/action/actionRef", "label"),
-])
+@pytest.mark.parametrize(
+    "text, path, what",
+    [
+        (
+            '<bulletml><action label="top"><fire><bulet/></fire></action></bulletml>',
+            "bulletml/action/fire/bulet",
+            "not allowed inside <fire>",
+        ),
+        (
+            '<bulletml><action label="top"><fire/></action></bulletml>',
+            "bulletml/action/fire",
+            "needs a <bullet> or <bulletRef>",
+        ),
+        ('<bulletml><action label="top"><wait>1+</wait></action></bulletml>', "bulletml/action/wait", "ends too early"),
+        (
+            '<bulletml><action label="top"><wait>$foo</wait></action></bulletml>',
+            "bulletml/action/wait",
+            "unknown variable",
+        ),
+        (
+            '<bulletml><action label="top"><wait>1e999</wait></action></bulletml>',
+            "bulletml/action/wait",
+            "out of range",
+        ),
+        (
+            '<bulletml><action label="top"><wait>1/0</wait></action></bulletml>',
+            "bulletml/action/wait",
+            "division by zero",
+        ),
+        (
+            '<bulletml><action label="top"><wait>' + "1+" * 5000 + "1</wait></action></bulletml>",
+            "bulletml/action/wait",
+            "characters long",
+        ),
+        (
+            '<bulletml><action label="top"><wait>' + "(" * 100 + "1" + ")" * 100 + "</wait></action></bulletml>",
+            "bulletml/action/wait",
+            "nested deeper",
+        ),
+        (
+            '<bulletml><action label="top"><fire><direction type="up">1</direction><bullet/></fire></action></bulletml>',
+            "bulletml/action/fire/direction",
+            "type 'up'",
+        ),
+        ('<bulletml type="diagonal"><action label="top"/></bulletml>', "bulletml", "type 'diagonal'"),
+        ('<bulletml><action label="x"/></bulletml>', "bulletml", "no top action"),
+        (
+            '<bulletml><action label="top"><fireRef label="nope"/></action></bulletml>',
+            "bulletml/action/fireRef",
+            "no fire labelled 'nope'",
+        ),
+        ('<bulletml><action label="top"/><action label="top"/></bulletml>', "bulletml/action[2]", "already used"),
+        (
+            '<bulletml><action label="top"><repeat><times>1e9</times><action/></repeat></action></bulletml>',
+            "bulletml/action/repeat/times",
+            "at most",
+        ),
+        (
+            '<bulletml><action label="top"><repeat><action/></repeat></action></bulletml>',
+            "bulletml/action/repeat",
+            "needs a <times>",
+        ),
+        (
+            '<bulletml><action label="top"><changeSpeed><speed>1</speed></changeSpeed></action></bulletml>',
+            "bulletml/action/changeSpeed",
+            "needs a <term>",
+        ),
+        ('<bulletml><action label="top"><vanish>x</vanish></action></bulletml>', "bulletml/action/vanish", "text"),
+        ('<bulletml><action label="top" colour="red"/></bulletml>', "bulletml/action", "unknown attribute"),
+        ("<bml/>", "bml", "expected <bulletml>"),
+        ('<bulletml><action label="top"><actionRef/></action></bulletml>', "bulletml/action/actionRef", "label"),
+    ],
+)
 def test_refused__names_file_then_element_then_problem(text, path, what):
     msg = refused(text)
     assert msg.startswith(f"bad.xml: {path} (line "), msg
@@ -60,9 +102,11 @@ def test_refused__names_file_then_element_then_problem(text, path, what):
 
 
 def test_refused__actionref_loop_named():
-    msg = refused('<bulletml><action label="top"><actionRef label="a"/></action>'
-                  '<action label="a"><repeat><times>2</times><actionRef label="b"/></repeat></action>'
-                  '<action label="b"><wait>1</wait><actionRef label="a"/></action></bulletml>')
+    msg = refused(
+        '<bulletml><action label="top"><actionRef label="a"/></action>'
+        '<action label="a"><repeat><times>2</times><actionRef label="b"/></repeat></action>'
+        '<action label="b"><wait>1</wait><actionRef label="a"/></action></bulletml>'
+    )
     assert "actionRef loop" in msg and "a -> b -> a" in msg
 
 
@@ -71,21 +115,27 @@ def test_refused__self_reference_and_fireref_loops():
 
 
 def test_accepted__a_bullet_that_fires_itself_is_not_a_loop():
-    p = bulletml.loads('<bulletml><action label="top"><fire><bulletRef label="b"/></fire></action>'
-                       '<bullet label="b"><action><wait>1</wait><fire><bulletRef label="b"/></fire></action></bullet>'
-                       '</bulletml>')
+    p = bulletml.loads(
+        '<bulletml><action label="top"><fire><bulletRef label="b"/></fire></action>'
+        '<bullet label="b"><action><wait>1</wait><fire><bulletRef label="b"/></fire></action></bullet>'
+        "</bulletml>"
+    )
     assert [len(f) for f in run(p, 5)] == [1, 1, 2, 2, 3]  # each fires one more a frame after its first run
 
 
 def test_refused__long_reference_chain():
     chain = "".join(f'<action label="a{i}"><actionRef label="a{i + 1}"/></action>' for i in range(40))
-    msg = refused(f'<bulletml><action label="top"><actionRef label="a0"/></action>{chain}<action label="a40"/></bulletml>')
+    msg = refused(
+        f'<bulletml><action label="top"><actionRef label="a0"/></action>{chain}<action label="a40"/></bulletml>'
+    )
     assert "deeper than" in msg
 
 
 def test_refused__entity_bomb_and_external_entities():
-    bomb = ('<?xml version="1.0"?><!DOCTYPE lolz [<!ENTITY lol "lol"><!ENTITY lol2 "&lol;&lol;&lol;&lol;">]>'
-            "<bulletml>&lol2;</bulletml>")
+    bomb = (
+        '<?xml version="1.0"?><!DOCTYPE lolz [<!ENTITY lol "lol"><!ENTITY lol2 "&lol;&lol;&lol;&lol;">]>'
+        "<bulletml>&lol2;</bulletml>"
+    )
     assert "internal subset" in refused(bomb)
     xxe = '<?xml version="1.0"?><!DOCTYPE bulletml SYSTEM "file:///etc/passwd"><bulletml>&xxe;</bulletml>'
     assert "entity reference &xxe;" in refused(xxe)
@@ -94,9 +144,11 @@ def test_refused__entity_bomb_and_external_entities():
 
 
 def test_accepted__the_public_files_doctype_line_is_read_not_fetched():
-    text = ('<?xml version="1.0" ?>\n<!DOCTYPE bulletml SYSTEM "http://www.asahi-net.or.jp/~cs8k-cyu/bulletml/bulletml.dtd">\n'
-            '<bulletml type="vertical" xmlns="http://www.asahi-net.or.jp/~cs8k-cyu/bulletml">\n'
-            '<action label="top"><fire><bullet/></fire></action></bulletml>')
+    text = (
+        '<?xml version="1.0" ?>\n<!DOCTYPE bulletml SYSTEM "http://www.asahi-net.or.jp/~cs8k-cyu/bulletml/bulletml.dtd">\n'
+        '<bulletml type="vertical" xmlns="http://www.asahi-net.or.jp/~cs8k-cyu/bulletml">\n'
+        '<action label="top"><fire><bullet/></fire></action></bulletml>'
+    )
     assert bulletml.loads(text).top[0].label == "top"
 
 
@@ -122,8 +174,10 @@ def test_bounded__huge_loops_yield_and_finish_fast(monkeypatch):
     frames evaluate a bounded number of expressions (counted, not timed)."""
     from broadsword.patterns.bulletml.engine import Engine
 
-    p = top("<repeat><times>100000</times><action><repeat><times>100000</times><action><wait>0</wait></action>"
-            "</repeat></action></repeat>")
+    p = top(
+        "<repeat><times>100000</times><action><repeat><times>100000</times><action><wait>0</wait></action>"
+        "</repeat></action></repeat>"
+    )
     calls = []
     original = Engine.evaluate
     monkeypatch.setattr(Engine, "evaluate", lambda self, e, params: calls.append(1) or original(self, e, params))
@@ -138,18 +192,57 @@ def test_bounded__live_bullets_are_capped():
 
 
 def test_bounded__runtime_overflow_and_division_by_zero_are_finite():
-    p = top(fire('<direction type="absolute">$rank / ($rank - $rank)</direction>',
-                 "<speed>$rank * 1e300 * 1e300</speed>") + "<wait>1e300 * $rank</wait>" + fire())
+    p = top(
+        fire('<direction type="absolute">$rank / ($rank - $rank)</direction>', "<speed>$rank * 1e300 * 1e300</speed>")
+        + "<wait>1e300 * $rank</wait>"
+        + fire()
+    )
     frames = run(p, 3)
     assert all(np.isfinite(f).all() for f in frames)
     assert [len(f) for f in frames] == [1, 1, 1]
 
 
-_PIECES = ["<bulletml>", "</bulletml>", '<action label="top">', "</action>", "<fire>", "</fire>", "<bullet>",
-           "</bullet>", "<bullet/>", "<wait>", "</wait>", "<repeat>", "</repeat>", "<times>", "</times>", "1", "$rand",
-           "$1", "+", "/", "0", '<actionRef label="top"/>', '<direction type="sequence">', "</direction>", "<speed>",
-           "</speed>", "<vanish/>", "<changeSpeed>", "</changeSpeed>", "<term>", "</term>", "&lol;", "<!DOCTYPE x>",
-           '<action label="a">', '<actionRef label="a"/>', "<accel>", "</accel>", "<horizontal>", "</horizontal>"]
+_PIECES = [
+    "<bulletml>",
+    "</bulletml>",
+    '<action label="top">',
+    "</action>",
+    "<fire>",
+    "</fire>",
+    "<bullet>",
+    "</bullet>",
+    "<bullet/>",
+    "<wait>",
+    "</wait>",
+    "<repeat>",
+    "</repeat>",
+    "<times>",
+    "</times>",
+    "1",
+    "$rand",
+    "$1",
+    "+",
+    "/",
+    "0",
+    '<actionRef label="top"/>',
+    '<direction type="sequence">',
+    "</direction>",
+    "<speed>",
+    "</speed>",
+    "<vanish/>",
+    "<changeSpeed>",
+    "</changeSpeed>",
+    "<term>",
+    "</term>",
+    "&lol;",
+    "<!DOCTYPE x>",
+    '<action label="a">',
+    '<actionRef label="a"/>',
+    "<accel>",
+    "</accel>",
+    "<horizontal>",
+    "</horizontal>",
+]
 
 
 @settings(max_examples=150, deadline=None)

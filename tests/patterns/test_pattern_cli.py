@@ -28,8 +28,10 @@ def test_check__names_each_bad_file_and_exits_1(tmp_path, capsys):
 
 def test_check__params_and_usage_errors(tmp_path, capsys):
     f = tmp_path / "p.xml"
-    f.write_text('<bulletml><action label="top"><repeat><times>$1</times><action><fire><bullet/></fire></action>'
-                 '</repeat></action></bulletml>')
+    f.write_text(
+        '<bulletml><action label="top"><repeat><times>$1</times><action><fire><bullet/></fire></action>'
+        "</repeat></action></bulletml>"
+    )
     assert main(["pattern", "check", str(f), "--params", "4"]) == 0
     assert "ok: 4 bullets fired" in capsys.readouterr().out
     assert main(["pattern", "check", str(f), "--rank", "1.5"]) == 2

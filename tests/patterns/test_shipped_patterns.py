@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from bml import close
 
 from broadsword.patterns import bulletml
-from bml import close
 
 ROOT = Path(__file__).resolve().parents[2]
 PATTERNS = ROOT / "assets" / "patterns"

@@ -9,5 +9,12 @@ def add_bullets(pool, kind_base: int, pos, vel, prev=None) -> None:
     pos = np.asarray(pos, dtype=np.float64).reshape(-1, 2)
     vel = np.asarray(vel, dtype=np.float64).reshape(-1, 2)
     n = len(pos)
-    pool.add(pos=pos, prev=pos if prev is None else prev, vel=vel, angle=np.degrees(np.arctan2(vel[:, 0], -vel[:, 1])),
-             arm=np.full(n, kind_base), damage=np.ones(n, dtype=np.int64), grazed=np.zeros(n, dtype=bool))
+    pool.add(
+        pos=pos,
+        prev=pos if prev is None else prev,
+        vel=vel,
+        angle=np.degrees(np.arctan2(vel[:, 0], -vel[:, 1])),
+        arm=np.full(n, kind_base),
+        damage=np.ones(n, dtype=np.int64),
+        grazed=np.zeros(n, dtype=bool),
+    )

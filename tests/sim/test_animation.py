@@ -8,12 +8,21 @@ import numpy as np
 import pytest
 
 from broadsword.collision import point_in_polygon
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import Group, World
 
-WASPS = WaveSpec(at=3000.0, enemy="wasp", count=1, every=0.0, hp=1, score=0,
-                 path=PathSpec(), fire=FireSpec(pattern="none", bullet="needle"), mirror=False)
+WASPS = WaveSpec(
+    at=3000.0,
+    enemy="wasp",
+    count=1,
+    every=0.0,
+    hp=1,
+    score=0,
+    path=PathSpec(),
+    fire=FireSpec(pattern="none", bullet="needle"),
+    mirror=False,
+)
 
 
 @pytest.fixture()
@@ -51,11 +60,24 @@ def test_collision__uses_the_frame_the_ship_shows(world, armatures):
         w.ships.pool.keep(np.zeros(w.ships.pool.n, dtype=bool))
         w.player_bullets.keep(np.zeros(w.player_bullets.n, dtype=bool))
         at = np.array([[240.0, 300.0]])
-        w.ships.pool.add(pos=at, prev=at, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["wasp"]], hp=[1], age=[age],
-                         wave=[0], mirror=[1.0], dive=[[0.0, 0.0]], next_fire=[99.0], uid=[999])
+        w.ships.pool.add(
+            pos=at,
+            prev=at,
+            vel=[[0.0, 0.0]],
+            angle=[0.0],
+            arm=[w.kinds.base["wasp"]],
+            hp=[1],
+            age=[age],
+            wave=[0],
+            mirror=[1.0],
+            dive=[[0.0, 0.0]],
+            next_fire=[99.0],
+            uid=[999],
+        )
         shot = at + np.array([wing])
-        w.player_bullets.add(pos=shot, prev=shot, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["shot"]],
-                             damage=[1], grazed=[False])
+        w.player_bullets.add(
+            pos=shot, prev=shot, vel=[[0.0, 0.0]], angle=[0.0], arm=[w.kinds.base["shot"]], damage=[1], grazed=[False]
+        )
         record = w.detect()
         results.append(len(record.result.hits) > 0)
         assert record.armature[record.spans[Group.SHIPS].start] == w.kinds.base["wasp"] + (0 if age < 0.08 else 1)

@@ -3,17 +3,15 @@
 import dataclasses
 
 import numpy as np
-import pytest
+import shipped
+from sim_bullets import add_bullets
 
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.sim import DT, FIELD, IDLE, Events, Input, World
 from broadsword.sim.bombs import FRAMES, RADII, bomb_armatures
 from broadsword.sim.items import COLLECT_LINE, POINT_MAX, POINT_MIN, STAR_SCORE, ItemKind, point_value
 from broadsword.sim.player import POWER_LOSS, POWER_MAX, POWER_MIN, POWER_STEP
 from broadsword.sim.weapons import volley
-from sim_bullets import add_bullets
-
-import shipped
 
 ARMATURES = shipped.armatures()
 PICKET = load_level(resolve_level("1-picket"))

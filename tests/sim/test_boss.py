@@ -84,4 +84,6 @@ def test_each_phase_fires_its_own_patterns_and_silences_the_rest():
     assert b.fire_of(0) == FireSpec() and not b.fire_of(0).fires  # not named in the phase: silent
     assert b.fire_of(1) == ring
     # the new patterns start afresh (tests/sim/test_emitters.py), after their delay and the grace
-    assert b.parts.next_fire.tolist() == pytest.approx((b.parts.age + np.array([FireSpec().delay, 0.25]) + PHASE_GRACE).tolist())
+    assert b.parts.next_fire.tolist() == pytest.approx(
+        (b.parts.age + np.array([FireSpec().delay, 0.25]) + PHASE_GRACE).tolist()
+    )

@@ -4,14 +4,13 @@ import dataclasses
 
 import numpy as np
 import pytest
+import shipped
+from sim_bullets import add_bullets
 
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.sim import IDLE, GameLayer, Group, LayerIds, World
 from broadsword.sim.items import ItemKind
 from broadsword.sim.layers import game_layer_table
-from sim_bullets import add_bullets
-
-import shipped
 
 ARMATURES = shipped.armatures()
 
@@ -20,9 +19,15 @@ def test_layer_table__bullets_never_test_bullets_and_graze_is_optional():
     t = game_layer_table(graze=True)
     ids = LayerIds.of(t)
     assert t.names == tuple(g.value for g in GameLayer)
-    assert set(t.entries) == {(ids.player, ids.enemy_ship), (ids.player, ids.enemy_bullet),
-                              (ids.graze, ids.enemy_bullet), (ids.enemy_ship, ids.player_bullet),
-                              (ids.graze, ids.item), (ids.bomb, ids.enemy_bullet), (ids.bomb, ids.enemy_ship)}
+    assert set(t.entries) == {
+        (ids.player, ids.enemy_ship),
+        (ids.player, ids.enemy_bullet),
+        (ids.graze, ids.enemy_bullet),
+        (ids.enemy_ship, ids.player_bullet),
+        (ids.graze, ids.item),
+        (ids.bomb, ids.enemy_bullet),
+        (ids.bomb, ids.enemy_ship),
+    }
     assert (ids.graze, ids.enemy_bullet) not in game_layer_table(graze=False).entries
     assert (ids.graze, ids.item) in game_layer_table(graze=False).entries  # items are collected all the same
 
@@ -70,8 +75,10 @@ def test_record__hits_from_picks_the_first_objects_group():
     assert r.hits_from(Group.SHIPS, Group.BOSS).shape == (0, 2)
 
 
-@pytest.mark.parametrize("vulnerable, graze, items, heads",
-                         [(True, True, False, 2), (False, True, False, 1), (True, False, False, 1), (True, False, True, 2)])
+@pytest.mark.parametrize(
+    "vulnerable, graze, items, heads",
+    [(True, True, False, 2), (False, True, False, 1), (True, False, False, 1), (True, False, True, 2)],
+)
 def test_record__the_player_takes_part_only_as_it_may(vulnerable, graze, items, heads):
     """The hit shape while vulnerable; the graze shape while alive if the scene grazes, or
     if an item is out (it collects items even in a scene that does not score grazes)."""

@@ -3,13 +3,12 @@
 import dataclasses
 
 import numpy as np
-
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
-from broadsword.sim import IDLE, Events, World
-from broadsword.sim.combat import CLEAR_RADIUS
+import shipped
 from sim_bullets import add_bullets
 
-import shipped
+from broadsword.data import load_level, resolve_level
+from broadsword.sim import IDLE, Events, World
+from broadsword.sim.combat import CLEAR_RADIUS
 
 ARMATURES = shipped.armatures()
 BROADSWORD = load_level(resolve_level("3-broadsword"))

@@ -4,17 +4,16 @@ import json
 import re
 
 import pytest
+import shipped
 
 from broadsword.cli import main
-from broadsword.data import DataError, data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import DataError, load_level
 from broadsword.data.difficulty import DEFAULT_SPECS, Difficulty
 from broadsword.sim import IDLE, Settings, World
 
-import shipped
-
 ARMATURES = shipped.armatures()
 
-LEVEL = '''
+LEVEL = """
 [player]
 lives = 3
 bombs = 2
@@ -37,7 +36,7 @@ at = 0.0
 enemy = "wasp"
 hp = 3
 difficulty = ["hard", "lunatic"]
-'''
+"""
 
 
 @pytest.fixture()
@@ -49,17 +48,24 @@ def level(tmp_path):
 
 def test_declared_values_override_the_defaults(level):
     easy, normal, lunatic = (level.difficulty[d] for d in (Difficulty.EASY, Difficulty.NORMAL, Difficulty.LUNATIC))
-    assert (easy.lives, easy.enemy_hp, easy.rank, easy.bombs) == (6, 0.5, DEFAULT_SPECS[Difficulty.EASY].rank,
-                                                                  DEFAULT_SPECS[Difficulty.EASY].bombs)
+    assert (easy.lives, easy.enemy_hp, easy.rank, easy.bombs) == (
+        6,
+        0.5,
+        DEFAULT_SPECS[Difficulty.EASY].rank,
+        DEFAULT_SPECS[Difficulty.EASY].bombs,
+    )
     assert normal == DEFAULT_SPECS[Difficulty.NORMAL]
     assert (lunatic.rank, lunatic.bombs) == (0.95, 1)
 
 
-@pytest.mark.parametrize("d, ships, hp, lives, rank", [
-    ("easy", ["scout"], [2], 6, DEFAULT_SPECS[Difficulty.EASY].rank),  # 5 * 0.5 = 2.5, half to even: 2
-    ("normal", ["scout"], [5], 3, 0.5),
-    ("lunatic", ["scout", "wasp"], [round(5 * 1.3), round(3 * 1.3)], DEFAULT_SPECS[Difficulty.LUNATIC].lives, 0.95),
-])
+@pytest.mark.parametrize(
+    "d, ships, hp, lives, rank",
+    [
+        ("easy", ["scout"], [2], 6, DEFAULT_SPECS[Difficulty.EASY].rank),  # 5 * 0.5 = 2.5, half to even: 2
+        ("normal", ["scout"], [5], 3, 0.5),
+        ("lunatic", ["scout", "wasp"], [round(5 * 1.3), round(3 * 1.3)], DEFAULT_SPECS[Difficulty.LUNATIC].lives, 0.95),
+    ],
+)
 def test_the_world_plays_the_difficulty(level, d, ships, hp, lives, rank):
     w = World(level, ARMATURES, settings=Settings(difficulty=d))
     w.step(IDLE)
@@ -69,10 +75,12 @@ def test_the_world_plays_the_difficulty(level, d, ships, hp, lives, rank):
 
 
 def test_a_bad_difficulty_table_names_its_field(tmp_path):
-    for text, field in (('[difficulty.easy]\nrank = 1.5\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.rank"),
-                        ('[difficulty.brutal]\nrank = 0.5\n[[wave]]\nenemy = "scout"\n', "difficulty.brutal"),
-                        ('[[wave]]\nenemy = "scout"\ndifficulty = ["medium"]\n', "wave[0].difficulty"),
-                        ('[[wave]]\nenemy = "scout"\ndifficulty = []\n', "wave[0].difficulty")):
+    for text, field in (
+        ('[difficulty.easy]\nrank = 1.5\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.rank"),
+        ('[difficulty.brutal]\nrank = 0.5\n[[wave]]\nenemy = "scout"\n', "difficulty.brutal"),
+        ('[[wave]]\nenemy = "scout"\ndifficulty = ["medium"]\n', "wave[0].difficulty"),
+        ('[[wave]]\nenemy = "scout"\ndifficulty = []\n', "wave[0].difficulty"),
+    ):
         p = tmp_path / "bad.toml"
         p.write_text(text)
         with pytest.raises(DataError, match=re.escape(f"bad.toml: {field}: ")):

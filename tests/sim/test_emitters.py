@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest
@@ -26,15 +25,24 @@ def armatures():
 
 def one_ship(fire: FireSpec, x: float = 240.0, hold_y: float = 200.0) -> WaveSpec:
     """One ship that flies down to ``hold_y`` and holds there for a minute."""
-    return WaveSpec(at=0.0, enemy="scout", count=1, every=0.0, hp=10**5, score=0,
-                    path=PathSpec(kind=PathKind.HOLD, x=x, speed=600.0, hold_y=hold_y, hold_for=60.0), fire=fire,
-                    mirror=False)
+    return WaveSpec(
+        at=0.0,
+        enemy="scout",
+        count=1,
+        every=0.0,
+        hp=10**5,
+        score=0,
+        path=PathSpec(kind=PathKind.HOLD, x=x, speed=600.0, hold_y=hold_y, hold_for=60.0),
+        fire=fire,
+        mirror=False,
+    )
 
 
 def world_with(armatures, *waves, difficulty=Difficulty.NORMAL, rotation="lut", seed=0) -> World:
     level = load_level(resolve_level("1-picket"))
-    level = dataclasses.replace(level, waves=tuple(waves), boss=None,
-                                scene=dataclasses.replace(level.scene, rotation=rotation))
+    level = dataclasses.replace(
+        level, waves=tuple(waves), boss=None, scene=dataclasses.replace(level.scene, rotation=rotation)
+    )
     w = World(level, armatures, seed, Settings(difficulty=difficulty))
     w.player.invulnerable = 1e9  # nothing here is about the player being hit
     return w
@@ -138,8 +146,10 @@ def test_boss__parts_rearm_with_each_phases_pattern(armatures):
     level = load_level(resolve_level("3-broadsword"))
     boss = level.boss
     ring = FireSpec(pattern="ring", bullet="orb", speed=90.0, shots=8, every=0.5, delay=0.0)
-    phases = (dataclasses.replace(boss.phases[0], hp=10**6, time=600.0, fire=()),
-              dataclasses.replace(boss.phases[0], hp=10**6, time=600.0, fire=((0, ring),)))
+    phases = (
+        dataclasses.replace(boss.phases[0], hp=10**6, time=600.0, fire=()),
+        dataclasses.replace(boss.phases[0], hp=10**6, time=600.0, fire=((0, ring),)),
+    )
     level = dataclasses.replace(level, waves=(), boss=dataclasses.replace(boss, at=0.0, phases=phases))
     w = World(level, armatures, 0)
     w.player.invulnerable = 1e9

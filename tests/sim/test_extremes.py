@@ -11,14 +11,13 @@ import re
 
 import numpy as np
 import pytest
+import shipped
+from sim_bullets import add_bullets
 
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, FIELD, IDLE, Pilot, World
 from broadsword.sim.boss import BossState
-from sim_bullets import add_bullets
-
-import shipped
 
 ARMATURES = shipped.armatures()
 PICKET = load_level(resolve_level("1-picket"))
@@ -28,8 +27,17 @@ NEVER = 1e9  # a wave time no test reaches
 
 def wave(enemy="scout", at=0.0, count=1, fire=None, path=None, mirror=False, hp=1) -> WaveSpec:
     """A wave of ``count`` ships all due at ``at`` s (default path: straight down; no fire)."""
-    return WaveSpec(at=at, enemy=enemy, count=count, every=0.0, hp=hp, score=1, path=path or PathSpec(),
-                    fire=fire or FireSpec(), mirror=mirror)
+    return WaveSpec(
+        at=at,
+        enemy=enemy,
+        count=count,
+        every=0.0,
+        hp=hp,
+        score=1,
+        path=path or PathSpec(),
+        fire=fire or FireSpec(),
+        mirror=mirror,
+    )
 
 
 def assert_sane(w: World) -> None:
@@ -102,8 +110,13 @@ def test_a_sweep_from_far_outside_to_far_outside(far):
     kind = w.kinds.base["needle"]
     for offset, expect in ((0.0, True), (clear, False), (-clear, False)):
         w.enemy_bullets.clear()
-        add_bullets(w.enemy_bullets, kind, [[p[0] + far, p[1] + offset]], [[0.0, 0.0]],
-                    prev=np.array([[p[0] - far, p[1] + offset]]))
+        add_bullets(
+            w.enemy_bullets,
+            kind,
+            [[p[0] + far, p[1] + offset]],
+            [[0.0, 0.0]],
+            prev=np.array([[p[0] - far, p[1] + offset]]),
+        )
         w.detect()
         assert bool(len(w.collision.result.hits)) == expect and w.collision.swept.any()
     play(w, 3)
@@ -114,9 +127,20 @@ def test_ten_thousand_bullets_fired_in_one_frame_from_the_level_data():
     """A wave of 2 x 50 ships, all spawned in the same frame, each firing a ring of 100 on
     the same frame: 10,000 bullets appear at once, then the game goes on."""
     ring = FireSpec(pattern="ring", bullet="pellet", speed=60.0, every=0.5, shots=100, delay=0.0)
-    level = dataclasses.replace(BROADSWORD, waves=(wave("gunship", count=50, fire=ring, mirror=True, hp=10**6,
-                                                        path=PathSpec(kind="hold", x=240.0, speed=300.0,
-                                                                      hold_y=100.0, hold_for=60.0)),), boss=None)
+    level = dataclasses.replace(
+        BROADSWORD,
+        waves=(
+            wave(
+                "gunship",
+                count=50,
+                fire=ring,
+                mirror=True,
+                hp=10**6,
+                path=PathSpec(kind="hold", x=240.0, speed=300.0, hold_y=100.0, hold_for=60.0),
+            ),
+        ),
+        boss=None,
+    )
     w = World(level, ARMATURES, seed=2)
     events = play(w, 60)
     assert w.ships.pool.n == 100
@@ -124,9 +148,11 @@ def test_ten_thousand_bullets_fired_in_one_frame_from_the_level_data():
 
 
 def test_two_thousand_ships_spawned_in_one_frame():
-    level = dataclasses.replace(PICKET, waves=(wave("scout", count=1000, mirror=True,
-                                                    fire=FireSpec(pattern="aimed", bullet="needle", every=2.0)),),
-                                boss=None)
+    level = dataclasses.replace(
+        PICKET,
+        waves=(wave("scout", count=1000, mirror=True, fire=FireSpec(pattern="aimed", bullet="needle", every=2.0)),),
+        boss=None,
+    )
     w = World(level, ARMATURES, seed=3)
     w.step(IDLE)
     assert w.ships.pool.n == 2000
@@ -141,14 +167,21 @@ def test_tens_of_thousands_of_bullets_dropped_into_one_frame():
     w = World(BROADSWORD, ARMATURES, seed=4)
     w.player.invulnerable = 0.0
     rng = np.random.default_rng(4)
-    for pool, n, names in ((w.enemy_bullets, 20_000, ("needle", "orb", "pellet")), (w.player_bullets, 5_000, ("shot",))):
+    for pool, n, names in (
+        (w.enemy_bullets, 20_000, ("needle", "orb", "pellet")),
+        (w.player_bullets, 5_000, ("shot",)),
+    ):
         pos = rng.uniform(-2.0, 3.0, (n, 2)) * FIELD
         speed = 10.0 ** rng.uniform(1.0, 5.0, n)
         theta = rng.uniform(0.0, 2 * math.pi, n)
         for i, name in enumerate(names):
             sel = slice(i, None, len(names))
-            add_bullets(pool, w.kinds.base[name], pos[sel], np.column_stack([np.cos(theta), np.sin(theta)])[sel]
-                        * speed[sel, None])
+            add_bullets(
+                pool,
+                w.kinds.base[name],
+                pos[sel],
+                np.column_stack([np.cos(theta), np.sin(theta)])[sel] * speed[sel, None],
+            )
     assert w.enemy_bullets.n == 20_000 and w.player_bullets.n == 5_000
     events = play(w, 60)
     assert events[0].hits > 0 and events[0].player_struck
@@ -159,8 +192,9 @@ def test_tens_of_thousands_of_bullets_dropped_into_one_frame():
 def test_zero_bullets_for_ten_seconds():
     """Ships that never fire and a player that never shoots: the pipeline runs every frame
     with no bullet in it."""
-    level = dataclasses.replace(PICKET, waves=(wave("scout", count=6, path=PathSpec(kind="sine", x=200.0, speed=30.0)),),
-                                boss=None)
+    level = dataclasses.replace(
+        PICKET, waves=(wave("scout", count=6, path=PathSpec(kind="sine", x=200.0, speed=30.0)),), boss=None
+    )
     w = World(level, ARMATURES, seed=5)
     for _ in range(600):
         w.step(IDLE)
@@ -173,8 +207,9 @@ def test_zero_bullets_for_ten_seconds():
 
 def test_a_frame_with_no_object_at_all():
     """No graze shape, the player invulnerable, nothing spawned: the pipeline gets no object."""
-    level = dataclasses.replace(PICKET, scene=dataclasses.replace(PICKET.scene, graze=False),
-                                waves=(wave(at=NEVER),), boss=None)
+    level = dataclasses.replace(
+        PICKET, scene=dataclasses.replace(PICKET.scene, graze=False), waves=(wave(at=NEVER),), boss=None
+    )
     w = World(level, ARMATURES, seed=6)
     assert w.player.invulnerable > 0
     ev = w.step(IDLE)
@@ -214,11 +249,20 @@ def test_a_level_inside_every_documented_range_does_not_stall():
     from broadsword.sim.world import ENEMY_BULLETS_LIMIT
 
     ring = FireSpec(pattern="ring", bullet="pellet", speed=100.0, every=0.02, shots=256, delay=0.0)
-    waves = tuple(wave("scout", count=1000, fire=ring, hp=10,
-                       path=PathSpec(kind="hold", x=240.0, speed=300.0, hold_y=200.0, hold_for=600.0))
-                  for _ in range(10))
+    waves = tuple(
+        wave(
+            "scout",
+            count=1000,
+            fire=ring,
+            hp=10,
+            path=PathSpec(kind="hold", x=240.0, speed=300.0, hold_y=200.0, hold_for=600.0),
+        )
+        for _ in range(10)
+    )
     w = World(dataclasses.replace(PICKET, waves=waves, boss=None), ARMATURES, seed=1)
     play(w, 30, pilot=False)
     assert w.frame == 30 and w.ships.pool.n == SHIPS_LIMIT and w.enemy_bullets.n <= ENEMY_BULLETS_LIMIT
-    assert w.warnings == [f"more than {SHIPS_LIMIT:,} ships at once: the rest were not made",
-                          f"more than {ENEMY_BULLETS_LIMIT:,} enemy bullets at once: the rest were not made"]
+    assert w.warnings == [
+        f"more than {SHIPS_LIMIT:,} ships at once: the rest were not made",
+        f"more than {ENEMY_BULLETS_LIMIT:,} enemy bullets at once: the rest were not made",
+    ]

@@ -13,11 +13,27 @@ from broadsword.sim.pool import Pool
 
 def ships(ages, mirror=None, pos=None):
     n = len(ages)
-    p = Pool(pos=((2,), float), prev=((2,), float), vel=((2,), float), angle=((), float), age=((), float),
-             wave=((), int), mirror=((), float), dive=((2,), float))
+    p = Pool(
+        pos=((2,), float),
+        prev=((2,), float),
+        vel=((2,), float),
+        angle=((), float),
+        age=((), float),
+        wave=((), int),
+        mirror=((), float),
+        dive=((2,), float),
+    )
     pos = np.zeros((n, 2)) if pos is None else np.asarray(pos, float)
-    p.add(pos=pos, prev=pos, vel=np.zeros((n, 2)), angle=np.zeros(n), age=ages, wave=np.zeros(n, int),
-          mirror=np.ones(n) if mirror is None else mirror, dive=np.zeros((n, 2)))
+    p.add(
+        pos=pos,
+        prev=pos,
+        vel=np.zeros((n, 2)),
+        angle=np.zeros(n),
+        age=ages,
+        wave=np.zeros(n, int),
+        mirror=np.ones(n) if mirror is None else mirror,
+        dive=np.zeros((n, 2)),
+    )
     return p
 
 
@@ -82,5 +98,6 @@ def test_move_wave_ships__ages_moves_and_faces_the_velocity():
 
 
 def test_heading__zero_is_up_and_clockwise():
-    assert heading(np.array([0.0, 1.0, 0.0, -1.0]), np.array([-1.0, 0.0, 1.0, 0.0])).tolist() == \
-        pytest.approx([0.0, 90.0, 180.0, -90.0])
+    assert heading(np.array([0.0, 1.0, 0.0, -1.0]), np.array([-1.0, 0.0, 1.0, 0.0])).tolist() == pytest.approx(
+        [0.0, 90.0, 180.0, -90.0]
+    )

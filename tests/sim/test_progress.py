@@ -4,17 +4,15 @@ import dataclasses
 
 import numpy as np
 import pytest
+import shipped
+from sim_bullets import add_bullets
 
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import BossPhaseSpec
 from broadsword.sim import IDLE, Carry, Events, Input, World
-from broadsword.sim.boss import PhaseEnd
 from broadsword.sim.items import ItemKind
 from broadsword.sim.progress import CONTINUES
 from broadsword.sim.scoring import EXTENDS
-from sim_bullets import add_bullets
-
-import shipped
 
 ARMATURES = shipped.armatures()
 BROADSWORD = load_level(resolve_level("3-broadsword"))
@@ -65,8 +63,11 @@ def test_a_timed_out_phase_pays_nothing_and_the_last_one_ends_the_boss():
             seen.append("end")
         if w.boss.dead:
             break
-    assert w.boss.dead and seen.count("end") == 2 and not any(isinstance(s, tuple) and s[0].startswith("phase")
-                                                               for s in seen)
+    assert (
+        w.boss.dead
+        and seen.count("end") == 2
+        and not any(isinstance(s, tuple) and s[0].startswith("phase") for s in seen)
+    )
 
 
 def test_the_boss_dies_with_its_score_its_drops_and_its_wreck():

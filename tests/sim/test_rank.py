@@ -15,7 +15,9 @@ def test_normal_fires_the_level_as_written():
 @pytest.mark.parametrize("rank", [0.0, 0.2, 0.75, 1.0])
 def test_each_rank_scales_rate_and_speed(rank):
     out = RankedFire(rank).of(RING)
-    assert out.every == pytest.approx(1.0 / rate_factor(rank)) and out.speed == pytest.approx(100.0 * speed_factor(rank))
+    assert out.every == pytest.approx(1.0 / rate_factor(rank)) and out.speed == pytest.approx(
+        100.0 * speed_factor(rank)
+    )
     assert out.shots == max(1, round(RING.shots * rate_factor(rank))) and out.pattern is RING.pattern
 
 

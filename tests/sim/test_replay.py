@@ -3,13 +3,12 @@
 import dataclasses
 
 import pytest
+import shipped
 
-from broadsword.data import data_dir, load_armatures, load_level, resolve_level
+from broadsword.data import load_level, resolve_level
 from broadsword.data.recordings import CHECKPOINT_EVERY
 from broadsword.sim import Carry, Input, Pilot, Settings, World
 from broadsword.sim.replay import Playback, Recorder
-
-import shipped
 
 ARMATURES = shipped.armatures()
 LEVEL = load_level(resolve_level("3-broadsword"))
@@ -33,8 +32,7 @@ def record(seed=1, toggles_at=(200, 700), carry=None) -> tuple[World, object]:
 
 
 def play(rec) -> tuple[World, Playback]:
-    w = World(LEVEL, ARMATURES, rec.seed, Settings(**rec.settings),
-              Carry(**rec.carry))
+    w = World(LEVEL, ARMATURES, rec.seed, Settings(**rec.settings), Carry(**rec.carry))
     p = Playback(rec, w)
     while (inp := p.next_input()) is not None:
         w.step(inp)

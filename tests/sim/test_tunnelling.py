@@ -33,27 +33,29 @@ import math
 
 import numpy as np
 import pytest
+import shipped
+from sim_bullets import add_bullets
 
 from broadsword.collision import point_in_polygon, pose
-from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
+from broadsword.data import list_levels, load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import DT, IDLE, LayerIds, World
 from broadsword.sim.bombs import DEATHBOMB_FRAMES
 from broadsword.sim.bullets import move_bullets
 from broadsword.sim.layers import game_layer_table
-from sim_bullets import add_bullets
-
-import shipped
 
 _IDS = LayerIds.of(game_layer_table())  # layer ids come from the table, by name
 ENEMY, ENEMY_BULLET, PLAYER, PLAYER_BULLET = _IDS.enemy_ship, _IDS.enemy_bullet, _IDS.player, _IDS.player_bullet
 ARMATURES = shipped.armatures()
 LEVELS = [load_level(resolve_level(n)) for n in list_levels()]
 #: Sprites of ships the player's bullets can hit, and of the bullets enemies fire.
-SHIPS = sorted({w.enemy for lv in LEVELS for w in lv.waves}
-               | {p.sprite for lv in LEVELS if lv.boss for p in lv.boss.parts})
-ENEMY_SHOTS = sorted({w.fire.bullet for lv in LEVELS for w in lv.waves if w.fire.fires}
-                     | {p.fire.bullet for lv in LEVELS if lv.boss for p in lv.boss.parts if p.fire.fires})
+SHIPS = sorted(
+    {w.enemy for lv in LEVELS for w in lv.waves} | {p.sprite for lv in LEVELS if lv.boss for p in lv.boss.parts}
+)
+ENEMY_SHOTS = sorted(
+    {w.fire.bullet for lv in LEVELS for w in lv.waves if w.fire.fires}
+    | {p.fire.bullet for lv in LEVELS if lv.boss for p in lv.boss.parts if p.fire.fires}
+)
 #: The distinct collision scenes of the shipped levels.
 SCENES = list(dict.fromkeys(lv.scene for lv in LEVELS))
 #: 100 px/s to 100,000 px/s, four steps a decade.
@@ -83,10 +85,24 @@ def arena(scene) -> World:
     place any of them, the bullet sprites named by the waves' fire specs."""
     shots = itertools.cycle(ENEMY_SHOTS)
     still = PathSpec(kind="straight", x=CENTRE[0], speed=0.0)
-    waves = [WaveSpec(at=1e9, enemy=s, count=1, every=0.0, hp=1, score=0, path=still, fire=FireSpec(), mirror=False)
-             for s in SHIPS]
-    waves += [WaveSpec(at=1e9, enemy=SHIPS[0], count=1, every=0.0, hp=1, score=0, path=still,
-                       fire=FireSpec(pattern="aimed", bullet=next(shots)), mirror=False) for _ in ENEMY_SHOTS]
+    waves = [
+        WaveSpec(at=1e9, enemy=s, count=1, every=0.0, hp=1, score=0, path=still, fire=FireSpec(), mirror=False)
+        for s in SHIPS
+    ]
+    waves += [
+        WaveSpec(
+            at=1e9,
+            enemy=SHIPS[0],
+            count=1,
+            every=0.0,
+            hp=1,
+            score=0,
+            path=still,
+            fire=FireSpec(pattern="aimed", bullet=next(shots)),
+            mirror=False,
+        )
+        for _ in ENEMY_SHOTS
+    ]
     level = dataclasses.replace(LEVELS[0], scene=scene, waves=tuple(waves), boss=None)
     w = World(level, ARMATURES, seed=0)
     w.player.invulnerable = 1e9  # the player stays out of the collision unless a test exposes it
@@ -174,8 +190,9 @@ def launch(points: np.ndarray, u: np.ndarray, speed: float, rho: float, seed: in
     return points + u * s0[:, None], frames
 
 
-def run_shots(w: World, pool, target_layer: int, bullet_layer: int, base_kind: int, aims: np.ndarray,
-              speed: float, clear: float):
+def run_shots(
+    w: World, pool, target_layer: int, bullet_layer: int, base_kind: int, aims: np.ndarray, speed: float, clear: float
+):
     """Fire one bullet per (aim point, angle) at ``speed`` and step until all are past.
 
     ``aims`` (m, 2) world points; angle ``ANGLES[j]`` plus a fraction that differs per aim
@@ -201,7 +218,7 @@ def run_shots(w: World, pool, target_layer: int, bullet_layer: int, base_kind: i
         hit[bullet_hits(w, target_layer, bullet_layer)] = True
         clean &= np.hypot(*(pool.pos - CENTRE).T) > clear
         first = int(np.flatnonzero(w.collision.layer == bullet_layer)[0])
-        swept &= w.collision.swept[first:first + n]
+        swept &= w.collision.swept[first : first + n]
     gone = ((pool.pos - start) * u).sum(axis=1) - ((CENTRE - start) * u).sum(axis=1)
     assert (gone > 0).all() and (np.hypot(*(pool.pos - CENTRE).T) > clear).all()  # every bullet ended past the target
     return hit, clean, swept
@@ -211,8 +228,10 @@ def check_ladder(w, pool, target_layer, bullet_layer, base_kind, aims, clear):
     for speed in SPEEDS:
         hit, clean, swept = run_shots(w, pool, target_layer, bullet_layer, base_kind, aims, speed, clear)
         missed = np.flatnonzero(~hit)
-        assert not missed.size, (f"{speed:.0f} px/s: {missed.size} of {hit.size} bullets tunnelled, "
-                                 f"first: aim {missed[0] // len(ANGLES)}, angle index {missed[0] % len(ANGLES)}")
+        assert not missed.size, (
+            f"{speed:.0f} px/s: {missed.size} of {hit.size} bullets tunnelled, "
+            f"first: aim {missed[0] // len(ANGLES)}, angle index {missed[0] % len(ANGLES)}"
+        )
         if speed * DT >= 2 * (clear + 0.5):  # one step from clear before to clear after: only the sweep sees it
             assert clean.all() and swept.all()
 
@@ -240,7 +259,9 @@ def test_player_bullets_never_tunnel_through_any_ship_aimed_at_its_centre(ship):
         posed, used = pose_of(w, ENEMY)
         assert used == kind
         r_t, r_b = w.kinds.shapes.armatures[kind].radius, radius(w, "shot")
-        check_ladder(w, w.player_bullets, ENEMY, PLAYER_BULLET, w.kinds.base["shot"], centre_or_vertex(posed), r_t + r_b)
+        check_ladder(
+            w, w.player_bullets, ENEMY, PLAYER_BULLET, w.kinds.base["shot"], centre_or_vertex(posed), r_t + r_b
+        )
 
 
 def expose_player(w: World, at=CENTRE) -> None:
@@ -308,7 +329,7 @@ def test_a_path_that_misses_by_a_hair_never_hits_and_one_that_touches_always_doe
                 w.detect()
                 hit[bullet_hits(w, target_layer, bullet_layer)] = True
                 first = int(np.flatnonzero(w.collision.layer == bullet_layer)[0])
-                swept &= w.collision.swept[first:first + len(u)]
+                swept &= w.collision.swept[first : first + len(u)]
             assert swept.all(), f"{speed:.0f} px/s: a moving bullet was not swept"
             if sign > 0:
                 assert not hit.any(), f"{speed:.0f} px/s: {hit.sum()} paths {delta} px clear were called hits"
@@ -342,8 +363,10 @@ def test_a_teleported_bullet_hits_only_what_its_jump_passed_through(shot):
     length = 10.0 ** rng.uniform(2.7, 5.0, m)  # 500 px to 100,000 px in one frame
     t0 = rng.uniform(0.3, 0.7, m) * length  # where along the jump the target lies
     miss = rng.uniform(clear + 0.5, 1.5 * clear, m) * rng.choice([-1.0, 1.0], m)
-    for line, expect in ((CENTRE + nrm * miss[:, None], False),  # passes the target's bounding circle by
-                         (np.repeat(target_poly[:1], m, axis=0), True)):  # through a vertex of the target
+    for line, expect in (
+        (CENTRE + nrm * miss[:, None], False),  # passes the target's bounding circle by
+        (np.repeat(target_poly[:1], m, axis=0), True),
+    ):  # through a vertex of the target
         prev = line - u * t0[:, None]
         pos = line + u * (length - t0)[:, None]
         box_has_target = ((np.minimum(prev, pos) <= CENTRE) & (CENTRE <= np.maximum(prev, pos))).all(axis=1)
@@ -354,7 +377,7 @@ def test_a_teleported_bullet_hits_only_what_its_jump_passed_through(shot):
         hit = np.zeros(m, dtype=bool)
         hit[bullet_hits(w, target_layer, bullet_layer)] = True
         first = int(np.flatnonzero(w.collision.layer == bullet_layer)[0])
-        assert w.collision.swept[first:first + m].all()
+        assert w.collision.swept[first : first + m].all()
         assert (hit == expect).all(), f"{(hit != expect).sum()} of {m} jumps wrong (expected hit={expect})"
         if not expect and "aabb" in w.pipeline.tiers:
             aabb = next(s for s in w.collision.result.stats if s.name == "aabb")
@@ -370,8 +393,9 @@ def test_a_teleported_player_is_not_hit_by_what_lies_between_its_two_places():
     expose_player(w, start)
     clear = radius(w, "player") + radius(w, shot) + 1.0
     ys = np.arange(end[1] + clear, start[1] - clear, 6.0)
-    add_bullets(w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), 240.0), ys]),
-                np.zeros((len(ys), 2)))
+    add_bullets(
+        w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), 240.0), ys]), np.zeros((len(ys), 2))
+    )
     assert not w.step(IDLE).player_hit
     w.player.pos = end.copy()  # teleport between two steps
     ev = w.step(IDLE)
@@ -393,8 +417,9 @@ def test_the_respawn_jump_does_not_hit_bullets_on_the_way():
     add_bullets(w.enemy_bullets, w.kinds.base[shot], wreck[None, :], np.zeros((1, 2)))
     clear = radius(w, "player") + radius(w, shot) + 1.0
     ys = np.arange(wreck[1] + CLEAR_RADIUS + 2.0, SPAWN[1] - clear, 5.0)
-    add_bullets(w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), SPAWN[0]), ys]),
-                np.zeros((len(ys), 2)))
+    add_bullets(
+        w.enemy_bullets, w.kinds.base[shot], np.column_stack([np.full(len(ys), SPAWN[0]), ys]), np.zeros((len(ys), 2))
+    )
     assert w.step(IDLE).player_struck
     assert w.enemy_bullets.n == len(ys)  # the bullet that struck is gone
     for _ in range(DEATHBOMB_FRAMES - 1):  # the death-bomb window: no bomb comes
@@ -416,8 +441,9 @@ def test_a_teleported_ship_is_not_hit_by_shots_between_its_two_places():
     place_ship(w, name, kind, centre=start)
     clear = w.kinds.shapes.armatures[kind].radius + radius(w, "shot") + 1.0
     ys = np.arange(start[1] + clear, end[1] - clear, 4.0)
-    add_bullets(w.player_bullets, w.kinds.base["shot"], np.column_stack([np.full(len(ys), 240.0), ys]),
-                np.zeros((len(ys), 2)))
+    add_bullets(
+        w.player_bullets, w.kinds.base["shot"], np.column_stack([np.full(len(ys), 240.0), ys]), np.zeros((len(ys), 2))
+    )
     assert not w.step(IDLE).damaged
     w.ships.pool.pos[:] = end  # teleport between two steps
     ev = w.step(IDLE)

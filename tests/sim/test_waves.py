@@ -8,9 +8,17 @@ from broadsword.sim.waves import ENTRY_Y, JITTER, WaveShips, WaveTimeline
 
 
 def wave(at, count=1, every=0.0, mirror=False, x=100.0, hp=3):
-    return WaveSpec(at=at, enemy="scout", count=count, every=every, hp=hp, score=10, path=PathSpec(x=x),
-                    fire=FireSpec(delay=0.7),
-                    mirror=mirror)
+    return WaveSpec(
+        at=at,
+        enemy="scout",
+        count=count,
+        every=every,
+        hp=hp,
+        score=10,
+        path=PathSpec(x=x),
+        fire=FireSpec(delay=0.7),
+        mirror=mirror,
+    )
 
 
 def test_timeline__sends_each_ship_once_in_time_order():

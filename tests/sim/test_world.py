@@ -10,17 +10,24 @@ import numpy as np
 import pytest
 
 from broadsword.collision import polygons_collide, pose
-from broadsword.data import data_dir, list_levels, load_armatures, load_level, resolve_level
+from broadsword.data import list_levels, load_level, resolve_level
 from broadsword.data.levels import Drops, FireSpec, PathSpec, WaveSpec
-from broadsword.sim import DT, IDLE, Input, Pilot, Pool, World
-from broadsword.sim import SPAWN
-from broadsword.sim.player import INVULNERABLE_S
+from broadsword.sim import DT, IDLE, SPAWN, Input, Pilot, Pool, World
 from broadsword.sim.bombs import DEATHBOMB_FRAMES
+from broadsword.sim.player import INVULNERABLE_S
 from broadsword.sim.scoring import CLEAR_BONUS, GRAZE_SCORE, NO_BOMB_BONUS, NO_MISS_BONUS
 
-
-LATE = WaveSpec(at=3000.0, enemy="scout", count=1, every=0.0, hp=1, score=0,
-                path=PathSpec(), fire=FireSpec(pattern="aimed", bullet="needle"), mirror=False)
+LATE = WaveSpec(
+    at=3000.0,
+    enemy="scout",
+    count=1,
+    every=0.0,
+    hp=1,
+    score=0,
+    path=PathSpec(),
+    fire=FireSpec(pattern="aimed", bullet="needle"),
+    mirror=False,
+)
 
 
 @pytest.fixture(scope="module")
@@ -36,8 +43,15 @@ def ready(world: World) -> World:
 
 def add_bullet(world, x, y, vx, vy, name="needle"):
     pos = np.array([[x, y]], dtype=float)
-    world.enemy_bullets.add(pos=pos, prev=pos, vel=[[vx, vy]], angle=[np.degrees(np.arctan2(vx, -vy))],
-                            arm=[world.kinds.base[name]], damage=[1], grazed=[False])
+    world.enemy_bullets.add(
+        pos=pos,
+        prev=pos,
+        vel=[[vx, vy]],
+        angle=[np.degrees(np.arctan2(vx, -vy))],
+        arm=[world.kinds.base[name]],
+        damage=[1],
+        grazed=[False],
+    )
 
 
 def test_input__byte_round_trip():
@@ -81,9 +95,18 @@ def test_world__slow_mode_is_slower(quiet_level, armatures):
 
 
 def test_world__player_bullet_kills_enemy_and_scores(quiet_level, armatures):
-    wave = WaveSpec(at=0.0, enemy="scout", count=1, every=0.0, hp=2, score=120,
-                    path=PathSpec(kind="straight", x=SPAWN[0], speed=40.0), fire=FireSpec(), mirror=False,
-                    drops=Drops(power=0, point=0))
+    wave = WaveSpec(
+        at=0.0,
+        enemy="scout",
+        count=1,
+        every=0.0,
+        hp=2,
+        score=120,
+        path=PathSpec(kind="straight", x=SPAWN[0], speed=40.0),
+        fire=FireSpec(),
+        mirror=False,
+        drops=Drops(power=0, point=0),
+    )
     level = dataclasses.replace(quiet_level, waves=(wave, LATE))
     w = World(level, armatures, seed=0)
     w.rng = np.random.default_rng(0)
@@ -174,8 +197,15 @@ def test_world__bullets_never_test_bullets(quiet_level, armatures):
     w = ready(World(quiet_level, armatures))
     for k in range(20):
         add_bullet(w, 100 + k, 100, 0.0, 10.0)
-    w.player_bullets.add(pos=[[105.0, 100.0]], prev=[[105.0, 100.0]], vel=[[0.0, -10.0]], angle=[0.0],
-                         arm=[w.kinds.base["shot"]], damage=[1], grazed=[False])
+    w.player_bullets.add(
+        pos=[[105.0, 100.0]],
+        prev=[[105.0, 100.0]],
+        vel=[[0.0, -10.0]],
+        angle=[0.0],
+        arm=[w.kinds.base["shot"]],
+        damage=[1],
+        grazed=[False],
+    )
     w.step(IDLE)
     layers = w.collision.layer[w.collision.result.candidates]
     pairs = {tuple(p) for p in layers.tolist()}
@@ -200,8 +230,17 @@ def test_world__same_seed_same_hash(name, armatures):
 
 
 def test_world__level_completes_when_waves_are_cleared(quiet_level, armatures):
-    wave = WaveSpec(at=0.0, enemy="scout", count=1, every=0.0, hp=1, score=10,
-                    path=PathSpec(kind="straight", x=40.0, speed=400.0), fire=FireSpec(), mirror=False)
+    wave = WaveSpec(
+        at=0.0,
+        enemy="scout",
+        count=1,
+        every=0.0,
+        hp=1,
+        score=10,
+        path=PathSpec(kind="straight", x=40.0, speed=400.0),
+        fire=FireSpec(),
+        mirror=False,
+    )
     w = World(dataclasses.replace(quiet_level, waves=(wave,)), armatures)
     done = False
     for _ in range(300):
@@ -214,6 +253,5 @@ def test_world__level_completes_when_waves_are_cleared(quiet_level, armatures):
 
 
 def test_sim_and_data__import_without_pygame():
-    code = ("import sys; sys.modules['pygame'] = None\n"
-            "import broadsword.sim, broadsword.data, broadsword.collision\n")
+    code = "import sys; sys.modules['pygame'] = None\nimport broadsword.sim, broadsword.data, broadsword.collision\n"
     subprocess.run([sys.executable, "-c", code], check=True)

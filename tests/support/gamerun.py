@@ -57,8 +57,9 @@ def scenarios(level) -> dict:
     return out
 
 
-def autopilot_digests(level_name: str, scenario: str, rotation: str, seed: int, frames: int, direction: int = 0,
-                      every: int = 60) -> list[tuple[int, str, str]]:
+def autopilot_digests(
+    level_name: str, scenario: str, rotation: str, seed: int, frames: int, direction: int = 0, every: int = 60
+) -> list[tuple[int, str, str]]:
     """``[(frame, state_hash, exact_digest), ...]`` every ``every`` frames and at the end of
     an autopilot run of ``frames`` frames (or until the game ends) of ``scenario`` (a key
     of :func:`scenarios`) of a shipped level, with every transcendental function moved one

@@ -19,25 +19,82 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
-from typing import Iterator
+from collections.abc import Iterator
 
 import numpy as np
 
 #: numpy's transcendental ufuncs (every one whose result libm or a SIMD kernel approximates),
 #: with numpy 2's array-API aliases (``np.acos is np.arccos``, but a separate name to replace).
-NUMPY_TRANSCENDENTALS = tuple(name for name in (
-    "sin", "cos", "tan", "arcsin", "arccos", "arctan", "arctan2", "hypot",
-    "sinh", "cosh", "tanh", "arcsinh", "arccosh", "arctanh",
-    "exp", "exp2", "expm1", "log", "log2", "log10", "log1p", "logaddexp", "logaddexp2",
-    "power", "float_power", "cbrt",
-    "asin", "acos", "atan", "atan2", "asinh", "acosh", "atanh", "pow",
-) if hasattr(np, name))
+NUMPY_TRANSCENDENTALS = tuple(
+    name
+    for name in (
+        "sin",
+        "cos",
+        "tan",
+        "arcsin",
+        "arccos",
+        "arctan",
+        "arctan2",
+        "hypot",
+        "sinh",
+        "cosh",
+        "tanh",
+        "arcsinh",
+        "arccosh",
+        "arctanh",
+        "exp",
+        "exp2",
+        "expm1",
+        "log",
+        "log2",
+        "log10",
+        "log1p",
+        "logaddexp",
+        "logaddexp2",
+        "power",
+        "float_power",
+        "cbrt",
+        "asin",
+        "acos",
+        "atan",
+        "atan2",
+        "asinh",
+        "acosh",
+        "atanh",
+        "pow",
+    )
+    if hasattr(np, name)
+)
 #: The same family in ``math`` (``math.radians``/``degrees`` are one multiplication; ``sqrt`` is exact).
 MATH_TRANSCENDENTALS = (
-    "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "hypot", "dist",
-    "sinh", "cosh", "tanh", "asinh", "acosh", "atanh",
-    "exp", "exp2", "expm1", "log", "log2", "log10", "log1p", "pow", "cbrt",
-    "erf", "erfc", "gamma", "lgamma",
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "hypot",
+    "dist",
+    "sinh",
+    "cosh",
+    "tanh",
+    "asinh",
+    "acosh",
+    "atanh",
+    "exp",
+    "exp2",
+    "expm1",
+    "log",
+    "log2",
+    "log10",
+    "log1p",
+    "pow",
+    "cbrt",
+    "erf",
+    "erfc",
+    "gamma",
+    "lgamma",
 )
 
 

@@ -31,5 +31,17 @@ from .quadtree import QuadTree
 #: Broad-phase classes by tier name.
 BROAD_PHASES = {cls.name: cls for cls in (BinGrid, QuadTree, LooseQuadTree, BruteForce)}
 
-__all__ = ["AUTO_BIN_FACTOR", "BROAD_PHASES", "BinGrid", "BroadPhase", "BroadPhaseStats", "BruteForce", "GridLayout",
-           "LayerTable", "LooseQuadTree", "QuadTree", "TreeLayout", "auto_bin_size"]
+__all__ = [
+    "AUTO_BIN_FACTOR",
+    "BROAD_PHASES",
+    "BinGrid",
+    "BroadPhase",
+    "BroadPhaseStats",
+    "BruteForce",
+    "GridLayout",
+    "LayerTable",
+    "LooseQuadTree",
+    "QuadTree",
+    "TreeLayout",
+    "auto_bin_size",
+]

@@ -8,7 +8,7 @@ and returns a :class:`Frame` -- an object that lives for that one query and answ
 
 from __future__ import annotations
 
-from typing import Iterable
+from collections.abc import Iterable
 
 import numpy as np
 

@@ -20,7 +20,7 @@ class TreeDriver(Driver):
         Side of the smallest node; ``None`` is half of :func:`auto_bin_size`.
     """
 
-    frame_class: type["TreeFrame"]
+    frame_class: type[TreeFrame]
 
     def __init__(self, max_depth: int = 8, leaf_size: float | None = None):
         self.max_depth = int(max_depth)
@@ -64,8 +64,12 @@ class TreeFrame(Frame):
     def leaf_coords(self, boxes):
         """Leaf-level integer coordinates of each box's corners, clipped to the root."""
         (ox, oy), d = self.origin, self.depth
-        return (self.node(boxes[:, 0], ox, d), self.node(boxes[:, 1], oy, d),
-                self.node(boxes[:, 2], ox, d), self.node(boxes[:, 3], oy, d))
+        return (
+            self.node(boxes[:, 0], ox, d),
+            self.node(boxes[:, 1], oy, d),
+            self.node(boxes[:, 2], ox, d),
+            self.node(boxes[:, 3], oy, d),
+        )
 
     def levels(self, boxes):
         """(level, nx, ny) of each object's node: subclasses decide where objects live."""

@@ -44,8 +44,10 @@ def boxes_between(a: np.ndarray, b: np.ndarray, chunk: int) -> tuple[np.ndarray,
     for s in range(0, len(a), chunk):
         c = a[s : s + chunk]
         hit = (
-            (c[:, None, 0] <= b[None, :, 2]) & (b[None, :, 0] <= c[:, None, 2])
-            & (c[:, None, 1] <= b[None, :, 3]) & (b[None, :, 1] <= c[:, None, 3])
+            (c[:, None, 0] <= b[None, :, 2])
+            & (b[None, :, 0] <= c[:, None, 2])
+            & (c[:, None, 1] <= b[None, :, 3])
+            & (b[None, :, 1] <= c[:, None, 3])
         )
         i, j = np.nonzero(hit)
         out_i.append(i + s)

@@ -3,7 +3,7 @@ bin its box overlaps, and a pair is reported only from the first bin the two sha
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -142,8 +142,9 @@ class _GridFrame(Frame):
         both = np.flatnonzero(np.take(ma, ea) & np.take(mb, eb))
         if not both.size:
             return pa, pb
-        first = self.first_shared(np.take(ia, np.take(pa, both)), np.take(ib, np.take(pb, both)),
-                                  np.take(ka, np.take(ea, both)))
+        first = self.first_shared(
+            np.take(ia, np.take(pa, both)), np.take(ib, np.take(pb, both)), np.take(ka, np.take(ea, both))
+        )
         keep = np.ones(len(pa), dtype=bool)
         keep[both[~first]] = False
         return pa[keep], pb[keep]
@@ -156,8 +157,9 @@ class _GridFrame(Frame):
         return pq[keep], pi[keep]
 
 
-def cell_ranges(boxes: np.ndarray, size: float, origin: tuple, shape: tuple
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def cell_ranges(
+    boxes: np.ndarray, size: float, origin: tuple, shape: tuple
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Inclusive bin ranges ``(ix0, iy0, ix1, iy1)`` of each box (n, 4), clamped to the grid."""
     inv = 1.0 / size
     cols, rows = shape

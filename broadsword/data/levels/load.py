@@ -22,8 +22,25 @@ from ..errors import DataError, shown
 from ..patterns import load_pattern, resolve_pattern
 from ..resources import read_toml
 from ..table import MISSING, Table
-from .specs import (BOSS_DROPS, PATHS, PATTERNS, THEMES, Theme, BossPart, BossPhaseSpec, BossSpec, Drops, FireKind, FireSpec, Level, PathKind,
-                    PathSpec, PlayerSpec, SceneSpec, WaveSpec)
+from .specs import (
+    BOSS_DROPS,
+    PATHS,
+    PATTERNS,
+    THEMES,
+    BossPart,
+    BossPhaseSpec,
+    BossSpec,
+    Drops,
+    FireKind,
+    FireSpec,
+    Level,
+    PathKind,
+    PathSpec,
+    PlayerSpec,
+    SceneSpec,
+    Theme,
+    WaveSpec,
+)
 
 #: A level file is at most this big; a larger one is refused by its size, unparsed.
 LEVEL_MAX_BYTES = 1 << 20
@@ -35,8 +52,17 @@ PARTS_MAX = 16
 OFFSET_MAX = 1000.0
 
 #: The keys of a firing pattern (a wave's or a boss part's), read only when it fires.
-FIRE_KEYS = ("bullet", "bullet_speed", "fire_every", "shots", "spread", "volley_turn", "fire_delay", "pattern",
-             "pattern_params")
+FIRE_KEYS = (
+    "bullet",
+    "bullet_speed",
+    "fire_every",
+    "shots",
+    "spread",
+    "volley_turn",
+    "fire_delay",
+    "pattern",
+    "pattern_params",
+)
 #: The keys only the original kinds (``fire = "aimed"``...) read; a pattern file says it all itself.
 KIND_KEYS = ("bullet_speed", "fire_every", "shots", "spread", "volley_turn")
 #: A pattern file gets at most this many ``pattern_params``.
@@ -51,8 +77,11 @@ def _bulletml(t: Table) -> FireSpec:
         raise t.error("fire", "give fire (one of the built-in kinds) or pattern (a BulletML file), not both")
     for key in KIND_KEYS:
         if key in t.doc:
-            raise t.error(key, "only for the built-in kinds (fire = ...); a pattern file says how it fires "
-                               "(give it numbers with pattern_params)")
+            raise t.error(
+                key,
+                "only for the built-in kinds (fire = ...); a pattern file says how it fires "
+                "(give it numbers with pattern_params)",
+            )
     name = t.raw("pattern", "")
     try:
         path = resolve_pattern(name, t.path)
@@ -63,12 +92,25 @@ def _bulletml(t: Table) -> FireSpec:
     except ValueError as exc:
         raise t.error("pattern", f"the pattern file is bad: {exc}") from None
     params = t.raw("pattern_params", [])
-    if not (isinstance(params, list) and len(params) <= PATTERN_PARAMS_MAX and all(_is_number(v) for v in params)
-            and all(-1e6 <= v <= 1e6 for v in params)):
-        raise t.error("pattern_params", f"must be a list of at most {PATTERN_PARAMS_MAX} numbers in [-1e6, 1e6] "
-                                        f"($1, $2, ... of the pattern), got {shown(params)}")
-    return FireSpec(pattern=FireKind.BULLETML, bullet=t.sprite("bullet", d.bullet),
-                    delay=t.num("fire_delay", d.delay, 0, 600), file=name, params=tuple(params), bulletml=pattern)
+    if not (
+        isinstance(params, list)
+        and len(params) <= PATTERN_PARAMS_MAX
+        and all(_is_number(v) for v in params)
+        and all(-1e6 <= v <= 1e6 for v in params)
+    ):
+        raise t.error(
+            "pattern_params",
+            f"must be a list of at most {PATTERN_PARAMS_MAX} numbers in [-1e6, 1e6] "
+            f"($1, $2, ... of the pattern), got {shown(params)}",
+        )
+    return FireSpec(
+        pattern=FireKind.BULLETML,
+        bullet=t.sprite("bullet", d.bullet),
+        delay=t.num("fire_delay", d.delay, 0, 600),
+        file=name,
+        params=tuple(params),
+        bulletml=pattern,
+    )
 
 
 def _fire(t: Table) -> FireSpec:
@@ -132,8 +174,9 @@ def _scene(doc, path) -> SceneSpec:
     elif _is_number(size) and 1 <= size <= 4096:  # nan and inf fail the range
         bin_size = float(size)
     else:
-        raise DataError(path, "scene.bin_size",
-                        f'must be "auto" or a finite number of px in [1, 4096], got {shown(size)}')
+        raise DataError(
+            path, "scene.bin_size", f'must be "auto" or a finite number of px in [1, 4096], got {shown(size)}'
+        )
     spec = SceneSpec(tiers, t.str("rotation", d.rotation, ROTATION_MODES), bin_size, t.bool("graze", d.graze))
     t.done()
     return spec
@@ -182,8 +225,14 @@ def _phases(t: Table, parts: int) -> tuple[BossPhaseSpec, ...]:
     for i, doc in enumerate(raw):
         p = Table(doc, t.path, f"{t.where}.phase[{i}]")
         d = BossPhaseSpec(1)
-        out.append(BossPhaseSpec(p.int("hp", MISSING, 1, 10**7), p.num("time", d.time, 5, 600),
-                                 p.int("bonus", d.bonus, 0, 10**8), _phase_fire(p, parts)))
+        out.append(
+            BossPhaseSpec(
+                p.int("hp", MISSING, 1, 10**7),
+                p.num("time", d.time, 5, 600),
+                p.int("bonus", d.bonus, 0, 10**8),
+                _phase_fire(p, parts),
+            )
+        )
         p.done()
     return tuple(out)
 
@@ -195,8 +244,9 @@ def _difficulties(t: Table) -> frozenset[Difficulty]:
     """A wave's ``difficulty``: the list of difficulties it flies on (default: all)."""
     v = t.raw("difficulty", list(DIFFICULTIES))
     if not (isinstance(v, list) and v and all(isinstance(x, str) and x in DIFFICULTIES for x in v)):
-        raise t.error("difficulty", f"must be a non-empty list of difficulties ({', '.join(DIFFICULTIES)}), "
-                                    f"got {shown(v)}")
+        raise t.error(
+            "difficulty", f"must be a non-empty list of difficulties ({', '.join(DIFFICULTIES)}), got {shown(v)}"
+        )
     return frozenset(Difficulty(x) for x in v)
 
 
@@ -229,8 +279,9 @@ def _offset(t: Table) -> tuple[float, float]:
     if not (isinstance(off, list) and len(off) == 2 and all(_is_number(c) for c in off)):
         raise t.error("offset", f"must be an [x, y] pair of numbers, got {shown(off)}")
     if not all(-lim <= c <= lim for c in off):  # nan and inf fail the range
-        raise t.error("offset", f"must be finite, each in [{-lim:g}, {lim:g}] px; "
-                                f"got [{shown(off[0])}, {shown(off[1])}]")
+        raise t.error(
+            "offset", f"must be finite, each in [{-lim:g}, {lim:g}] px; got [{shown(off[0])}, {shown(off[1])}]"
+        )
     return float(off[0]), float(off[1])
 
 
@@ -256,9 +307,12 @@ def load_level(path: str | Path) -> Level:
     p = Table(top.raw("player", {}), path, "player")
     d = PlayerSpec()
     player = PlayerSpec(
-        p.num("speed", d.speed, 10, 2000), p.num("slow_speed", d.slow_speed, 10, 2000),
-        p.num("fire_every", d.fire_every, 0.02, 5), p.num("shot_speed", d.shot_speed, 50, 200_000),
-        p.int("lives", d.lives, 1, 99), p.int("bombs", d.bombs, 0, 9),
+        p.num("speed", d.speed, 10, 2000),
+        p.num("slow_speed", d.slow_speed, 10, 2000),
+        p.num("fire_every", d.fire_every, 0.02, 5),
+        p.num("shot_speed", d.shot_speed, 50, 200_000),
+        p.int("lives", d.lives, 1, 99),
+        p.int("bombs", d.bombs, 0, 9),
     )
     p.done()
     waves_doc = top.raw("wave", [])
@@ -269,17 +323,27 @@ def load_level(path: str | Path) -> Level:
     waves, ships = [], 0
     for i, w in enumerate(waves_doc):
         t = Table(w, path, f"wave[{i}]")
-        waves.append(WaveSpec(
-            at=t.num("at", 0.0, 0, 3600), enemy=t.sprite("enemy", MISSING), count=t.int("count", 1, 1, 1000),
-            every=t.num("every", 0.5, 0, 60), hp=t.int("hp", 1, 1, 100_000), score=t.int("score", 100, 0, 10**7),
-            path=_path(t), fire=_fire(t), mirror=t.bool("mirror", False), difficulties=_difficulties(t),
-            drops=_drops(t, Drops()),
-        ))
+        waves.append(
+            WaveSpec(
+                at=t.num("at", 0.0, 0, 3600),
+                enemy=t.sprite("enemy", MISSING),
+                count=t.int("count", 1, 1, 1000),
+                every=t.num("every", 0.5, 0, 60),
+                hp=t.int("hp", 1, 1, 100_000),
+                score=t.int("score", 100, 0, 10**7),
+                path=_path(t),
+                fire=_fire(t),
+                mirror=t.bool("mirror", False),
+                difficulties=_difficulties(t),
+                drops=_drops(t, Drops()),
+            )
+        )
         t.done(FIRE_KEYS)
         ships += waves[-1].count * (2 if waves[-1].mirror else 1)
         if ships > SHIPS_MAX:
-            raise t.error("count", f"the waves up to here send {ships:,} ships; "
-                                   f"a level sends at most {SHIPS_MAX:,} in all")
+            raise t.error(
+                "count", f"the waves up to here send {ships:,} ships; a level sends at most {SHIPS_MAX:,} in all"
+            )
     boss = None
     if "boss" in doc:
         t = Table(top.raw("boss", {}), path, "boss")
@@ -291,14 +355,22 @@ def load_level(path: str | Path) -> Level:
         parts = []
         for i, pd in enumerate(parts_doc):
             pt = Table(pd, path, f"boss.part[{i}]")
-            parts.append(BossPart(pt.sprite("sprite", MISSING), _offset(pt), pt.num("spin", 0.0, -3600, 3600),
-                                  _fire(pt)))
+            parts.append(
+                BossPart(pt.sprite("sprite", MISSING), _offset(pt), pt.num("spin", 0.0, -3600, 3600), _fire(pt))
+            )
             pt.done(FIRE_KEYS)
         phases = _phases(t, len(parts))
         hp = sum(p.hp for p in phases) if phases else t.int("hp", 100, 1, 10**7)
-        boss = BossSpec(t.num("at", 0.0, 0, 3600), hp, t.int("score", 10_000, 0, 10**8),
-                        t.num("y", 150.0, 0, 2000), t.num("sway", 80.0, 0, 1000), tuple(parts), phases,
-                        _drops(t, BOSS_DROPS))
+        boss = BossSpec(
+            t.num("at", 0.0, 0, 3600),
+            hp,
+            t.int("score", 10_000, 0, 10**8),
+            t.num("y", 150.0, 0, 2000),
+            t.num("sway", 80.0, 0, 1000),
+            tuple(parts),
+            phases,
+            _drops(t, BOSS_DROPS),
+        )
         t.done()
     difficulty = _difficulty(top.raw("difficulty", {}), path)
     top.done(("boss",))

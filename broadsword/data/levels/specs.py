@@ -54,6 +54,7 @@ PATHS = tuple(k.value for k in PathKind)
 #: What ``fire`` may say (a BulletML file is named by ``pattern`` instead).
 PATTERNS = tuple(k.value for k in FireKind if k is not FireKind.BULLETML)
 
+
 @dataclass(frozen=True)
 class SceneSpec:
     """What the level's collision scene computes; nothing it does not name is computed."""
@@ -92,7 +93,7 @@ class FireSpec:
     delay: float = 0.5  # s after spawning before the first volley
     file: str = ""  # BULLETML: the level's ``pattern`` value, as written
     params: tuple[float, ...] = ()  # BULLETML: ``$1``, ``$2``...
-    bulletml: "Pattern | None" = field(default=None, compare=False, repr=False)
+    bulletml: Pattern | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         object.__setattr__(self, "pattern", FireKind(self.pattern))  # a name from a file or a test

@@ -20,12 +20,18 @@ def open_document(path: str | Path, frames: int = 1) -> document.ArmatureDocumen
 
 def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
-        prog="broadsword edit", description="Edit a sprite's armatures (hit shapes) over the sprite.",
+        prog="broadsword edit",
+        description="Edit a sprite's armatures (hit shapes) over the sprite.",
         epilog="PATH: an armature file, or a sprite PNG (opens the armature file beside it, or starts a new one "
-               "traced from the sprite; nothing is written until Ctrl+S).")
+        "traced from the sprite; nothing is written until Ctrl+S).",
+    )
     ap.add_argument("path", help="an .armature.toml file or a sprite .png")
-    ap.add_argument("--frames", type=int, default=1,
-                    help="a new file's sprite is a horizontal strip of this many frames (default 1)")
+    ap.add_argument(
+        "--frames",
+        type=int,
+        default=1,
+        help="a new file's sprite is a horizontal strip of this many frames (default 1)",
+    )
     return ap
 
 

@@ -42,8 +42,12 @@ class Editor:
     and :meth:`frame`; the properties below read the parts.
     """
 
-    def __init__(self, document: ArmatureDocument | str | Path, size: tuple[int, int] = WINDOW_SIZE,
-                 surface: pygame.Surface | None = None):
+    def __init__(
+        self,
+        document: ArmatureDocument | str | Path,
+        size: tuple[int, int] = WINDOW_SIZE,
+        surface: pygame.Surface | None = None,
+    ):
         doc = document if isinstance(document, ArmatureDocument) else open_document(document)
         pygame.display.init()  # no audio: the editor makes no sound
         pygame.font.init()

@@ -60,8 +60,14 @@ class Panel:
         y += 20
         w, hh = s.frame_size
         self._text(win, f"{s.doc.sprite}, {w} x {hh} px", (x, y), DIM, self.small)
-        self._text(win, f"frame {s.frame_index + 1} / {len(s.frames)}", (x + width, y),
-                   TEXT if len(s.frames) > 1 else DIM, self.small, anchor="topright")
+        self._text(
+            win,
+            f"frame {s.frame_index + 1} / {len(s.frames)}",
+            (x + width, y),
+            TEXT if len(s.frames) > 1 else DIM,
+            self.small,
+            anchor="topright",
+        )
         y += 26
         for name in s.names:  # the shape list, active highlighted
             active = name == s.shape
@@ -99,16 +105,25 @@ class Panel:
         if c.probe_hit is None:
             y = self._row(win, y, "probe", "off", DIM)
         else:
-            y = self._row(win, y, "probe", "CONTACT" if c.probe_hit else "clear", PROBE_HIT if c.probe_hit else PROBE_CLEAR)
-        state = ("new, not saved" if s.doc.new else "unsaved changes" if s.dirty
-                 else "saved" if s.saved_here else "unchanged")
+            y = self._row(
+                win, y, "probe", "CONTACT" if c.probe_hit else "clear", PROBE_HIT if c.probe_hit else PROBE_CLEAR
+            )
+        state = (
+            "new, not saved"
+            if s.doc.new
+            else "unsaved changes"
+            if s.dirty
+            else "saved"
+            if s.saved_here
+            else "unchanged"
+        )
         return self._row(win, y, "file", state, BAD if s.dirty else GOOD)
 
     def _messages(self, win, x: int, width: int, y: int, h: int) -> None:
         s = self.c.session
         help_top = h - 12 - 17 * len(HELP)
         if s.message:
-            for line in wrap_text(s.message, self.small, width)[:max(0, (help_top - 8 - y) // 17)]:
+            for line in wrap_text(s.message, self.small, width)[: max(0, (help_top - 8 - y) // 17)]:
                 self._text(win, line, (x, y), BAD if s.message_bad else GOOD, self.small)
                 y += 17
         x0 = self.c.viewport.view.right

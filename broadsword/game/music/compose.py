@@ -182,8 +182,11 @@ def _arp(song: Song) -> list[Note]:
     out = []
     for start in range(song.bars * 16):
         degree = song.chord_at(start)
-        tones = [p + 12 * o for o in (0, 1) for p in sorted(ARP_LOW + (song.key.pitch(s) - ARP_LOW) % 12
-                                                            for s in Key.chord_steps(degree))]
+        tones = [
+            p + 12 * o
+            for o in (0, 1)
+            for p in sorted(ARP_LOW + (song.key.pitch(s) - ARP_LOW) % 12 for s in Key.chord_steps(degree))
+        ]
         cycle = tones + tones[-2:0:-1]  # up, then back down
         pitch = cycle[(start % 16) % len(cycle)]
         velocity = 0.8 if start % 4 == 0 else 0.55

@@ -14,10 +14,9 @@ rate`` (with room for vibrato), so high notes and low sample rates do not alias.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from types import MappingProxyType
-
 from dataclasses import dataclass
 from enum import Enum
+from types import MappingProxyType
 
 import numpy as np
 
@@ -48,12 +47,12 @@ class Wave(Enum):
         if self is Wave.SAW:
             return 1.0 / k
         if self is Wave.SOFT_SAW:
-            return 1.0 / k ** 1.6
+            return 1.0 / k**1.6
         if self is Wave.SQUARE:
             return odd / k
         if self is Wave.PULSE:
             return np.sin(np.pi * k * 0.25) / k
-        return odd * np.where(((k - 1) // 2) % 2 == 0, 1.0, -1.0) / k ** 2  # TRIANGLE
+        return odd * np.where(((k - 1) // 2) % 2 == 0, 1.0, -1.0) / k**2  # TRIANGLE
 
 
 class Voice(Enum):
@@ -99,18 +98,21 @@ class Patch:
     fm: tuple[float, float, float] | None = None
 
 
-PATCHES: Mapping[Voice, Patch] = MappingProxyType({
-    Voice.LEAD_PULSE: Patch(Wave.PULSE, 40, 0.006, 0.25, 0.65, 0.08, 0.55, pan=0.08, vibrato=(0.25, 5.5, 0.18)),
-    Voice.LEAD_SQUARE: Patch(Wave.SQUARE, 30, 0.006, 0.20, 0.60, 0.08, 0.50, pan=0.05, vibrato=(0.20, 5.0, 0.20)),
-    Voice.LEAD_SAW: Patch(Wave.SAW, 36, 0.008, 0.30, 0.60, 0.10, 0.45, pan=0.05, detune=8.0,
-                          vibrato=(0.22, 6.0, 0.15)),
-    Voice.BELL: Patch(Wave.SINE, 1, 0.003, 0.55, 0.0, 0.35, 0.60, pan=0.1, fm=(3.5, 1.8, 0.25)),
-    Voice.BRASS: Patch(Wave.SAW, 24, 0.030, 0.40, 0.75, 0.12, 0.45, detune=6.0, vibrato=(0.15, 5.0, 0.25)),
-    Voice.BASS: Patch(Wave.SAW, 10, 0.004, 0.18, 0.45, 0.05, 0.80),
-    Voice.BASS_GRIT: Patch(Wave.SQUARE, 14, 0.003, 0.12, 0.55, 0.04, 0.70),
-    Voice.PAD: Patch(Wave.SOFT_SAW, 12, 0.15, 1.2, 0.70, 0.25, 0.22, detune=12.0),
-    Voice.ARP: Patch(Wave.TRIANGLE, 15, 0.003, 0.09, 0.0, 0.05, 0.35, pan=-0.35),
-})
+PATCHES: Mapping[Voice, Patch] = MappingProxyType(
+    {
+        Voice.LEAD_PULSE: Patch(Wave.PULSE, 40, 0.006, 0.25, 0.65, 0.08, 0.55, pan=0.08, vibrato=(0.25, 5.5, 0.18)),
+        Voice.LEAD_SQUARE: Patch(Wave.SQUARE, 30, 0.006, 0.20, 0.60, 0.08, 0.50, pan=0.05, vibrato=(0.20, 5.0, 0.20)),
+        Voice.LEAD_SAW: Patch(
+            Wave.SAW, 36, 0.008, 0.30, 0.60, 0.10, 0.45, pan=0.05, detune=8.0, vibrato=(0.22, 6.0, 0.15)
+        ),
+        Voice.BELL: Patch(Wave.SINE, 1, 0.003, 0.55, 0.0, 0.35, 0.60, pan=0.1, fm=(3.5, 1.8, 0.25)),
+        Voice.BRASS: Patch(Wave.SAW, 24, 0.030, 0.40, 0.75, 0.12, 0.45, detune=6.0, vibrato=(0.15, 5.0, 0.25)),
+        Voice.BASS: Patch(Wave.SAW, 10, 0.004, 0.18, 0.45, 0.05, 0.80),
+        Voice.BASS_GRIT: Patch(Wave.SQUARE, 14, 0.003, 0.12, 0.55, 0.04, 0.70),
+        Voice.PAD: Patch(Wave.SOFT_SAW, 12, 0.15, 1.2, 0.70, 0.25, 0.22, detune=12.0),
+        Voice.ARP: Patch(Wave.TRIANGLE, 15, 0.003, 0.09, 0.0, 0.05, 0.35, pan=-0.35),
+    }
+)
 
 
 class Tables:
@@ -176,8 +178,7 @@ def _oscillator(p: Patch, freq: float, n: int, rate: int, tables: Tables, cents:
     return table[i] * (1.0 - frac) + table[i + 1] * frac
 
 
-def note(voice: Voice, pitch: float, gate_seconds: float, velocity: float, rate: int,
-         tables: Tables) -> np.ndarray:
+def note(voice: Voice, pitch: float, gate_seconds: float, velocity: float, rate: int, tables: Tables) -> np.ndarray:
     """Stereo samples ``(n, 2)`` of ``voice`` playing MIDI ``pitch`` held for ``gate_seconds``.
 
     ``n = round(gate_seconds * rate) + round(release * rate)``; both ends exactly 0.
@@ -220,8 +221,11 @@ def drum(kind: Drum, rate: int) -> np.ndarray:
         rattle /= max(1e-12, float(np.max(np.abs(rattle))))
         return _shaped(0.55 * tone + 0.9 * rattle * np.exp(-t / 0.085), rate, 0.05)
     if kind in (Drum.HAT, Drum.OPEN_HAT, Drum.CRASH):
-        seconds, tau, corner = {Drum.HAT: (0.07, 0.018, 7000.0), Drum.OPEN_HAT: (0.32, 0.11, 6000.0),
-                                Drum.CRASH: (1.6, 0.55, 3500.0)}[kind]
+        seconds, tau, corner = {
+            Drum.HAT: (0.07, 0.018, 7000.0),
+            Drum.OPEN_HAT: (0.32, 0.11, 6000.0),
+            Drum.CRASH: (1.6, 0.55, 3500.0),
+        }[kind]
         t = np.arange(int(seconds * rate)) / rate
         hiss = fft_filter(noise(kind.value, t.size), rate, low=min(corner, nyq * 0.8))
         hiss /= max(1e-12, float(np.max(np.abs(hiss))))

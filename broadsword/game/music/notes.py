@@ -9,10 +9,9 @@ key's own scale (so in harmonic minor, degree 5 is a major chord with a leading 
 
 from __future__ import annotations
 
-from types import MappingProxyType
-
 from dataclasses import dataclass
 from enum import Enum
+from types import MappingProxyType
 
 __all__ = ["Mode", "Key", "midi_to_hz", "NOTE_NAMES"]
 

@@ -50,10 +50,15 @@ class MusicPlayer:
     made (default: printed to stderr); a track that failed is not tried again.
     """
 
-    def __init__(self, cache: MusicCache | None = None, *, background: bool = True,
-                 songs: Mapping[Track, Song] = SONGS,
-                 renderer: Callable[[Song, int], np.ndarray] = render,
-                 report: Callable[[str], None] | None = None):
+    def __init__(
+        self,
+        cache: MusicCache | None = None,
+        *,
+        background: bool = True,
+        songs: Mapping[Track, Song] = SONGS,
+        renderer: Callable[[Song, int], np.ndarray] = render,
+        report: Callable[[str], None] | None = None,
+    ):
         self.cache = cache
         self.background = background
         self.songs = songs
@@ -117,8 +122,12 @@ class MusicPlayer:
     def update(self) -> None:
         """Start the wanted track if it is ready and not playing (the worker normally has)."""
         with self._lock:
-            if self._mixer_ready() and self.wanted is not None and self.wanted != self.playing \
-                    and self.wanted in self._sounds:
+            if (
+                self._mixer_ready()
+                and self.wanted is not None
+                and self.wanted != self.playing
+                and self.wanted in self._sounds
+            ):
                 self._start(self.wanted)
 
     def set_volume(self, volume: float, muted: bool) -> None:
@@ -223,8 +232,7 @@ class MusicPlayer:
         if not self.background:
             self._work(self._spec)
             return
-        self._worker = threading.Thread(target=self._work, args=(self._spec,), name="broadsword-music",
-                                        daemon=True)
+        self._worker = threading.Thread(target=self._work, args=(self._spec,), name="broadsword-music", daemon=True)
         self._worker.start()
 
     # ------------------------------------------------------------------ the worker

@@ -18,7 +18,7 @@ from types import MappingProxyType
 import numpy as np
 
 from ..dsp import FULL_SCALE, fade, fft_filter
-from .compose import Hit, Note, compose
+from .compose import compose
 from .instruments import Drum, Tables, Voice, drum, note
 from .songs import Song
 
@@ -30,10 +30,12 @@ PEAK = 0.30
 #: Each instrument layer's RMS relative to the others: the melody on top, the pad and arpeggio behind.
 MIX = MappingProxyType({"lead": 0.55, "bass": 0.42, "drums": 0.45, "pad": 0.2, "arp": 0.16})
 _LAYER_OF = MappingProxyType({Voice.BASS: "bass", Voice.BASS_GRIT: "bass", Voice.PAD: "pad", Voice.ARP: "arp"})
-_DRUM_PAN = MappingProxyType({Drum.KICK: 0.0, Drum.SNARE: 0.05, Drum.HAT: 0.3, Drum.OPEN_HAT: 0.3, Drum.CRASH: -0.25,
-             Drum.TOM: -0.2})
-_DRUM_GAIN = MappingProxyType({Drum.KICK: 1.0, Drum.SNARE: 0.75, Drum.HAT: 0.35, Drum.OPEN_HAT: 0.3, Drum.CRASH: 0.4,
-              Drum.TOM: 0.7})
+_DRUM_PAN = MappingProxyType(
+    {Drum.KICK: 0.0, Drum.SNARE: 0.05, Drum.HAT: 0.3, Drum.OPEN_HAT: 0.3, Drum.CRASH: -0.25, Drum.TOM: -0.2}
+)
+_DRUM_GAIN = MappingProxyType(
+    {Drum.KICK: 1.0, Drum.SNARE: 0.75, Drum.HAT: 0.35, Drum.OPEN_HAT: 0.3, Drum.CRASH: 0.4, Drum.TOM: 0.7}
+)
 
 
 def step_samples(song: Song, rate: int) -> int:
@@ -118,7 +120,7 @@ def render(song: Song, rate: int, bars: int | None = None) -> np.ndarray:
 
 def _balanced(layer: np.ndarray, share: float) -> np.ndarray:
     """``layer`` scaled to RMS ``share`` (silent layers stay silent)."""
-    rms = float(np.sqrt(np.mean(layer ** 2)))
+    rms = float(np.sqrt(np.mean(layer**2)))
     return layer * (share / rms) if rms > 0.0 else layer
 
 
@@ -132,13 +134,13 @@ def _add(buf: np.ndarray, start: int, x: np.ndarray, wrap: bool) -> None:
     n = buf.shape[0]
     if not wrap:
         k = max(0, min(x.shape[0], n - start))
-        buf[start:start + k] += x[:k]
+        buf[start : start + k] += x[:k]
         return
     pos = 0
     while pos < x.shape[0]:
         s = (start + pos) % n
         k = min(n - s, x.shape[0] - pos)
-        buf[s:s + k] += x[pos:pos + k]
+        buf[s : s + k] += x[pos : pos + k]
         pos += k
 
 
@@ -156,7 +158,7 @@ def _echo(x: np.ndarray, delay: int, wrap: bool, taps: tuple[float, ...] = (0.30
 
 def _level(mix: np.ndarray) -> np.ndarray:
     """Scale to TARGET_RMS (peak capped at PEAK) and quantise to int16."""
-    rms = float(np.sqrt(np.mean(mix ** 2)))
+    rms = float(np.sqrt(np.mean(mix**2)))
     peak = float(np.max(np.abs(mix)))
     if rms <= 0.0:
         return np.zeros(mix.shape, dtype=np.int16)

@@ -42,6 +42,14 @@ class Track(Enum):
 
 #: The order a game meets the tracks in: the order to render them ahead of need.
 PLAY_ORDER: tuple[Track, ...] = (
-    Track.TITLE, Track.STAGE_1, Track.BOSS, Track.CLEAR, Track.GAME_OVER, Track.STAGE_2, Track.STAGE_3,
-    Track.STAGE_4, Track.STAGE_5, Track.FINAL_BOSS,
+    Track.TITLE,
+    Track.STAGE_1,
+    Track.BOSS,
+    Track.CLEAR,
+    Track.GAME_OVER,
+    Track.STAGE_2,
+    Track.STAGE_3,
+    Track.STAGE_4,
+    Track.STAGE_5,
+    Track.FINAL_BOSS,
 )

@@ -19,5 +19,16 @@ from .play import Play
 from .results import Results
 from .title import Title
 
-__all__ = ["Continue", "GameOver", "HighScoresScene", "NameEntry", "OptionsScene", "Pause", "Play", "Results",
-           "Scene", "SceneStack", "Title"]
+__all__ = [
+    "Continue",
+    "GameOver",
+    "HighScoresScene",
+    "NameEntry",
+    "OptionsScene",
+    "Pause",
+    "Play",
+    "Results",
+    "Scene",
+    "SceneStack",
+    "Title",
+]

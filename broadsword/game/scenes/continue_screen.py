@@ -57,6 +57,7 @@ class Continue:
         p.veil(170)
         p.text("CONTINUE?", 230, ui.BIG, ui.GOLD)
         p.text(f"{max(0, int(self.left + 0.999))}", 300, ui.BIG, ui.WHITE)
-        p.text(f"{CONTINUES - used} of {CONTINUES} continues left; the score restarts at {used + 1}", 360,
-               colour=ui.DIM)
+        p.text(
+            f"{CONTINUES - used} of {CONTINUES} continues left; the score restarts at {used + 1}", 360, colour=ui.DIM
+        )
         p.text("Enter or Z: continue   Esc: end the run", 390, colour=ui.DIM)

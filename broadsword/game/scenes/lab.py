@@ -59,7 +59,9 @@ class LabScene:
         sc = lab.scene
         h = surf.get_height()
         state = "   PAUSED (Space)" if self.paused else ""
-        p.text(f"LAB: {sc.enemies} ships, {sc.bullets} bullets, {'+'.join(lab.pipeline.tiers)}{state}", h - 34,
-               colour=(255, 230, 170))
-        p.text("T tiers   Left/Right scale   F1 overlay   F4 rotation   Space pause   Esc quit", h - 14,
-               colour=ui.DIM)
+        p.text(
+            f"LAB: {sc.enemies} ships, {sc.bullets} bullets, {'+'.join(lab.pipeline.tiers)}{state}",
+            h - 34,
+            colour=(255, 230, 170),
+        )
+        p.text("T tiers   Left/Right scale   F1 overlay   F4 rotation   Space pause   Esc quit", h - 14, colour=ui.DIM)

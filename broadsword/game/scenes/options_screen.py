@@ -28,10 +28,17 @@ class Row:
     command: str = ""  # "reset" or "back"
 
 
-ROWS = ([Row("Difficulty", "difficulty"), Row("Music volume", "music"), Row("Sound volume", "sound"),
-         Row("Fullscreen (F11)", "fullscreen"), Row("Always show hit shape", "always_hitbox")]
-        + [Row(a.title, action=a) for a in REBINDABLE]
-        + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")])
+ROWS = (
+    [
+        Row("Difficulty", "difficulty"),
+        Row("Music volume", "music"),
+        Row("Sound volume", "sound"),
+        Row("Fullscreen (F11)", "fullscreen"),
+        Row("Always show hit shape", "always_hitbox"),
+    ]
+    + [Row(a.title, action=a) for a in REBINDABLE]
+    + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")]
+)
 
 
 class OptionsScene:
@@ -141,7 +148,10 @@ class OptionsScene:
             colour = ui.GOLD if chosen else ui.WHITE
             p.text(row.label, y, colour=colour, x=w * 0.45, anchor="midright")
             p.text(self.value(row), y, colour=ui.CREAM if chosen else ui.DIM, x=w * 0.45 + 14, anchor="midleft")
-        p.text(self.note or "Up/Down choose   Left/Right change   Enter rebind   Esc back", 580,
-               colour=ui.WARN if "fixed" in self.note else ui.DIM)
+        p.text(
+            self.note or "Up/Down choose   Left/Right change   Enter rebind   Esc back",
+            580,
+            colour=ui.WARN if "fixed" in self.note else ui.DIM,
+        )
         if app.message:
             p.text(app.message, 606, 20, ui.WARN)

@@ -141,16 +141,24 @@ class Play:
         self.source.stepped(world)
         self.app.renderer.on_events(ev)
         audio = self.app.audio
-        for happened, sound in ((ev.shots, "shot"), (ev.grazes, "graze"), (ev.damaged, "hit"),
-                                (ev.player_hit, "player_hit")):
+        for happened, sound in (
+            (ev.shots, "shot"),
+            (ev.grazes, "graze"),
+            (ev.damaged, "hit"),
+            (ev.player_hit, "player_hit"),
+        ):
             if happened:
                 audio.play(sound)
         if ev.kills:
             audio.play("big_explosion" if ev.boss_killed else "explosion")
         if isinstance(self.source, ReplayInput):
             playback = self.source.playback
-            if playback.mismatch is not None or playback.done or world.complete or (
-                    world.over and not self._continue_pending(playback)):
+            if (
+                playback.mismatch is not None
+                or playback.done
+                or world.complete
+                or (world.over and not self._continue_pending(playback))
+            ):
                 self._end_replay()
         elif ev.game_over:
             self._game_over()

@@ -23,17 +23,24 @@ class ReplayEnd:
         if playback.mismatch is not None:
             m = playback.mismatch
             self.ok = False
-            self.lines = [f"The replay differs from frame {m.frame:,}",
-                          f"recorded {m.expected[:16]}...", f"this run {m.got[:16]}..."]
+            self.lines = [
+                f"The replay differs from frame {m.frame:,}",
+                f"recorded {m.expected[:16]}...",
+                f"this run {m.got[:16]}...",
+            ]
         elif final is False:
             self.ok = False
-            self.lines = [f"The replay ended at frame {world.frame:,} in another state",
-                          "than the one recorded (final state hash differs)"]
+            self.lines = [
+                f"The replay ended at frame {world.frame:,} in another state",
+                "than the one recorded (final state hash differs)",
+            ]
         else:
             self.ok = True
             what = "cleared" if world.complete else "game over" if world.over else "ended"
-            self.lines = [f"Replay finished at frame {world.frame:,} ({what})",
-                          f"every checkpoint matched; score {world.score.points:,}"]
+            self.lines = [
+                f"Replay finished at frame {world.frame:,} ({what})",
+                f"every checkpoint matched; score {world.score.points:,}",
+            ]
 
     def handle(self, event: pygame.event.Event) -> bool:
         actions = self.app.controls.actions(event)

@@ -30,17 +30,35 @@ class Results:
         """``(label, value, colour)`` for each line of the table."""
         w = self.play.world
         paid = dict(w.progress.bonuses)
-        rows = [("Stage score", f"{w.score.points - w.carry.score:,}", ui.WHITE),
-                ("Grazes", f"{w.score.grazes:,}", ui.WHITE), ("Items", f"{w.score.items:,}", ui.WHITE)]
-        rows += [(f"{name.capitalize()} bonus", f"+{points:,}", ui.GOOD) for name, points in w.progress.bonuses
-                 if name not in (NO_MISS, NO_BOMB)]
+        rows = [
+            ("Stage score", f"{w.score.points - w.carry.score:,}", ui.WHITE),
+            ("Grazes", f"{w.score.grazes:,}", ui.WHITE),
+            ("Items", f"{w.score.items:,}", ui.WHITE),
+        ]
+        rows += [
+            (f"{name.capitalize()} bonus", f"+{points:,}", ui.GOOD)
+            for name, points in w.progress.bonuses
+            if name not in (NO_MISS, NO_BOMB)
+        ]
         misses, bombs = w.player.misses, w.progress.bombs_used
-        rows.append(("No-miss bonus", f"+{paid[NO_MISS]:,}" if NO_MISS in paid else
-                     f"-- ({misses} miss{'es' if misses != 1 else ''}; {NO_MISS_BONUS:,} without)",
-                     ui.GOOD if NO_MISS in paid else ui.DIM))
-        rows.append(("No-bomb bonus", f"+{paid[NO_BOMB]:,}" if NO_BOMB in paid else
-                     f"-- ({bombs} bomb{'s' if bombs != 1 else ''}; {NO_BOMB_BONUS:,} without)",
-                     ui.GOOD if NO_BOMB in paid else ui.DIM))
+        rows.append(
+            (
+                "No-miss bonus",
+                f"+{paid[NO_MISS]:,}"
+                if NO_MISS in paid
+                else f"-- ({misses} miss{'es' if misses != 1 else ''}; {NO_MISS_BONUS:,} without)",
+                ui.GOOD if NO_MISS in paid else ui.DIM,
+            )
+        )
+        rows.append(
+            (
+                "No-bomb bonus",
+                f"+{paid[NO_BOMB]:,}"
+                if NO_BOMB in paid
+                else f"-- ({bombs} bomb{'s' if bombs != 1 else ''}; {NO_BOMB_BONUS:,} without)",
+                ui.GOOD if NO_BOMB in paid else ui.DIM,
+            )
+        )
         rows.append(("Score", f"{w.score.points:,}", ui.GOLD))
         return rows
 

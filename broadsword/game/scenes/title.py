@@ -22,14 +22,18 @@ DIFFICULTIES = list(Difficulty)
 
 def controls_list(b: Bindings) -> list[tuple[str, str]]:
     """(keys, what) rows of the title's key table, from the bindings in use."""
+
     def keys(a: Action) -> str:
         labels = [key_label(k).removeprefix("Left ").removeprefix("Right ") for k in b.keys.get(a, ())]
         return " / ".join(dict.fromkeys(labels)) or "(none)"  # Left Shift / Right Shift: Shift
 
-    move = ("Arrows / WASD" if all(b.keys.get(a) == DEFAULT_KEYS[a] for a in DEFAULT_KEYS if a.value in
-                                   ("left", "right", "up", "down"))
-            else " ".join(key_label(b.keys[a][0]) for a in (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN)
-                          if b.keys.get(a)))
+    move = (
+        "Arrows / WASD"
+        if all(b.keys.get(a) == DEFAULT_KEYS[a] for a in DEFAULT_KEYS if a.value in ("left", "right", "up", "down"))
+        else " ".join(
+            key_label(b.keys[a][0]) for a in (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN) if b.keys.get(a)
+        )
+    )
     return [
         (move, "move"),
         (keys(Action.FIRE), "fire"),

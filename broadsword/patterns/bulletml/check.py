@@ -34,8 +34,9 @@ class Report:
     refused: int
 
 
-def summarize(pattern: Pattern, frames: int = 1200, rank: float = 0.5, seed: int = 0,
-              params: tuple[float, ...] = ()) -> Report:
+def summarize(
+    pattern: Pattern, frames: int = 1200, rank: float = 0.5, seed: int = 0, params: tuple[float, ...] = ()
+) -> Report:
     """Run ``pattern`` (top actions given ``params`` as ``$1``...) for at most ``frames``
     frames, stopping early once nothing has actions left, and report what it did."""
     eng = Engine(rank=rank, seed=seed)
@@ -47,7 +48,9 @@ def summarize(pattern: Pattern, frames: int = 1200, rank: float = 0.5, seed: int
         eng.step()
         b = eng.bullets
         p = b.pos[: b.n]
-        b.keep((p[:, 0] > -MARGIN) & (p[:, 0] < FIELD[0] + MARGIN) & (p[:, 1] > -MARGIN) & (p[:, 1] < FIELD[1] + MARGIN))
+        b.keep(
+            (p[:, 0] > -MARGIN) & (p[:, 0] < FIELD[0] + MARGIN) & (p[:, 1] > -MARGIN) & (p[:, 1] < FIELD[1] + MARGIN)
+        )
         peak = max(peak, b.n)
         if duration is None and eng.emitters_done():
             duration = eng.frame

@@ -56,8 +56,16 @@ class Engine:
     def set_rank(self, rank: float) -> None:
         self.rank = self.scope.rank = float(rank)
 
-    def add_emitter(self, pattern: Pattern, pos, params: tuple[float, ...] = (), tag: int = 0, owner: int = 0,
-                    start: int | None = None, direction: float = 0.0) -> int:
+    def add_emitter(
+        self,
+        pattern: Pattern,
+        pos,
+        params: tuple[float, ...] = (),
+        tag: int = 0,
+        owner: int = 0,
+        start: int | None = None,
+        direction: float = 0.0,
+    ) -> int:
         """Start ``pattern`` from a new emitter at ``pos``; returns the emitter's row. Its top
         actions see ``params`` as ``$1``, ``$2``... and first run at frame ``start`` (default:
         this frame). Its bullets carry ``tag``; ``owner`` is the caller's id for it. The
@@ -87,14 +95,25 @@ class Engine:
         else:
             movers.runner[row].gone = True  # an emitter that vanishes ends its pattern
 
-    def spawn(self, movers: Movers, row: int, direction: float, speed: float, pattern: Pattern, actions,
-              params) -> None:
+    def spawn(
+        self, movers: Movers, row: int, direction: float, speed: float, pattern: Pattern, actions, params
+    ) -> None:
         if movers.mute[row]:
             return
         runner = Runner([Thread(pattern, actions, params)]) if actions else None
         p = movers.pos[row]
-        if self.bullets.add_one(float(p[0]), float(p[1]), direction, speed, runner,
-                                self.frame + 1 if runner else NEVER, int(movers.tag[row])) is not None:
+        if (
+            self.bullets.add_one(
+                float(p[0]),
+                float(p[1]),
+                direction,
+                speed,
+                runner,
+                self.frame + 1 if runner else NEVER,
+                int(movers.tag[row]),
+            )
+            is not None
+        ):
             self.fired += 1
 
     # -- one frame ----------------------------------------------------------------------
@@ -140,7 +159,9 @@ class Engine:
     def running(self) -> int:
         """How many emitters and bullets still have actions running: commands to come or a
         change (direction, speed, accel) under way."""
-        return sum(int(np.count_nonzero((mv.wake != NEVER) | mv.ch_on.any(axis=1))) for mv in (self.emitters, self.bullets))
+        return sum(
+            int(np.count_nonzero((mv.wake != NEVER) | mv.ch_on.any(axis=1))) for mv in (self.emitters, self.bullets)
+        )
 
     def emitters_done(self) -> bool:
         """True once no emitter has commands left (its bullets may still be acting)."""

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -177,8 +177,10 @@ class _Parser:
                 self.max_param = max(self.max_param, n)
                 k = n - 1
                 return None, lambda s: s.params[k] if k < len(s.params) else 0.0
-        raise ValueError(f"expression {_short(self.text)}: unknown variable {text[:20]!r} "
-                         f"(expected $rand, $rank or $1..${MAX_PARAM_INDEX})")
+        raise ValueError(
+            f"expression {_short(self.text)}: unknown variable {text[:20]!r} "
+            f"(expected $rand, $rank or $1..${MAX_PARAM_INDEX})"
+        )
 
 
 def _chain(first, rest, text: str):

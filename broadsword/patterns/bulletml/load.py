@@ -14,15 +14,43 @@ from typing import Any, Literal, NoReturn, overload
 
 from .expr import Expr, compile_expression
 from .limits import MAX_PARAMS, MAX_REF_CHAIN, MAX_REPEAT
-from .model import (Accel, Action, ActionRef, Bullet, BulletRef, ChangeDirection, ChangeSpeed, DirKind, Direction, Fire,
-                    FireRef, Orientation, Pattern, Repeat, Speed, SpeedKind, Vanish, Wait)
+from .model import (
+    Accel,
+    Action,
+    ActionRef,
+    Bullet,
+    BulletRef,
+    ChangeDirection,
+    ChangeSpeed,
+    Direction,
+    DirKind,
+    Fire,
+    FireRef,
+    Orientation,
+    Pattern,
+    Repeat,
+    Speed,
+    SpeedKind,
+    Vanish,
+    Wait,
+)
 from .xmlread import Element, read_elements
 
 #: Most actions nested inside one another at run time, counting through references.
 MAX_RUN_DEPTH = 160
 
-_COMMANDS = ("changeDirection", "accel", "vanish", "changeSpeed", "repeat", "wait", "fire", "fireRef", "action",
-             "actionRef")
+_COMMANDS = (
+    "changeDirection",
+    "accel",
+    "vanish",
+    "changeSpeed",
+    "repeat",
+    "wait",
+    "fire",
+    "fireRef",
+    "action",
+    "actionRef",
+)
 _LABELLED = {"action": "actions", "bullet": "bullets", "fire": "fires"}
 
 
@@ -35,8 +63,14 @@ class _Builder:
         raise ValueError(f"{self.name}: {el.where()}: {what}")
 
     # -- shape checks -------------------------------------------------------------------
-    def check(self, el: Element, attrs: tuple[str, ...], allowed: tuple[str, ...] = (), text: bool = False,
-              required: tuple[str, ...] = ()) -> None:
+    def check(
+        self,
+        el: Element,
+        attrs: tuple[str, ...],
+        allowed: tuple[str, ...] = (),
+        text: bool = False,
+        required: tuple[str, ...] = (),
+    ) -> None:
         for key in el.attrs:
             if key not in attrs and not key.startswith("xmlns"):
                 self.fail(el, f"unknown attribute {key[:30]!r} (allowed: {', '.join(attrs) or 'none'})")
@@ -121,15 +155,23 @@ class _Builder:
         self.check(el, ("label",), ("direction", "speed", "action", "actionRef"))
         acts = [self.action(c) for c in el.children if c.tag == "action"]
         refs = [self.ref(c, ActionRef, "actions") for c in el.children if c.tag == "actionRef"]
-        return Bullet(el.attrs.get("label"), self.direction(self.one(el, ("direction",), False)),
-                      self.speed(self.one(el, ("speed",), False)), tuple(acts + refs))
+        return Bullet(
+            el.attrs.get("label"),
+            self.direction(self.one(el, ("direction",), False)),
+            self.speed(self.one(el, ("speed",), False)),
+            tuple(acts + refs),
+        )
 
     def fire(self, el: Element) -> Fire:
         self.check(el, ("label",), ("direction", "speed", "bullet", "bulletRef"))
         b = self.one(el, ("bullet", "bulletRef"), True)
         bullet = self.bullet(b) if b.tag == "bullet" else self.ref(b, BulletRef, "bullets")
-        return Fire(el.attrs.get("label"), self.direction(self.one(el, ("direction",), False)),
-                    self.speed(self.one(el, ("speed",), False)), bullet)
+        return Fire(
+            el.attrs.get("label"),
+            self.direction(self.one(el, ("direction",), False)),
+            self.speed(self.one(el, ("speed",), False)),
+            bullet,
+        )
 
     def command(self, el: Element):
         tag = el.tag
@@ -155,8 +197,11 @@ class _Builder:
             return ChangeSpeed(self.speed(self.one(el, ("speed",), True)), self.term(el))
         if tag == "accel":
             self.check(el, (), ("horizontal", "vertical", "term"))
-            return Accel(self.speed(self.one(el, ("horizontal",), False)),
-                         self.speed(self.one(el, ("vertical",), False)), self.term(el))
+            return Accel(
+                self.speed(self.one(el, ("horizontal",), False)),
+                self.speed(self.one(el, ("vertical",), False)),
+                self.term(el),
+            )
         # repeat (check() allowed nothing else)
         self.check(el, (), ("times", "action", "actionRef"))
         times_el = self.one(el, ("times",), True)
@@ -202,7 +247,9 @@ class _Builder:
         for table, els in self.labels.items():  # labelled elements nested inside others
             for label, el in els.items():
                 if label not in built[table]:
-                    built[table][label] = {"actions": self.action, "bullets": self.bullet, "fires": self.fire}[table](el)
+                    built[table][label] = {"actions": self.action, "bullets": self.bullet, "fires": self.fire}[table](
+                        el
+                    )
         if not top:
             self.fail(root, "no top action (an <action> labelled 'top', or 'top1', 'top2', ...)")
         pattern = Pattern(self.name, orientation, tuple(top), built["actions"], built["bullets"], built["fires"])
@@ -228,7 +275,7 @@ class _RefCheck:
 
     def action_ref(self, label: str, chain: tuple[str, ...], root: Element) -> tuple[int, int]:
         if label in chain:
-            loop = " -> ".join(chain[chain.index(label):] + (label,))
+            loop = " -> ".join(chain[chain.index(label) :] + (label,))
             self.b.fail(self.b.labels["actions"][label], f"actionRef loop: {loop[:200]}")
         if label not in self.depth:
             chain = chain + (label,)
@@ -237,9 +284,11 @@ class _RefCheck:
             hops, nest = self.commands(self.p.actions[label].commands, chain, root)
             self.depth[label] = (hops + 1, nest + 1)
             if hops + 1 > MAX_REF_CHAIN or nest + 1 > MAX_RUN_DEPTH:
-                self.b.fail(self.b.labels["actions"][label],
-                            f"actions nest (through references) deeper than {MAX_REF_CHAIN} references or "
-                            f"{MAX_RUN_DEPTH} levels")
+                self.b.fail(
+                    self.b.labels["actions"][label],
+                    f"actions nest (through references) deeper than {MAX_REF_CHAIN} references or "
+                    f"{MAX_RUN_DEPTH} levels",
+                )
         return self.depth[label]
 
     def body(self, node, chain, root) -> tuple[int, int]:

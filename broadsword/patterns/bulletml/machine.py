@@ -12,8 +12,24 @@ frame after the previous one ends.
 from __future__ import annotations
 
 from .limits import MAX_REPEAT, MAX_STEPS_PER_FRAME
-from .model import (Accel, Action, ActionRef, BulletRef, ChangeDirection, ChangeSpeed, DirKind, Direction, Fire, FireRef,
-                    Orientation, Repeat, Speed, SpeedKind, Vanish, Wait)
+from .model import (
+    Accel,
+    Action,
+    ActionRef,
+    BulletRef,
+    ChangeDirection,
+    ChangeSpeed,
+    Direction,
+    DirKind,
+    Fire,
+    FireRef,
+    Orientation,
+    Repeat,
+    Speed,
+    SpeedKind,
+    Vanish,
+    Wait,
+)
 from .store import AX, AY, DIR, NEVER, SPD, Movers
 
 

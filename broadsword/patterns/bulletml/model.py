@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
-from typing import Union
 
 from .expr import Expr
 
@@ -77,7 +76,7 @@ class BulletRef(Ref):
 @dataclass(frozen=True)
 class Action:
     label: str | None
-    commands: tuple["Command", ...]
+    commands: tuple[Command, ...]
 
 
 @dataclass(frozen=True)
@@ -88,7 +87,7 @@ class Bullet:
     label: str | None
     direction: Direction | None
     speed: Speed | None
-    actions: tuple[Union[Action, ActionRef], ...]
+    actions: tuple[Action | ActionRef, ...]
 
 
 @dataclass(frozen=True)
@@ -96,7 +95,7 @@ class Fire:
     label: str | None
     direction: Direction | None
     speed: Speed | None
-    bullet: Union[Bullet, BulletRef]
+    bullet: Bullet | BulletRef
 
 
 @dataclass(frozen=True)
@@ -131,7 +130,7 @@ class Vanish:
 @dataclass(frozen=True)
 class Repeat:
     times: Expr
-    body: Union[Action, ActionRef]
+    body: Action | ActionRef
 
 
 Command = Action | ActionRef | Fire | FireRef | ChangeDirection | ChangeSpeed | Accel | Wait | Vanish | Repeat

@@ -23,11 +23,23 @@ NEVER = np.iinfo(np.int64).max
 DIR, SPD, AX, AY = 0, 1, 2, 3
 
 #: The columns every Movers has: name -> (shape per row, dtype).
-COLUMNS = {"pos": ((2,), np.float64), "state": ((4,), np.float64), "step": ((2,), np.float64),
-           "dirty": ((), bool), "wake": ((), np.int64), "ch_on": ((4,), bool), "ch_x0": ((4,), np.int64),
-           "ch_x1": ((4,), np.int64), "ch_y0": ((4,), np.float64), "ch_y1": ((4,), np.float64),
-           "runner": ((), object), "dead": ((), bool), "mute": ((), bool), "tag": ((), np.int64),
-           "owner": ((), np.int64)}
+COLUMNS = {
+    "pos": ((2,), np.float64),
+    "state": ((4,), np.float64),
+    "step": ((2,), np.float64),
+    "dirty": ((), bool),
+    "wake": ((), np.int64),
+    "ch_on": ((4,), bool),
+    "ch_x0": ((4,), np.int64),
+    "ch_x1": ((4,), np.int64),
+    "ch_y0": ((4,), np.float64),
+    "ch_y1": ((4,), np.float64),
+    "runner": ((), object),
+    "dead": ((), bool),
+    "mute": ((), bool),
+    "tag": ((), np.int64),
+    "owner": ((), np.int64),
+}
 
 
 class Movers:
@@ -77,8 +89,9 @@ class Movers:
             grown[: self.n] = arr[: self.n]
             self._data[k] = grown
 
-    def add_one(self, x: float, y: float, direction: float, speed: float, runner, wake: int, tag: int = 0,
-                owner: int = 0) -> int | None:
+    def add_one(
+        self, x: float, y: float, direction: float, speed: float, runner, wake: int, tag: int = 0, owner: int = 0
+    ) -> int | None:
         """Append one row (its velocity is computed at the next :meth:`settle`); returns its
         index, or None if the movers are at their ``limit``."""
         if self.full():

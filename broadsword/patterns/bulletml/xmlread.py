@@ -27,7 +27,7 @@ class Element:
     line: int
     path: str = ""
     text: str = ""
-    children: list["Element"] = field(default_factory=list)
+    children: list[Element] = field(default_factory=list)
     parts: list[str] = field(default_factory=list, repr=False)  # text while parsing
     seen: dict[str, int] = field(default_factory=dict, repr=False)  # children per tag while parsing
 
@@ -111,7 +111,10 @@ def read_elements(path: str | os.PathLike, data: bytes | None = None) -> Element
 
     def doctype(name_, sysid, pubid, has_internal_subset):
         if has_internal_subset:
-            refuse(f"(line {parser.CurrentLineNumber})", "a DOCTYPE with an internal subset is refused (entities are never expanded)")
+            refuse(
+                f"(line {parser.CurrentLineNumber})",
+                "a DOCTYPE with an internal subset is refused (entities are never expanded)",
+            )
 
     def entity_decl(*args):
         refuse(f"(line {parser.CurrentLineNumber})", "entity declarations are refused")
@@ -121,7 +124,10 @@ def read_elements(path: str | os.PathLike, data: bytes | None = None) -> Element
         return 0
 
     def skipped(name_, is_param):
-        refuse(here(), f"entity reference &{name_[:20]}; is refused (only &lt; &gt; &amp; &quot; &apos; and character references)")
+        refuse(
+            here(),
+            f"entity reference &{name_[:20]}; is refused (only &lt; &gt; &amp; &quot; &apos; and character references)",
+        )
 
     parser.StartElementHandler = start
     parser.EndElementHandler = end
