@@ -26,7 +26,7 @@ from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..sim import FIELD, World
-from ..sim.replay import Playback
+from ..sim.replay import Playback, Recorder
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
 from .mute_icon import draw_mute_indicator
@@ -132,7 +132,7 @@ class App:
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
         # One line for the title: a set-aside scores file, an unusable options or controls file.
         self.message = "; ".join(w for w in (self.scores.warning, options_warning, bindings_warning) if w) or None
-        self.recorder = None  # the stage in play (or last played), as a recording
+        self.recorder: Recorder | None = None  # the stage in play (or last played), as a recording
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -187,7 +187,7 @@ class App:
             dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
-        steps = self.stack.top.update(dt) if self.running else 0
+        steps = self.stack.current.update(dt) if self.running else 0
         follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
         return steps
@@ -205,7 +205,7 @@ class App:
             self.focused |= t == pygame.WINDOWFOCUSGAINED
         if t == pygame.KEYDOWN and self.overlay.visible and self.overlay.handle_key(event.key):
             return  # F5-F7: the overlay's own keys (swept outlines, panel place, lens)
-        if self.stack.top.handle(event):
+        if self.stack.current.handle(event):
             return
         actions = self.controls.actions(event)
         if Action.MUTE in actions:
