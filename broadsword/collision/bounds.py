@@ -14,7 +14,6 @@ from __future__ import annotations
 import numpy as np
 
 from . import detmath
-from ._indexing import selector
 from .posing import Posed
 from .tolerance import BOUND_SLACK
 
@@ -30,13 +29,14 @@ __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriente
 def aabbs(posed: Posed) -> np.ndarray:
     """Axis-aligned boxes of every posed polygon, (n, 4) float64. Exact (min/max of vertices)."""
     out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
-    for k, idx in posed.members.items():
-        x, y, sel = posed.xs[k], posed.ys[k], selector(idx)
+    for k in posed.members:
+        x, y, sel = posed.xs[k], posed.ys[k], posed.selector(k)
+        # A pool's rows straight into place; otherwise into one (4, n_K) block, scattered once.
+        part = out[:, sel] if isinstance(sel, slice) else np.empty((4, x.shape[1]))
         for row, (v, reduce) in enumerate(((x, np.min), (y, np.min), (x, np.max), (y, np.max))):
-            if isinstance(sel, slice):
-                reduce(v, axis=0, out=out[row, sel])  # a pool: straight into place
-            else:
-                out[row, sel] = reduce(v, axis=0)
+            reduce(v, axis=0, out=part[row])
+        if not isinstance(sel, slice):
+            out[:, sel] = part
     return out.T
 
 
