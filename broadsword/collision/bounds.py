@@ -27,14 +27,41 @@ __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriente
 
 
 def aabbs(posed: Posed) -> np.ndarray:
-    """Axis-aligned boxes of every posed polygon, (n, 4) float64. Exact (min/max of vertices)."""
+    """Axis-aligned boxes of every posed polygon, (n, 4) float64.
+
+    Exact (min/max of vertices) for every polygon posed; for a sweep not built yet
+    (:class:`~broadsword.collision.posing.Sweeps`), the union of its shape's box and that
+    box moved back along the path, ``[min(lo, lo - d), max(hi, hi - d)]`` per axis. Every
+    vertex of the built sweep is a vertex ``v`` of the shape or ``v - d`` computed as one
+    rounded subtraction, and rounding is monotonic, so ``min_k (v_k - d)`` is
+    ``(min_k v_k) - d`` rounded: the union holds every vertex of the sweep. It equals the
+    sweep's own box except where the sweep leaves out a candidate vertex that rounding put
+    outside it (an edge parallel to the path), so it is conservative either way.
+    """
     out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
     for k in posed.members:
-        x, y, sel = posed.xs[k], posed.ys[k], posed.selector(k)
+        x, y, sel = posed.vx[k], posed.vy[k], posed.selector(k)
         # A pool's rows straight into place; otherwise into one (4, n_K) block, scattered once.
         part = out[:, sel] if isinstance(sel, slice) else np.empty((4, x.shape[1]))
-        for row, (v, reduce) in enumerate(((x, np.min), (y, np.min), (x, np.max), (y, np.max))):
-            reduce(v, axis=0, out=part[row])
+        sw = posed.sweeps.get(k)
+        cut = x.shape[1] if sw is None else sw.split
+        if cut:
+            xp, yp = x[:, :cut], y[:, :cut]
+            for row, (v, reduce) in enumerate(((xp, np.min), (yp, np.min), (xp, np.max), (yp, np.max))):
+                reduce(v, axis=0, out=part[row, :cut])
+        if sw is not None:
+            with np.errstate(over="ignore", invalid="ignore"):  # as the built sweep's vertices would
+                for row, (v, d, reduce, pick) in enumerate(
+                    (
+                        (sw.hx, sw.dx, np.min, np.minimum),
+                        (sw.hy, sw.dy, np.min, np.minimum),
+                        (sw.hx, sw.dx, np.max, np.maximum),
+                        (sw.hy, sw.dy, np.max, np.maximum),
+                    )
+                ):
+                    r = part[row, cut:]
+                    reduce(v, axis=0, out=r)
+                    pick(r, r - d, out=r)
         if not isinstance(sel, slice):
             out[:, sel] = part
     return out.T

@@ -36,7 +36,7 @@ pose; sweeping is meant for small, fast things (bullets) against slower ones (sh
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property, partial
 
 import numpy as np
@@ -150,6 +150,52 @@ class ArmatureSet:
 
 
 @dataclass
+class Sweeps:
+    """The swept polygons of one size class, before they are built.
+
+    A sweep's box needs only its shape at the current pose and its path, so posing stops
+    there: the polygons (``2 H`` vertices each) are built by :meth:`build` for the columns
+    a tier asks for (:meth:`Posed.gather`: the exact test's few candidates), or for all of
+    them when someone reads :attr:`Posed.xs`. Same arithmetic either way, column by
+    column, so the same bits.
+
+    Attributes
+    ----------
+    split : int
+        Column of the class arrays where the swept objects begin (plain ones come first).
+    hx, hy : (H, m) float64
+        Each swept object's convex shape at its current pose (its hull padded with its last
+        vertex, or the octagon of a turning one), ``H = K / 2``.
+    dx, dy : (m,) float64
+        Each path: current position minus previous.
+    workspace : Workspace
+        Scratch for :func:`_sweep`.
+    """
+
+    split: int
+    hx: np.ndarray
+    hy: np.ndarray
+    dx: np.ndarray
+    dy: np.ndarray
+    workspace: Workspace
+
+    def build(self, cols: np.ndarray | None = None, ox=None, oy=None) -> tuple[np.ndarray, np.ndarray]:
+        """(2H, m') swept polygons of the columns ``cols`` (positions among the swept
+        objects; all of them when ``None``), into ``ox``, ``oy`` when given."""
+        if cols is None:
+            return _sweep(self.hx, self.hy, self.dx, self.dy, ox, oy, self.workspace)
+        return _sweep(
+            np.take(self.hx, cols, axis=1),
+            np.take(self.hy, cols, axis=1),
+            np.take(self.dx, cols),
+            np.take(self.dy, cols),
+            ox,
+            oy,
+            self.workspace,
+        )
+
+
+@dataclass
 class Posed:
     """Posed polygons of one frame, by size class.
 
@@ -161,8 +207,9 @@ class Posed:
         Size class ``K`` of each object's posed polygon.
     slot : (n,) int64
         Column of each object in its class arrays.
-    xs, ys : dict K -> (K, n_K) float64
-        Vertex coordinates, padded with the last vertex.
+    vx, vy : dict K -> (K, n_K) float64
+        The class arrays as posed: every plain column, and the swept columns of the
+        classes not in ``sweeps`` (read :attr:`xs`, :attr:`ys` or :meth:`gather` instead).
     members : dict K -> (n_K,) int64
         Object index of each column: ascending, except in a class that mixes swept and
         plain objects, whose plain objects come first (each part ascending), so that both
@@ -177,18 +224,24 @@ class Posed:
     swept : (n,) bool
     cos, sin : (n,) float64
         The rotation each object was posed with.
+    reordered : frozenset of int
+        Classes whose members are not ascending (swept and plain mixed).
+    sweeps : dict K -> Sweeps
+        The swept polygons not built yet, by class (see :class:`Sweeps`).
     """
 
     n: int
     klass: np.ndarray
     slot: np.ndarray
-    xs: dict
-    ys: dict
+    vx: dict
+    vy: dict
     members: dict
     circles: Callable[[], tuple[np.ndarray, np.ndarray]]
     swept: np.ndarray
     cos: np.ndarray
     sin: np.ndarray
+    reordered: frozenset = frozenset()
+    sweeps: dict = field(default_factory=dict)
 
     @cached_property
     def _circles(self) -> tuple[np.ndarray, np.ndarray]:
@@ -204,14 +257,45 @@ class Posed:
         """(n,) float64: conservative bounding-circle radius; contains every posed float vertex."""
         return self._circles[1]
 
+    def build(self) -> None:
+        """Build every pending swept polygon into the class arrays, in place."""
+        for k, sw in self.sweeps.items():
+            sw.build(None, self.vx[k][:, sw.split :], self.vy[k][:, sw.split :])
+        self.sweeps = {}
+
+    @property
+    def xs(self) -> dict:
+        """dict K -> (K, n_K) float64: vertex x of every column, padded with the last vertex."""
+        self.build()
+        return self.vx
+
+    @property
+    def ys(self) -> dict:
+        """dict K -> (K, n_K) float64: vertex y of every column, padded with the last vertex."""
+        self.build()
+        return self.vy
+
+    def gather(self, k: int, cols: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(K, m) x and y of the columns ``cols`` (m,) of class ``k``, swept polygons
+        built for those columns only (the exact test's candidates)."""
+        sw = self.sweeps.get(k)
+        vx, vy = self.vx[k], self.vy[k]
+        if sw is None:
+            return np.take(vx, cols, axis=1), np.take(vy, cols, axis=1)
+        moved = cols >= sw.split
+        if moved.all():
+            return sw.build(cols - sw.split)
+        x, y = np.take(vx, cols, axis=1), np.take(vy, cols, axis=1)
+        at = np.flatnonzero(moved)
+        if at.size:
+            x[:, at], y[:, at] = sw.build(np.take(cols, at) - sw.split)
+        return x, y
+
     def selector(self, k: int):
         """The columns of class ``k`` as a slice of object indices when they are a pooled,
         ascending run (:func:`broadsword.collision._indexing.selector`), else ``members[k]``."""
         idx = self.members[k]
         return idx if k in self.reordered else selector(idx)
-
-    #: Classes whose members are not ascending (swept and plain mixed; see ``members``).
-    reordered: frozenset = frozenset()
 
     def polygon(self, i: int) -> np.ndarray:
         """The posed polygon of object ``i`` as (K, 2), padding removed."""
@@ -375,6 +459,7 @@ def pose_checked(
     slot = np.zeros(n, dtype=np.int64)
     xs, ys, members = {}, {}, {}
     reordered = set()
+    sweeps = {}
     any_swept = bool(swept.any())
     for k in shapes.classes if vertices else ():
         idx = np.flatnonzero(klass == k)
@@ -403,13 +488,13 @@ def pose_checked(
             assert prev_positions is not None  # swept objects have them (arguments.frame)
             # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
             turn = None if turning is None else pick(turning, moved)
-            hx, hy = _swept_shape(shapes, moved, armature, px, py, cos, sin, turn, k // 2, ws)
+            hx, hy = _swept_shape(shapes, moved, armature, px, py, cos, sin, turn, k // 2, ws, f"{k}")
             m = hx.shape[1]
-            dx = np.subtract(pick(px, moved), pick(prev_positions[:, 0], moved), out=ws.get("pose_dx", m))
-            dy = np.subtract(pick(py, moved), pick(prev_positions[:, 1], moved), out=ws.get("pose_dy", m))
-            _sweep(hx, hy, dx, dy, x[:, split:], y[:, split:], ws)
+            dx = np.subtract(pick(px, moved), pick(prev_positions[:, 0], moved), out=ws.get(f"pose_dx{k}", m))
+            dy = np.subtract(pick(py, moved), pick(prev_positions[:, 1], moved), out=ws.get(f"pose_dy{k}", m))
+            sweeps[k] = Sweeps(split, hx, hy, dx, dy, ws)  # built when a tier reads them
         xs[k], ys[k], members[k] = x, y, idx
-    return Posed(n, klass, slot, xs, ys, members, circles, swept, cos, sin, frozenset(reordered))
+    return Posed(n, klass, slot, xs, ys, members, circles, swept, cos, sin, frozenset(reordered), sweeps)
 
 
 def _circles(radii, armature, positions, prev_positions, swept) -> tuple[np.ndarray, np.ndarray]:
@@ -464,7 +549,7 @@ def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=N
     return x, y
 
 
-def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Workspace | None = None):
+def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Workspace | None = None, tag=""):
     """Current-pose convex shape of each swept object ``obj`` (a slice or an index array),
     as (rows, m) arrays: its hull (padded with its last vertex), or the circumscribed
     octagon where ``turning`` (None: none turned). With one armature for all (a bullet pool)
@@ -480,7 +565,7 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Wor
     if ws is None:
         x, y, t = np.empty((len(hx), m)), np.empty((len(hx), m)), np.empty((len(hx), m))
     else:
-        x, y, t = (ws.get(f"swept_{name}", (len(hx), m)) for name in ("x", "y", "t"))
+        x, y, t = (ws.get(f"swept_{name}{tag}", (len(hx), m)) for name in ("x", "y", "t"))
     ox, oy = pick(px, obj), pick(py, obj)
     np.multiply(hx, c, out=t)  # x = px + hx c - hy s
     np.add(ox, t, out=x)
