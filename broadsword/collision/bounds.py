@@ -50,18 +50,15 @@ def aabbs(posed: Posed) -> np.ndarray:
             for row, (v, reduce) in enumerate(((xp, np.min), (yp, np.min), (xp, np.max), (yp, np.max))):
                 reduce(v, axis=0, out=part[row, :cut])
         if sw is not None:
+            lo, hi = part[:, cut:][:2], part[:, cut:][2:]
             with np.errstate(over="ignore", invalid="ignore"):  # as the built sweep's vertices would
-                for row, (v, d, reduce, pick) in enumerate(
-                    (
-                        (sw.hx, sw.dx, np.min, np.minimum),
-                        (sw.hy, sw.dy, np.min, np.minimum),
-                        (sw.hx, sw.dx, np.max, np.maximum),
-                        (sw.hy, sw.dy, np.max, np.maximum),
-                    )
-                ):
-                    r = part[row, cut:]
-                    reduce(v, axis=0, out=r)
-                    pick(r, r - d, out=r)
+                np.min(sw.hx, axis=0, out=lo[0])
+                np.min(sw.hy, axis=0, out=lo[1])
+                np.max(sw.hx, axis=0, out=hi[0])
+                np.max(sw.hy, axis=0, out=hi[1])
+                path = np.stack([sw.dx, sw.dy])
+                np.minimum(lo, lo - path, out=lo)
+                np.maximum(hi, hi - path, out=hi)
         if not isinstance(sel, slice):
             out[:, sel] = part
     return out.T
