@@ -266,7 +266,8 @@ class App:
         checkpoint that differs, a message says which. DataError if its level cannot load
         or has changed since it was recorded."""
         stage = replay_stage(rec, path, self.bank.armatures)
-        play = Play(self, stage, Run(0, stage.world.settings.difficulty), ReplayInput(Playback(rec, stage.world)))
+        run = Run.of_level(rec.level, self.levels, stage.world.settings.difficulty)  # its stage's music
+        play = Play(self, stage, run, ReplayInput(Playback(rec, stage.world)))
         self.stack.reset(play)
         return play
 

@@ -112,3 +112,26 @@ def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
     # headless still checks it
     summary, _ = run_headless("", FRAMES, 0, False, rec, str(path))
     assert summary["replay_matches"] is True
+
+
+@pytest.mark.parametrize("index", [1, 4])
+def test_replay_window__plays_the_recorded_stages_music(app, index):
+    """A recording of a later stage plays that stage's loop (and its boss is the final boss
+    on the last stage), not stage 1's."""
+    from broadsword.game.music import Track
+    from broadsword.game.soundtrack import soundtrack
+    from broadsword.headless import make_world
+    from broadsword.sim import Input, Settings
+    from broadsword.sim.replay import Recorder
+
+    level = app.levels[index]
+    world, digest = make_world(level, 3, Settings())
+    rec = Recorder(world, level, digest)
+    for _ in range(5):
+        inp = Input()
+        world.step(inp)
+        rec.stepped(inp)
+    play = app.watch_replay(rec.recording(), "run.json")
+    app.frame(DT)
+    assert soundtrack(app) is Track.stage(index + 1)
+    assert play.run.has_next(app.levels) == (index + 1 < len(app.levels))
