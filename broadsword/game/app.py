@@ -26,7 +26,7 @@ from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..sim import FIELD, World
-from ..sim.replay import Playback
+from ..sim.replay import Playback, Recorder
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
 from .mute_icon import draw_mute_indicator
@@ -132,7 +132,7 @@ class App:
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
         # One line for the title: a set-aside scores file, an unusable options or controls file.
         self.message = "; ".join(w for w in (self.scores.warning, options_warning, bindings_warning) if w) or None
-        self.recorder = None  # the stage in play (or last played), as a recording
+        self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -160,6 +160,15 @@ class App:
     def world(self) -> World | None:
         play = self.play
         return play.world if play is not None else None
+
+    @property
+    def recorder(self) -> Recorder | None:
+        """The stage in play (or last played), as a :class:`~broadsword.sim.replay.Recorder`; None before any."""
+        return self.recorders[-1] if self.recorders else None
+
+    def recordings(self) -> list[Recording]:
+        """The run in play (or the last one played): one recording a stage, in play order."""
+        return [r.recording() for r in self.recorders]
 
     @property
     def difficulty(self) -> Difficulty:
@@ -239,6 +248,7 @@ class App:
         one) on the chosen difficulty. Returns False, and shows the title with the error, if
         the level fails to load."""
         run = Run(self.start_index if index is None else index, self.difficulty, self.custom_level)
+        self.recorders = []  # a new run: its stages are recorded afresh
         return self.begin_stage(run)
 
     def begin_stage(self, run: Run) -> bool:
@@ -256,7 +266,7 @@ class App:
         """Play ``stage`` (a world already made) as the only scene."""
         self.error = None
         play = Play(self, stage, run or Run(0, stage.world.settings.difficulty))
-        self.recorder = play.recorder
+        self.recorders.append(play.recorder)
         self.stack.reset(play)
         return play
 
