@@ -130,6 +130,7 @@ class App:
         self.running = True
         self.hidden = False  # minimised or hidden: nothing to see
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
+        self._away = False  # the window went away during this frame's events (a pause is due)
         # One line for the title: a set-aside scores file, an unusable options or controls file.
         self.message = "; ".join(w for w in (self.scores.warning, options_warning, bindings_warning) if w) or None
         self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
@@ -196,6 +197,7 @@ class App:
             dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
+        self._pause_if_away()
         steps = self.stack.top.update(dt) if self.running else 0
         follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
@@ -233,6 +235,15 @@ class App:
         self.hidden |= event.type in HIDE_EVENTS
         top = self.stack.top
         if isinstance(top, Play) and not top.watched and (event.type != pygame.WINDOWFOCUSLOST or had_focus):
+            self._away = True  # decided once the frame's events are all in: see _pause_if_away
+
+    def _pause_if_away(self) -> None:
+        """A player's game pauses if the window went away this frame and is still away once
+        all the frame's events are in. SDL opens a window with shown, hidden, shown in one
+        batch (X11): a hide undone by the same batch's show must not open a stage paused."""
+        away, self._away = self._away, False
+        top = self.stack.top
+        if away and (self.hidden or not self.focused) and isinstance(top, Play) and not top.watched:
             self.stack.push(Pause(self, top))
 
     def render(self) -> None:
