@@ -139,8 +139,7 @@ class App:
             from .scenes.lab import LabScene
 
             scene = LabScene(self, *lab)
-            self.screen = pygame.Surface(scene.size)
-            self.painter = Painter(self.screen)
+            self.use_screen(scene.size)
             self.overlay.visible = True
             self.stack.push(scene)
         else:
@@ -206,8 +205,10 @@ class App:
     def handle(self, event: pygame.event.Event) -> None:
         self.controls.track(event)
         t = event.type
-        if t == pygame.QUIT:
-            self.running = False
+        if t == pygame.QUIT:  # offered to the scene first: the editor warns about unsaved changes
+            top = self.stack.top
+            if top is None or not top.handle(event):
+                self.running = False
             return
         if t in AWAY_EVENTS:
             self._went_away(event)
@@ -291,6 +292,12 @@ class App:
         play = Play(self, stage, run, ReplayInput(Playback(rec, stage.world)))
         self.stack.reset(play)
         return play
+
+    def use_screen(self, size: tuple[int, int] | None = None) -> None:
+        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on;
+        ``None``: the field again. The window shows it scaled in, as it does the field."""
+        self.screen = pygame.Surface(size or (int(FIELD[0]), int(FIELD[1])))
+        self.painter = Painter(self.screen)
 
     def to_title(self) -> None:
         self.stack.reset(Title(self))

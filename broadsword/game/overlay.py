@@ -31,6 +31,7 @@ from ..collision.debugdraw import FrameColours, draw_layout, posed_polygons
 from .drawing import PygameDraw
 from .overlay_dense import crosses, heat_map, marks, stacked_graph
 from .render import LAYER_COLOURS
+from .window import to_surface
 
 PANEL_WIDTH = 250
 PANEL_TOP = 60  # px: a top panel sits below the HUD (score, graze and power left; lives and bombs right)
@@ -89,11 +90,10 @@ def pointer_on(surf: pygame.Surface) -> tuple[float, float] | None:
     win = pygame.display.get_surface()
     if win is None or not pygame.mouse.get_focused():
         return None
-    (ww, wh), (fw, fh) = win.get_size(), surf.get_size()
-    k = min(ww / fw, wh / fh) if surf is not win else 1.0
-    mx, my = pygame.mouse.get_pos()
-    x, y = (mx - (ww - fw * k) / 2) / k, (my - (wh - fh * k) / 2) / k
-    return (x, y) if 0 <= x < fw and 0 <= y < fh else None
+    if surf is win:
+        x, y = pygame.mouse.get_pos()
+        return float(x), float(y)
+    return to_surface(pygame.mouse.get_pos(), win.get_size(), surf.get_size())
 
 
 def player_of(result: FrameResult) -> tuple[float, float] | None:
