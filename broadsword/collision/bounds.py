@@ -36,7 +36,9 @@ def aabbs(posed: Posed) -> np.ndarray:
     rounded subtraction, and rounding is monotonic, so ``min_k (v_k - d)`` is
     ``(min_k v_k) - d`` rounded: the union holds every vertex of the sweep. It equals the
     sweep's own box except where the sweep leaves out a candidate vertex that rounding put
-    outside it (an edge parallel to the path), so it is conservative either way.
+    outside it (an edge parallel to the path), so it is conservative either way. A path
+    longer than the largest double is taken in halves, as the sweep is; and the box is
+    clamped to the doubles, as a sweep that reaches past them is.
     """
     out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
     for k in posed.members:
@@ -57,8 +59,15 @@ def aabbs(posed: Posed) -> np.ndarray:
                 np.max(sw.hx, axis=0, out=hi[0])
                 np.max(sw.hy, axis=0, out=hi[1])
                 path = np.stack([sw.dx, sw.dy])
-                np.minimum(lo, lo - path, out=lo)
-                np.maximum(hi, hi - path, out=hi)
+                if sw.far is None:
+                    np.minimum(lo, lo - path, out=lo)
+                    np.maximum(hi, hi - path, out=hi)
+                else:  # far paths are halves, and swept in halves: v - d is 2 (v/2 - d/2) there
+                    scale = np.where(sw.far, 2.0, 1.0)  # 1 elsewhere: the same bits as above
+                    np.minimum(lo, (lo / scale - path) * scale, out=lo)
+                    np.maximum(hi, (hi / scale - path) * scale, out=hi)
+            np.clip(lo, -_MAX, _MAX, out=lo)  # a sweep past the doubles is its clamped box (Sweeps.build)
+            np.clip(hi, -_MAX, _MAX, out=hi)
         if not isinstance(sel, slice):
             out[:, sel] = part
     return out.T
