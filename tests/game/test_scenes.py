@@ -349,3 +349,31 @@ def test_pause__q_quits_to_the_title(app):
     key(pygame.K_q)
     frames(app)
     assert isinstance(app.scene, Title) and app.play is None
+
+
+# --------------------------------------------------------------------------- the stage's title card
+class _Fonts:
+    """A font that notes every text it renders (and renders it)."""
+
+    def __init__(self, font):
+        self.font, self.rendered = font, []
+
+    def render(self, text, *args):
+        self.rendered.append(text)
+        return self.font.render(text, *args)
+
+
+def test_title_card__shown_in_play_not_under_the_pause_screen(app):
+    """The stage's title fades in over its first seconds; under the pause screen (whose
+    PAUSED heading sits where the card does) it is not drawn."""
+    app.start_run()
+    frames(app, 30)
+    fonts = app.renderer.big = _Fonts(app.renderer.big)
+    frames(app)
+    assert app.world.level.title in fonts.rendered and app.world.time < 3.0
+    key(pygame.K_p)
+    frames(app)
+    assert isinstance(app.scene, Pause)
+    fonts.rendered.clear()
+    frames(app, 2)
+    assert app.world.level.title not in fonts.rendered

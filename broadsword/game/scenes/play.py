@@ -201,7 +201,8 @@ class Play:
         app = self.app
         alpha = min(self.accumulator / DT, 1.0) if app.stack.top is self else 1.0
         hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
-        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox)
+        on_top = app.stack.top is self  # else a screen's heading (pause, replay end) is over the field
+        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
         if app.overlay.visible:
             record = self.world.collision
             from .pause import Pause
