@@ -198,6 +198,8 @@ class App:
             self.handle(event)
         self._pause_if_away()
         steps = self.stack.top.update(dt) if self.running else 0
+        if not isinstance(self.stack.top, Play):
+            self.controls.tapped.clear()  # a bomb tapped on the pause screen must not go off on resuming
         follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
         return steps

@@ -377,3 +377,32 @@ def test_title_card__shown_in_play_not_under_the_pause_screen(app):
     fonts.rendered.clear()
     frames(app, 2)
     assert app.world.level.title not in fonts.rendered
+
+
+# --------------------------------------------------------------------------- a tap between two steps
+def tap(k):
+    """A key pressed and let go within one frame's events (a quick tap, or a slow frame)."""
+    key(k)
+    pygame.event.post(pygame.event.Event(pygame.KEYUP, key=k, mod=0, unicode="", scancode=0))
+
+
+def test_bomb__a_tap_shorter_than_a_step_still_bombs_once(app):
+    app.start_run()
+    frames(app, 90)
+    bombs = app.world.player.bombs
+    tap(pygame.K_x)
+    frames(app, 5)
+    assert app.world.progress.bombs_used == 1 and app.world.player.bombs == bombs - 1
+
+
+def test_bomb__a_tap_on_the_pause_screen_does_not_go_off_on_resuming(app):
+    app.start_run()
+    frames(app, 90)
+    key(pygame.K_p)
+    frames(app)
+    assert isinstance(app.scene, Pause)
+    tap(pygame.K_x)
+    frames(app)
+    key(pygame.K_p)
+    frames(app, 5)
+    assert isinstance(app.scene, Play) and app.world.progress.bombs_used == 0

@@ -42,7 +42,7 @@ class PlayerInput:
         self.controls = controls
 
     def next(self, world: World) -> Input:
-        return self.controls.input()
+        return self.controls.take_input()  # a bomb tapped between two steps still bombs
 
     def stepped(self, world: World) -> None:
         pass
