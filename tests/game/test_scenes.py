@@ -238,6 +238,18 @@ def test_results__after_a_stage_then_the_next_stage_with_the_score_carried(app):
     assert app.world.level.name == app.levels[1] and app.world.score.points == score
 
 
+def test_results__the_next_stage_keeps_the_power_won(app):
+    """A stage cleared at power 2.60 starts the next at 2.60, not back at the base power
+    (and its recording carries it, so the stage replays on its own)."""
+    world = empty_stage(app)
+    world.player.power = 260
+    frames(app, 2)
+    key(pygame.K_RETURN)
+    frames(app)
+    assert isinstance(app.scene, Play) and app.world is not world
+    assert app.world.player.power == 260 and app.recorder.recording().carry["power"] == 260
+
+
 def test_results__a_missed_bonus_says_why(app):
     world = empty_stage(app)
     world.player.misses, world.progress.bombs_used = 2, 1
