@@ -418,3 +418,30 @@ def test_bomb__a_tap_on_the_pause_screen_does_not_go_off_on_resuming(app):
     key(pygame.K_p)
     frames(app, 5)
     assert isinstance(app.scene, Play) and app.world.progress.bombs_used == 0
+
+
+# --------------------------------------------------------------------------- the high-score table
+def test_high_scores__columns_one_long_custom_level_does_not_shrink_its_row(app):
+    """A score made on a level file shows the file's name, not its directories, and a long
+    one is fitted in its own column: every row's score is drawn at the same size, right-aligned
+    on one edge (a whole row used to be one string, shrunk to a tiny font by a long path)."""
+    long_path = "/home/someone/levels/" + "a-very-long-custom-level-name" * 2 + ".toml"
+    for i, level in enumerate(["1-picket", long_path, "2-gauntlet"]):
+        app.scores.add(Entry("MAMMOTH", 900_000 - i * 1000, level, "2026-11-27"))
+    drawn = []
+    real = app.painter.text
+
+    def text(s, y, *args, **kwargs):
+        rect = real(s, y, *args, **kwargs)
+        drawn.append((s, rect))
+        return rect
+
+    app.painter.text = text
+    app.stack.reset(HighScoresScene(app))
+    frames(app)
+    scores = [r for s, r in drawn if s in {f"{e.score:,}" for e in app.scores.entries}]
+    assert len(scores) == 3
+    assert len({r.right for r in scores}) == 1 and len({r.height for r in scores}) == 1
+    assert not any("/" in s for s, _ in drawn) and any(s.startswith("a-very-long") for s, _ in drawn)
+    field = app.screen.get_rect()
+    assert all(field.contains(r) for _, r in drawn)
