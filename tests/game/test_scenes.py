@@ -445,3 +445,23 @@ def test_high_scores__columns_one_long_custom_level_does_not_shrink_its_row(app)
     assert not any("/" in s for s, _ in drawn) and any(s.startswith("a-very-long") for s, _ in drawn)
     field = app.screen.get_rect()
     assert all(field.contains(r) for _, r in drawn)
+
+
+def test_title__both_unusable_settings_files_are_said_in_full(tmp_path, capsys):
+    """A broken options file and a broken controls file: the title names both (by file name;
+    the first used to take both lines and end in "..."), and stderr has each in full."""
+    data = tmp_path / "a-data-directory-with-a-rather-long-name"
+    data.mkdir()
+    (data / "options.json").write_text("garbage")
+    (data / "controls.json").write_text('{"version": 1, "keys": {"left": 5}}')
+    a = App(seed=1, audio=False, scores=HighScores(data / "scores.json"), data=data)
+    drawn = []
+    real = a.painter.text
+    a.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
+    frames(a)
+    shown = " ".join(drawn)
+    assert "options.json not used" in shown and "controls.json not used" in shown
+    assert "default keys" in shown and not shown.endswith("...")
+    err = capsys.readouterr().err
+    assert str(data / "options.json") in err and str(data / "controls.json") in err
+    pygame.quit()
