@@ -132,12 +132,11 @@ class App:
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
         self._away = False  # the window went away during this frame's events (a pause is due)
         # One line for the title: a set-aside scores file, an unusable options or controls file.
-        # Said in full on stderr; on the title, files in the data directory by their names alone
-        # (the whole of both warnings must fit the title's few lines).
+        # Said on stderr too (the title names files in the data directory by their names alone).
         warnings = [w for w in (self.scores.warning, options_warning, bindings_warning) if w]
         for warning in warnings:
             print(f"broadsword: {warning}", file=sys.stderr)
-        self.message = "; ".join(w.replace(str(self.data / "_")[:-1], "") for w in warnings) or None
+        self.message = "; ".join(warnings) or None
         self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)

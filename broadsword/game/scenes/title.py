@@ -121,7 +121,8 @@ class Title:
             best = app.scores.entries[0]
             p.text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
         if app.message:  # below the high score: up to MESSAGE_LINES small lines
-            for i, line in enumerate(p.lines(app.message, w - 20, MESSAGE_LINES, MESSAGE_SIZE)):
+            message = app.message.replace(str(app.data / "_")[:-1], "")  # files in the data dir by name
+            for i, line in enumerate(p.lines(message, w - 20, MESSAGE_LINES, MESSAGE_SIZE)):
                 p.text(line, 592 + 14 * i, MESSAGE_SIZE, colour=ui.WARN)
 
     def _draw_controls(self) -> None:
