@@ -101,6 +101,7 @@ class App:
     ):
         self.data = Path(data) if data else (scores.path.parent if scores is not None else data_home())
         self.options, options_warning = load_options(self.data / "options.json")
+        self.saved_difficulty = self.options.difficulty  # what options.json keeps, whatever --difficulty says
         if difficulty is not None:  # --difficulty: this session's, not saved
             self.options = dataclasses.replace(self.options, difficulty=Difficulty(difficulty))
         bindings, bindings_warning = load_bindings(self.data / "controls.json")
@@ -315,10 +316,15 @@ class App:
 
     # ------------------------------------------------------------------ settings
     def set_options(self, **changes) -> None:
-        """Change options and save them (atomically); a failed save is said on screen."""
+        """Change options and save them (atomically); a failed save is said on screen. A
+        ``--difficulty`` for the session is not saved with them, unless the player chose one."""
         self.options = dataclasses.replace(self.options, **changes)
+        if "difficulty" in changes:
+            self.saved_difficulty = self.options.difficulty
         try:
-            save_options(self.options, self.data / "options.json")
+            save_options(
+                dataclasses.replace(self.options, difficulty=self.saved_difficulty), self.data / "options.json"
+            )
         except OSError as exc:
             self.message = f"could not save options: {exc}"
 

@@ -465,3 +465,19 @@ def test_title__both_unusable_settings_files_are_said_in_full(tmp_path, capsys):
     err = capsys.readouterr().err
     assert str(data / "options.json") in err and str(data / "controls.json") in err
     pygame.quit()
+
+
+def test_options__a_session_difficulty_is_not_saved_with_other_options(tmp_path):
+    """``--difficulty lunatic`` plays this session on Lunatic; changing the music volume saves
+    the options without it (the file kept "lunatic" once any option changed); choosing a
+    difficulty saves that."""
+    import json
+
+    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path, difficulty=Difficulty.LUNATIC)
+    a.set_options(music=3)
+    saved = json.loads((tmp_path / "options.json").read_text())
+    assert saved["music"] == 3 and saved["difficulty"] == "normal" and a.difficulty is Difficulty.LUNATIC
+    a.set_options(difficulty=Difficulty.HARD)
+    assert json.loads((tmp_path / "options.json").read_text())["difficulty"] == "hard"
+    assert a.difficulty is Difficulty.HARD
+    pygame.quit()
