@@ -481,3 +481,27 @@ def test_options__a_session_difficulty_is_not_saved_with_other_options(tmp_path)
     assert json.loads((tmp_path / "options.json").read_text())["difficulty"] == "hard"
     assert a.difficulty is Difficulty.HARD
     pygame.quit()
+
+
+def test_play__slow_motion_and_a_rotation_switch_are_said_on_screen(app):
+    """F3 slows the game and F4 switches the rotation mode: the HUD says so while they are on
+    (nothing on screen used to tell a player why the game had slowed)."""
+    app.start_run()
+    drawn = []
+    real = app.painter.text
+    app.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
+    frames(app, 2)
+    assert not any("SLOW" in s or "rotation" in s for s in drawn)
+    key(pygame.K_F3)
+    key(pygame.K_F4)
+    frames(app)
+    drawn.clear()
+    frames(app)
+    shown = " ".join(drawn)
+    assert "SLOW MOTION (F3)" in shown and f"rotation {app.world.rotation} (F4)" in shown
+    key(pygame.K_F3)
+    key(pygame.K_F4)
+    frames(app)
+    drawn.clear()
+    frames(app)
+    assert not any("SLOW" in s or "rotation" in s for s in drawn)
