@@ -37,7 +37,7 @@ from . import __version__
 from .argtypes import lab_size, natural, seed
 from .data import DataError, list_levels
 from .data.difficulty import Difficulty
-from .data.recordings import load_recording, save_recording
+from .data.recordings import load_recording, save_recording, save_stage_recordings
 
 
 @dataclass(frozen=True)
@@ -72,7 +72,13 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     ap.add_argument(
         "--frames", type=natural, default=None, help="--headless: steps to run, >= 0 (default 600, or the recording's)"
     )
-    ap.add_argument("--record", metavar="FILE", help="save the inputs of the run to FILE (a recording)")
+    ap.add_argument(
+        "--record",
+        metavar="FILE",
+        help="save the run's inputs to FILE (a recording); with a window, a run of several stages saves "
+        "one recording a stage: the first to FILE, each next beside it as FILE's name plus the level's "
+        "(run.json, run-2-gauntlet.json, ...), each replayable on its own",
+    )
     ap.add_argument(
         "--replay",
         metavar="FILE",
@@ -249,6 +255,9 @@ def _play(level, seed_, args, replay) -> int:
     elif level is not None and args.lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
-    if args.record and app.recorder is not None:
-        save_recording(args.record, app.recorder.recording())
+    recordings = app.recordings()
+    if args.record and recordings:  # one file a stage: FILE is the first, FILE-LEVEL.json the next ones
+        paths = save_stage_recordings(args.record, recordings)
+        if len(paths) > 1:
+            print(f"broadsword: recorded {len(paths)} stages: {', '.join(map(str, paths))}", file=sys.stderr)
     return 0

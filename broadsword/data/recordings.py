@@ -119,6 +119,27 @@ def save_recording(path: str | Path, rec: Recording) -> None:
     write_atomic(path, (json.dumps(rec.to_json(), indent=1) + "\n").encode())
 
 
+def stage_recording_paths(path: str | Path, levels: list[str]) -> list[Path]:
+    """Where a run of several stages is saved by ``--record path``: one recording a stage
+    (each replays on its own: it carries the score, lives and continues it started with).
+    The first stage goes to ``path`` itself; each later one beside it, named after its
+    level: ``run.json`` then ``run-2-gauntlet.json``, ``run-3-broadsword.json``...
+    ``levels`` are the stages' level references (names or level file paths), in play order."""
+    path = Path(path)
+    out = [path]
+    for ref in levels[1:]:
+        out.append(path.with_name(f"{path.stem}-{Path(ref).stem}{path.suffix or '.json'}"))
+    return out
+
+
+def save_stage_recordings(path: str | Path, recs: list[Recording]) -> list[Path]:
+    """Save a run's stage recordings (:func:`stage_recording_paths`); returns the paths written."""
+    paths = stage_recording_paths(path, [r.level for r in recs])
+    for p, rec in zip(paths, recs):
+        save_recording(p, rec)
+    return paths
+
+
 # ---------------------------------------------------------------------- reading
 def _whole(v) -> TypeGuard[int]:
     return type(v) is int

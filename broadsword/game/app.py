@@ -26,7 +26,7 @@ from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..sim import FIELD, World
-from ..sim.replay import Playback
+from ..sim.replay import Playback, Recorder
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
 from .mute_icon import draw_mute_indicator
@@ -130,16 +130,16 @@ class App:
         self.running = True
         self.hidden = False  # minimised or hidden: nothing to see
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
+        self._away = False  # the window went away during this frame's events (a pause is due)
         # One line for the title: a set-aside scores file, an unusable options or controls file.
         self.message = "; ".join(w for w in (self.scores.warning, options_warning, bindings_warning) if w) or None
-        self.recorder = None  # the stage in play (or last played), as a recording
+        self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
 
             scene = LabScene(self, *lab)
-            self.screen = pygame.Surface(scene.size)
-            self.painter = Painter(self.screen)
+            self.use_screen(scene.size)
             self.overlay.visible = True
             self.stack.push(scene)
         else:
@@ -160,6 +160,15 @@ class App:
     def world(self) -> World | None:
         play = self.play
         return play.world if play is not None else None
+
+    @property
+    def recorder(self) -> Recorder | None:
+        """The stage in play (or last played), as a :class:`~broadsword.sim.replay.Recorder`; None before any."""
+        return self.recorders[-1] if self.recorders else None
+
+    def recordings(self) -> list[Recording]:
+        """The run in play (or the last one played): one recording a stage, in play order."""
+        return [r.recording() for r in self.recorders]
 
     @property
     def difficulty(self) -> Difficulty:
@@ -187,6 +196,7 @@ class App:
             dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
+        self._pause_if_away()
         steps = self.stack.top.update(dt) if self.running else 0
         follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
@@ -195,8 +205,10 @@ class App:
     def handle(self, event: pygame.event.Event) -> None:
         self.controls.track(event)
         t = event.type
-        if t == pygame.QUIT:
-            self.running = False
+        if t == pygame.QUIT:  # offered to the scene first: the editor warns about unsaved changes
+            top = self.stack.top
+            if top is None or not top.handle(event):
+                self.running = False
             return
         if t in AWAY_EVENTS:
             self._went_away(event)
@@ -224,6 +236,15 @@ class App:
         self.hidden |= event.type in HIDE_EVENTS
         top = self.stack.top
         if isinstance(top, Play) and not top.watched and (event.type != pygame.WINDOWFOCUSLOST or had_focus):
+            self._away = True  # decided once the frame's events are all in: see _pause_if_away
+
+    def _pause_if_away(self) -> None:
+        """A player's game pauses if the window went away this frame and is still away once
+        all the frame's events are in. SDL opens a window with shown, hidden, shown in one
+        batch (X11): a hide undone by the same batch's show must not open a stage paused."""
+        away, self._away = self._away, False
+        top = self.stack.top
+        if away and (self.hidden or not self.focused) and isinstance(top, Play) and not top.watched:
             self.stack.push(Pause(self, top))
 
     def render(self) -> None:
@@ -239,6 +260,7 @@ class App:
         one) on the chosen difficulty. Returns False, and shows the title with the error, if
         the level fails to load."""
         run = Run(self.start_index if index is None else index, self.difficulty, self.custom_level)
+        self.recorders = []  # a new run: its stages are recorded afresh
         return self.begin_stage(run)
 
     def begin_stage(self, run: Run) -> bool:
@@ -256,7 +278,7 @@ class App:
         """Play ``stage`` (a world already made) as the only scene."""
         self.error = None
         play = Play(self, stage, run or Run(0, stage.world.settings.difficulty))
-        self.recorder = play.recorder
+        self.recorders.append(play.recorder)
         self.stack.reset(play)
         return play
 
@@ -266,9 +288,16 @@ class App:
         checkpoint that differs, a message says which. DataError if its level cannot load
         or has changed since it was recorded."""
         stage = replay_stage(rec, path, self.bank.armatures)
-        play = Play(self, stage, Run(0, stage.world.settings.difficulty), ReplayInput(Playback(rec, stage.world)))
+        run = Run.of_level(rec.level, self.levels, stage.world.settings.difficulty)  # its stage's music
+        play = Play(self, stage, run, ReplayInput(Playback(rec, stage.world)))
         self.stack.reset(play)
         return play
+
+    def use_screen(self, size: tuple[int, int] | None = None) -> None:
+        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on;
+        ``None``: the field again. The window shows it scaled in, as it does the field."""
+        self.screen = pygame.Surface(size or (int(FIELD[0]), int(FIELD[1])))
+        self.painter = Painter(self.screen)
 
     def to_title(self) -> None:
         self.stack.reset(Title(self))

@@ -31,14 +31,18 @@ from ..collision.debugdraw import FrameColours, draw_layout, posed_polygons
 from .drawing import PygameDraw
 from .overlay_dense import crosses, heat_map, marks, stacked_graph
 from .render import LAYER_COLOURS
+from .window import to_surface
 
 PANEL_WIDTH = 250
+PANEL_TOP = 60  # px: a top panel sits below the HUD (score, graze and power left; lives and bombs right)
 LINE_HEIGHT = 16
 LENS_RADIUS = 90.0  # px around the pointer (or the player) where full armatures are drawn
 HISTORY = 240  # frames in the frame-time graph (4 s at 60 steps a second)
 GRAPH_HEIGHT = 48
 TIER_COLOURS = [(120, 200, 255), (255, 190, 90), (150, 255, 140), (255, 120, 200), (200, 160, 255), (255, 255, 140)]
 TEXT = (210, 230, 255)
+#: The panel's header lines drawn above its tier rows (rate, layout), plus one when paused.
+HEADER_LINES = 2
 
 KEY_SWEPT, KEY_PANEL, KEY_LENS = pygame.K_F5, pygame.K_F6, pygame.K_F7
 
@@ -58,9 +62,16 @@ def frame_colours(result: FrameResult) -> FrameColours:
     return FrameColours([LAYER_COLOURS.get(name, (220, 220, 220)) for name in result.layers.names])
 
 
-def panel_lines(result: FrameResult, fps: float, paused: bool) -> list[str]:
-    """The panel's text: rate and rotation mode, the broad phase's layout, one row per tier."""
-    lines = [f"FPS {fps:5.1f}   rotation {result.rotation} (F4)   {'PAUSED  F2: step' if paused else ''}"]
+def panel_lines(
+    result: FrameResult, fps: float, paused: bool, step_key: str = "F2", rotation_key: str | None = "F4"
+) -> list[str]:
+    """The panel's text: rate and rotation mode (with the key that switches it, if any),
+    whether the view is paused (and the key that steps it) on a line of its own, the broad
+    phase's layout, one row per tier. Every header line fits the panel's width."""
+    rotation = f"rotation {result.rotation}" + (f" ({rotation_key})" if rotation_key else "")
+    lines = [f"FPS {fps:5.1f}   {rotation}"]
+    if paused:
+        lines.append(f"PAUSED   {step_key}: one step")
     layout = result.broad.layout
     if isinstance(layout, GridLayout):
         lines.append(f"bins {layout.shape[0]}x{layout.shape[1]} of {layout.size:.0f} px")
@@ -79,11 +90,10 @@ def pointer_on(surf: pygame.Surface) -> tuple[float, float] | None:
     win = pygame.display.get_surface()
     if win is None or not pygame.mouse.get_focused():
         return None
-    (ww, wh), (fw, fh) = win.get_size(), surf.get_size()
-    k = min(ww / fw, wh / fh) if surf is not win else 1.0
-    mx, my = pygame.mouse.get_pos()
-    x, y = (mx - (ww - fw * k) / 2) / k, (my - (wh - fh * k) / 2) / k
-    return (x, y) if 0 <= x < fw and 0 <= y < fh else None
+    if surf is win:
+        x, y = pygame.mouse.get_pos()
+        return float(x), float(y)
+    return to_surface(pygame.mouse.get_pos(), win.get_size(), surf.get_size())
 
 
 def player_of(result: FrameResult) -> tuple[float, float] | None:
@@ -109,6 +119,8 @@ class Overlay:
         self.swept = False
         self.lens = True
         self.place = PanelPlace.TOP_RIGHT
+        self.step_key = "F2"  # the key that steps one frame while paused, as the panel says it
+        self.rotation_key: str | None = "F4"  # the key that switches rotation (None: none here)
         self.history: deque[np.ndarray] = deque(maxlen=HISTORY)
         self._tiers: tuple[str, ...] = ()
         self._last: FrameResult | None = None
@@ -238,12 +250,12 @@ class Overlay:
         surf.blit(img, (6, surf.get_height() - img.get_height() - 40))
 
     def _panel(self, surf, draw, record: FrameResult, fps: float, paused: bool) -> None:
-        lines = panel_lines(record, fps, paused)[:2]
+        lines = panel_lines(record, fps, paused, self.step_key, self.rotation_key)[: HEADER_LINES + paused]
         rows = [s for s in record.stats if s.name != "layers"]
         height = LINE_HEIGHT * (len(lines) + len(rows) + 2) + GRAPH_HEIGHT + 18
         w, h = surf.get_size()
         left = w - PANEL_WIDTH - 6 if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.BOTTOM_RIGHT) else 6
-        top = 40 if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.TOP_LEFT) else h - height - 40
+        top = PANEL_TOP if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.TOP_LEFT) else h - height - 40
         draw.boxes(np.array([[left, top, left + PANEL_WIDTH, top + height]], float), (0, 0, 0), width=0, alpha=170)
         y = top + 4
         for text in lines:

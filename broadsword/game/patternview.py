@@ -183,6 +183,7 @@ def view(
     pygame.display.set_caption(f"broadsword pattern view: {path}")
     font = pygame.font.Font(None, 18)
     overlay = Overlay()
+    overlay.step_key, overlay.rotation_key = "S", None  # this view's keys, not the game's
     clock = pygame.time.Clock()
     shown = 0
     while not viewer.quit and (frames is None or shown < frames):

@@ -32,6 +32,14 @@ class Run:
     def has_next(self, levels: list[str]) -> bool:
         return self.custom is None and self.level_index + 1 < len(levels)
 
+    @classmethod
+    def of_level(cls, ref: str, levels: list[str], difficulty: Difficulty) -> Run:
+        """The run a stage named ``ref`` belongs to: the shipped level's place in ``levels``
+        (so its music and its last-stage boss are the right ones), else a custom level."""
+        if ref in levels:
+            return cls(levels.index(ref), difficulty)
+        return cls(0, difficulty, custom=ref)
+
     def carry_from(self, world: World) -> None:
         """Take what ``world`` ends the stage with to the next one."""
         self.score = world.score.points

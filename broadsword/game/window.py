@@ -33,6 +33,27 @@ def display_problem(environ=os.environ, platform: str = sys.platform) -> str | N
     return f"no display (neither DISPLAY nor WAYLAND_DISPLAY is set); {HEADLESS_HINT}"
 
 
+def letterbox(window_size: tuple[int, int], surface_size: tuple[int, int]) -> tuple[float, float, float]:
+    """Where :meth:`Window.present` puts a surface of ``surface_size`` in a window of
+    ``window_size``: ``(scale, left, top)``, the surface scaled by ``scale`` (aspect kept,
+    never stretched) and centred. Sizes are (width, height) in px, all > 0."""
+    (ww, wh), (fw, fh) = window_size, surface_size
+    k = min(ww / fw, wh / fh)
+    return k, (ww - fw * k) / 2, (wh - fh * k) / 2
+
+
+def to_surface(
+    pos: tuple[float, float], window_size: tuple[int, int], surface_size: tuple[int, int]
+) -> tuple[float, float] | None:
+    """A window position (px, e.g. a mouse event's ``pos``) on the presented surface, in the
+    surface's px; ``None`` in the black bars or outside. The inverse of :func:`letterbox`."""
+    if min(*window_size, *surface_size) <= 0:
+        return None
+    k, left, top = letterbox(window_size, surface_size)
+    x, y = (pos[0] - left) / k, (pos[1] - top) / k
+    return (x, y) if 0 <= x < surface_size[0] and 0 <= y < surface_size[1] else None
+
+
 class Window:
     """The OS window. The game draws a fixed-size field; :meth:`present` scales it in,
     keeping its aspect (black bars, never stretched)."""
@@ -65,6 +86,18 @@ class Window:
             self.surface = pygame.display.set_mode(self.size, pygame.RESIZABLE)
         self.fullscreen = on
 
+    def windowed_size(self) -> tuple[int, int]:
+        """The window's size now (as the user left it), or the size it returns to from fullscreen."""
+        shown = pygame.display.get_surface()
+        return shown.get_size() if shown is not None and not self.fullscreen else self.size
+
+    def resize(self, size: tuple[int, int]) -> None:
+        """Make the window ``size`` (the editor opens wider than the field). In fullscreen it
+        is remembered for when the window comes back."""
+        self.size = size
+        if not self.fullscreen and pygame.display.get_surface() is not None:
+            self.surface = pygame.display.set_mode(size, pygame.RESIZABLE)
+
     def toggle_fullscreen(self) -> bool:
         """F11. Returns the new state."""
         self.set_fullscreen(not self.fullscreen)
@@ -84,7 +117,7 @@ class Window:
         if ww <= 0 or wh <= 0:
             return
         fw, fh = field.get_size()
-        k = min(ww / fw, wh / fh)
+        k, _, _ = letterbox((ww, wh), (fw, fh))
         size = (max(1, int(fw * k)), max(1, int(fh * k)))
         win.fill((0, 0, 0))
         win.blit(pygame.transform.scale(field, size), ((ww - size[0]) // 2, (wh - size[1]) // 2))

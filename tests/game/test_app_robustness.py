@@ -325,3 +325,16 @@ def test_render__no_display_surface_is_not_an_error(app):
     before = app.renderer.tick
     app.render()  # draws the field; presenting is skipped
     assert app.renderer.tick == before + 1
+
+
+def test_window_opening__shown_hidden_shown_in_one_batch_does_not_start_the_stage_paused(app):
+    """SDL on X11 opens a window with shown, hidden, shown among its first events: a
+    ``--level`` run, playing from the first frame, must not open on the pause screen."""
+    app.start_run()
+    for kind in (pygame.WINDOWSHOWN, pygame.WINDOWHIDDEN, pygame.WINDOWSHOWN, pygame.WINDOWFOCUSGAINED):
+        post(kind)
+    frames(app, 3)
+    assert isinstance(app.scene, Play) and app.world.frame > 0 and not app.hidden
+    post(pygame.WINDOWHIDDEN)  # hidden for good: a player's game pauses
+    frames(app)
+    assert isinstance(app.scene, Pause)

@@ -62,3 +62,31 @@ def test_stacked_graph__columns_stack_tiers_from_the_bottom():
     assert (before[8:] == red).all() and (before[6:8] == green).all()  # 1 + 1 ms stacked
     assert not ((before[:6] == red).all(axis=1) | (before[:6] == green).all(axis=1)).any()
     assert not (img[0] == (255, 0, 0)).all(axis=1).any()  # no data yet: background
+
+
+def test_overlay_panel__every_line_fits_the_panel_paused_or_not(monkeypatch):
+    """The panel's text is never cut at its right edge (it was: "... (F4)   PAUSED  F2:"), and
+    paused, it says so with the step key on a line of its own."""
+    from broadsword.game import drawing, overlay
+    from broadsword.headless import make_world
+    from broadsword.sim import Input, Settings
+
+    pygame.init()
+    world, _ = make_world("3-broadsword", 1, Settings(rotation="exact"))
+    for _ in range(3):
+        world.step(Input(fire=True))
+    drawn = []
+    real_text = drawing.PygameDraw.text
+
+    def text(self, position, s, colour):
+        drawn.append(s)
+        real_text(self, position, s, colour)
+
+    monkeypatch.setattr(drawing.PygameDraw, "text", text)
+    o = Overlay()
+    for paused in (False, True):
+        drawn.clear()
+        o.draw(pygame.Surface((480, 640)), world.collision.result, 120.0, paused)
+        widest = max(o.font.size(s)[0] for s in drawn)
+        assert widest <= overlay.PANEL_WIDTH - 12, drawn
+        assert any("PAUSED" in s and "F2" in s for s in drawn) == paused

@@ -112,3 +112,60 @@ def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
     # headless still checks it
     summary, _ = run_headless("", FRAMES, 0, False, rec, str(path))
     assert summary["replay_matches"] is True
+
+
+@pytest.mark.parametrize("index", [1, 4])
+def test_replay_window__plays_the_recorded_stages_music(app, index):
+    """A recording of a later stage plays that stage's loop (and its boss is the final boss
+    on the last stage), not stage 1's."""
+    from broadsword.game.music import Track
+    from broadsword.game.soundtrack import soundtrack
+    from broadsword.headless import make_world
+    from broadsword.sim import Input, Settings
+    from broadsword.sim.replay import Recorder
+
+    level = app.levels[index]
+    world, digest = make_world(level, 3, Settings())
+    rec = Recorder(world, level, digest)
+    for _ in range(5):
+        inp = Input()
+        world.step(inp)
+        rec.stepped(inp)
+    play = app.watch_replay(rec.recording(), "run.json")
+    app.frame(DT)
+    assert soundtrack(app) is Track.stage(index + 1)
+    assert play.run.has_next(app.levels) == (index + 1 < len(app.levels))
+
+
+def test_record_window__a_run_of_two_stages_saves_one_replayable_recording_a_stage(tmp_path, monkeypatch, capsys):
+    """``--record FILE`` on a windowed run that goes on to stage 2: FILE holds stage 1 and
+    FILE-2-gauntlet.json stage 2 (with the score it started with), each replaying to the
+    state it was left in -- not only the last stage."""
+    from broadsword.data.recordings import load_recording
+
+    monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
+    ends = []
+
+    def run(self):
+        for _ in range(30):
+            self.frame(DT)
+        self.play._cleared()  # stage 1 ends (its results screen), then on to stage 2
+        self.scene.next()
+        for _ in range(20):
+            self.frame(DT)
+        ends.extend(r.world.state_hash() for r in self.recorders)
+        ends.append(self.recorders[0].world.score.points)
+
+    monkeypatch.setattr(App, "run", run)
+    path = tmp_path / "run.json"
+    assert cli.main(["--level", "1-picket", "--autopilot", "--record", str(path), "--mute"]) == 0
+    pygame.quit()
+    second = tmp_path / "run-2-gauntlet.json"
+    assert "run-2-gauntlet.json" in capsys.readouterr().err
+    first_rec, second_rec = load_recording(path), load_recording(second)
+    assert (first_rec.level, second_rec.level) == ("1-picket", "2-gauntlet")
+    assert (first_rec.frames, second_rec.frames) == (30, 20)
+    assert second_rec.carry["score"] == ends[-1]  # stage 2 starts with what stage 1 ended with
+    for p, rec, end in zip((path, second), (first_rec, second_rec), ends):
+        summary, _ = run_headless("", rec.frames, 0, False, rec, str(p))
+        assert summary["replay_matches"] is True and summary["state_hash"] == end

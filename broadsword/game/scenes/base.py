@@ -21,7 +21,8 @@ class Scene(Protocol):
 
     def handle(self, event: pygame.event.Event) -> bool:
         """React to one event; True if it was used (the app then gives it no global meaning,
-        e.g. M typed into a name is not mute)."""
+        e.g. M typed into a name is not mute). A window close (``pygame.QUIT``) is offered
+        too: True keeps the game open (the editor with unsaved changes warns first)."""
 
     def update(self, dt: float) -> int:
         """Advance by ``dt`` real seconds; returns the world steps taken (0 for menus)."""

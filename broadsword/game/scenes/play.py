@@ -204,4 +204,7 @@ class Play:
         app.renderer.draw(surf, self.world, alpha, show_armature=hitbox)
         if app.overlay.visible:
             record = self.world.collision
-            app.overlay.draw(surf, record.result if record is not None else None, app.fps)
+            from .pause import Pause
+
+            paused = isinstance(app.stack.top, Pause)
+            app.overlay.draw(surf, record.result if record is not None else None, app.fps, paused)

@@ -76,6 +76,10 @@ class Title:
             from .high_scores import HighScoresScene
 
             app.stack.push(HighScoresScene(app))
+        elif key == pygame.K_e:
+            from .armatures import ArmatureList
+
+            app.stack.push(ArmatureList(app))
         elif key == pygame.K_o:
             from .options_screen import OptionsScene
 
@@ -106,7 +110,7 @@ class Title:
             name = "..." + name[4:]  # a long file name loses its start, keeps its end
         p.text(f"Stage: {name}   {hint}", 258, colour=ui.CREAM)
         p.text(f"Difficulty: < {app.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
-        p.text("Enter or Z play   O options   H high scores   Esc quit", 310, colour=ui.DIM)
+        p.text("Enter or Z play   O options   H scores   E edit hit shapes   Esc quit", 310, colour=ui.DIM)
         if app.error:
             self._draw_error()
         else:

@@ -1,0 +1,85 @@
+"""The armature editor as a scene (title -> E -> a sprite -> Enter): the same
+:class:`broadsword.game.editor.Editor` that ``broadsword edit PATH`` opens in its own window,
+hosted on the game's window.
+
+The editor draws on a surface of its own size (:data:`~broadsword.game.editor.WINDOW_SIZE`),
+which the app presents scaled into the window like the field; the window is resized to it
+while the editor is open and given back its size after. Mouse positions are mapped from the
+window to that surface (:func:`broadsword.game.window.to_surface`); a press in the black bars
+around it reaches nothing. Every key goes to the editor (so M, N, P... are its keys) except
+F11, which stays fullscreen. Esc leaves the editor as it does in its own window (with unsaved
+changes the first Esc only warns), back to the list; closing the window with unsaved changes
+warns first too.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pygame
+
+from ..controls import Action
+from ..editor import WINDOW_SIZE, Editor
+from ..window import to_surface
+
+#: Mouse events whose ``pos`` is a window position.
+POINTER_EVENTS = (pygame.MOUSEMOTION, pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP)
+
+
+class EditorScene:
+    opaque = True
+
+    def __init__(self, app, path: str | Path):
+        self.app = app
+        self.back_to = app.window.windowed_size()
+        app.use_screen(WINDOW_SIZE)
+        app.window.resize(WINDOW_SIZE)
+        self.editor = Editor(path, surface=app.screen)
+        self.closed = False
+
+    def handle(self, event: pygame.event.Event) -> bool:
+        if event.type == pygame.KEYDOWN and Action.FULLSCREEN in self.app.controls.actions(event):
+            return False
+        if event.type in POINTER_EVENTS:
+            mapped = self.on_surface(event)
+            if mapped is None:
+                return True
+            event = mapped
+        self.editor.handle_event(event)
+        if event.type == pygame.QUIT:
+            return self.editor.running  # unsaved: the editor warned; the game stays open
+        return True
+
+    def on_surface(self, event: pygame.event.Event) -> pygame.event.Event | None:
+        """``event`` with its ``pos`` (and ``rel``) in the editor surface's px, or None when the
+        pointer is outside it (a motion there still ends nothing: a drag resumes on return)."""
+        win = pygame.display.get_surface()
+        size = self.app.screen.get_size()
+        if win is None:
+            return event
+        pos = to_surface(event.pos, win.get_size(), size)
+        if pos is None:
+            return None
+        attrs = dict(event.__dict__)
+        attrs["pos"] = (int(pos[0]), int(pos[1]))
+        if "rel" in attrs:
+            k = min(win.get_width() / size[0], win.get_height() / size[1])
+            attrs["rel"] = (int(attrs["rel"][0] / k), int(attrs["rel"][1] / k))
+        return pygame.event.Event(event.type, attrs)
+
+    def update(self, dt: float) -> int:
+        self.editor.update()
+        if not self.editor.running and not self.closed:
+            self.close()
+        return 0
+
+    def close(self) -> None:
+        """Leave: the field and the window's size come back, and the list shows again."""
+        self.closed = True
+        self.app.use_screen(None)
+        self.app.window.resize(self.back_to)
+        if self.app.stack.top is self:
+            self.app.stack.pop()
+
+    def draw(self, surf: pygame.Surface) -> None:
+        self.editor.draw(surf)
