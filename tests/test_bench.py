@@ -37,7 +37,7 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     frames = doc["game_frame"]  # DESIGN.md's contract: one entry per scene measured
     assert [e["level"] for e in frames] == ["3-broadsword", "stress-5000"]
     for e in frames:
-        assert set(e) >= {"bullets", "median_ms", "step_ms", "collision_ms", "render_ms", "present_ms"}
+        assert set(e) >= {"bullets", "median_ms", "step_ms", "collision_ms", "render_ms", "present_ms", "pilot_ms"}
         assert e["median_ms"] > 0 and e["collision_ms"] > 0 and e["render_ms"] > 0
         assert min(e["step_ms"], e["present_ms"]) >= 0
     assert "NOT its bullet-hell peak" in frames[0]["where"]

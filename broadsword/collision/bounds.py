@@ -14,7 +14,6 @@ from __future__ import annotations
 import numpy as np
 
 from . import detmath
-from ._indexing import selector
 from .posing import Posed
 from .tolerance import BOUND_SLACK
 
@@ -28,15 +27,40 @@ __all__ = ["aabbs", "circle_boxes", "boxes_overlap", "circles_overlap", "oriente
 
 
 def aabbs(posed: Posed) -> np.ndarray:
-    """Axis-aligned boxes of every posed polygon, (n, 4) float64. Exact (min/max of vertices)."""
+    """Axis-aligned boxes of every posed polygon, (n, 4) float64.
+
+    Exact (min/max of vertices) for every polygon posed; for a sweep not built yet
+    (:class:`~broadsword.collision.posing.Sweeps`), the union of its shape's box and that
+    box moved back along the path, ``[min(lo, lo - d), max(hi, hi - d)]`` per axis. Every
+    vertex of the built sweep is a vertex ``v`` of the shape or ``v - d`` computed as one
+    rounded subtraction, and rounding is monotonic, so ``min_k (v_k - d)`` is
+    ``(min_k v_k) - d`` rounded: the union holds every vertex of the sweep. It equals the
+    sweep's own box except where the sweep leaves out a candidate vertex that rounding put
+    outside it (an edge parallel to the path), so it is conservative either way.
+    """
     out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
-    for k, idx in posed.members.items():
-        x, y, sel = posed.xs[k], posed.ys[k], selector(idx)
-        for row, (v, reduce) in enumerate(((x, np.min), (y, np.min), (x, np.max), (y, np.max))):
-            if isinstance(sel, slice):
-                reduce(v, axis=0, out=out[row, sel])  # a pool: straight into place
-            else:
-                out[row, sel] = reduce(v, axis=0)
+    for k in posed.members:
+        x, y, sel = posed.vx[k], posed.vy[k], posed.selector(k)
+        # A pool's rows straight into place; otherwise into one (4, n_K) block, scattered once.
+        part = out[:, sel] if isinstance(sel, slice) else np.empty((4, x.shape[1]))
+        sw = posed.sweeps.get(k)
+        cut = x.shape[1] if sw is None else sw.split
+        if cut:
+            xp, yp = x[:, :cut], y[:, :cut]
+            for row, (v, reduce) in enumerate(((xp, np.min), (yp, np.min), (xp, np.max), (yp, np.max))):
+                reduce(v, axis=0, out=part[row, :cut])
+        if sw is not None:
+            lo, hi = part[:, cut:][:2], part[:, cut:][2:]
+            with np.errstate(over="ignore", invalid="ignore"):  # as the built sweep's vertices would
+                np.min(sw.hx, axis=0, out=lo[0])
+                np.min(sw.hy, axis=0, out=lo[1])
+                np.max(sw.hx, axis=0, out=hi[0])
+                np.max(sw.hy, axis=0, out=hi[1])
+                path = np.stack([sw.dx, sw.dy])
+                np.minimum(lo, lo - path, out=lo)
+                np.maximum(hi, hi - path, out=hi)
+        if not isinstance(sel, slice):
+            out[:, sel] = part
     return out.T
 
 

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._indexing import selector
 from .posing import Posed
 
 __all__ = ["kdops", "kdops_overlap"]
@@ -34,8 +33,8 @@ def kdops(posed: Posed) -> np.ndarray:
     then the upper bounds along the same axes.
     """
     out = np.empty((8, posed.n))  # built row-wise, as bounds.aabbs does
-    for k, idx in posed.members.items():
-        x, y, sel = posed.xs[k], posed.ys[k], selector(idx)
+    for k in posed.members:
+        x, y, sel = posed.xs[k], posed.ys[k], posed.selector(k)
         with np.errstate(over="ignore"):  # +-inf past the doubles: rounding is monotonic, so still a bound
             s, d = x + y, x - y
         for row, v in enumerate((x, y, s, d)):

@@ -276,11 +276,6 @@ def collide_pairs(
         a, b = np.take(i, sel), np.take(j, sel)
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
-        batch = (
-            np.take(posed.xs[k1], sa, axis=1),
-            np.take(posed.ys[k1], sa, axis=1),
-            np.take(posed.xs[k2], sb, axis=1),
-            np.take(posed.ys[k2], sb, axis=1),
-        )
+        batch = (*posed.gather(k1, sa), *posed.gather(k2, sb))  # sweeps built for these columns only
         out[sel] = narrow(*batch, ws) if narrow is polygons_collide_padded else narrow(*batch)
     return out

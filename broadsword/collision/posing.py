@@ -35,8 +35,9 @@ pose; sweeping is meant for small, fast things (bullets) against slower ones (sh
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property, partial
 
 import numpy as np
 
@@ -114,6 +115,9 @@ class ArmatureSet:
         self.hull_count = hulls
         self.classes = tuple(sorted({*self.size_class.tolist(), *self.swept_class.tolist(), self.rotating_swept_class}))
         self._cos, self._sin = rotation_table()
+        # The table three times over, for degrees -360..719: an angle already in that range
+        # (most are) indexes it directly, with no reduction (same entries, same bits).
+        self._cos3, self._sin3 = np.tile(self._cos, 3), np.tile(self._sin, 3)
 
     def __len__(self) -> int:
         return len(self.armatures)
@@ -126,7 +130,13 @@ class ArmatureSet:
             # error stays below 1/360 -- and twice as fast as an int64 modulo; beyond
             # that, fmod, which is exact for every double (and slow).
             deg = np.floor(angles + 0.5)
-            if len(deg) and np.abs(deg).max() < 2.0**44:
+            if not len(deg):
+                return deg, deg.copy()
+            if deg.min() >= -360.0 and deg.max() < 720.0:  # the common case: one look-up
+                deg += 360.0
+                idx = deg.astype(np.intp)
+                return np.take(self._cos3, idx), np.take(self._sin3, idx)
+            if np.abs(deg).max() < 2.0**44:
                 deg -= 360.0 * np.floor(deg / 360.0)
             else:
                 np.fmod(deg, 360.0, out=deg)
@@ -137,6 +147,52 @@ class ArmatureSet:
             s, c = detmath.sincos_deg(angles)
             return c, s
         raise ValueError(f"rotation mode must be one of {ROTATION_MODES}, got {mode!r}")
+
+
+@dataclass
+class Sweeps:
+    """The swept polygons of one size class, before they are built.
+
+    A sweep's box needs only its shape at the current pose and its path, so posing stops
+    there: the polygons (``2 H`` vertices each) are built by :meth:`build` for the columns
+    a tier asks for (:meth:`Posed.gather`: the exact test's few candidates), or for all of
+    them when someone reads :attr:`Posed.xs`. Same arithmetic either way, column by
+    column, so the same bits.
+
+    Attributes
+    ----------
+    split : int
+        Column of the class arrays where the swept objects begin (plain ones come first).
+    hx, hy : (H, m) float64
+        Each swept object's convex shape at its current pose (its hull padded with its last
+        vertex, or the octagon of a turning one), ``H = K / 2``.
+    dx, dy : (m,) float64
+        Each path: current position minus previous.
+    workspace : Workspace
+        Scratch for :func:`_sweep`.
+    """
+
+    split: int
+    hx: np.ndarray
+    hy: np.ndarray
+    dx: np.ndarray
+    dy: np.ndarray
+    workspace: Workspace
+
+    def build(self, cols: np.ndarray | None = None, ox=None, oy=None) -> tuple[np.ndarray, np.ndarray]:
+        """(2H, m') swept polygons of the columns ``cols`` (positions among the swept
+        objects; all of them when ``None``), into ``ox``, ``oy`` when given."""
+        if cols is None:
+            return _sweep(self.hx, self.hy, self.dx, self.dy, ox, oy, self.workspace)
+        return _sweep(
+            np.take(self.hx, cols, axis=1),
+            np.take(self.hy, cols, axis=1),
+            np.take(self.dx, cols),
+            np.take(self.dy, cols),
+            ox,
+            oy,
+            self.workspace,
+        )
 
 
 @dataclass
@@ -151,30 +207,95 @@ class Posed:
         Size class ``K`` of each object's posed polygon.
     slot : (n,) int64
         Column of each object in its class arrays.
-    xs, ys : dict K -> (K, n_K) float64
-        Vertex coordinates, padded with the last vertex.
+    vx, vy : dict K -> (K, n_K) float64
+        The class arrays as posed: every plain column, and the swept columns of the
+        classes not in ``sweeps`` (read :attr:`xs`, :attr:`ys` or :meth:`gather` instead).
     members : dict K -> (n_K,) int64
-        Object index of each column.
-    centre : (n, 2) float64
-        Centre of each object's bounding circle (the position, or the sweep's midpoint).
-    radius : (n,) float64
-        Conservative bounding-circle radius: contains every posed float vertex.
+        Object index of each column: ascending, except in a class that mixes swept and
+        plain objects, whose plain objects come first (each part ascending), so that both
+        parts are written in place.
+    circles : callable () -> (centre (n, 2), radius (n,)) float64
+        Computes the bounding circles; read them as :attr:`centre` and :attr:`radius`,
+        which call it once, on first use (the default pipeline never needs them: its
+        boxes come from the vertices; the exact norm of every sweep's path was a tenth of
+        a swept frame). It reads the positions the objects were posed from, which are the
+        caller's arrays (as :class:`FrameObjects` says): valid while the caller leaves them
+        alone.
     swept : (n,) bool
     cos, sin : (n,) float64
         The rotation each object was posed with.
+    reordered : frozenset of int
+        Classes whose members are not ascending (swept and plain mixed).
+    sweeps : dict K -> Sweeps
+        The swept polygons not built yet, by class (see :class:`Sweeps`).
     """
 
     n: int
     klass: np.ndarray
     slot: np.ndarray
-    xs: dict
-    ys: dict
+    vx: dict
+    vy: dict
     members: dict
-    centre: np.ndarray
-    radius: np.ndarray
+    circles: Callable[[], tuple[np.ndarray, np.ndarray]]
     swept: np.ndarray
     cos: np.ndarray
     sin: np.ndarray
+    reordered: frozenset = frozenset()
+    sweeps: dict = field(default_factory=dict)
+
+    @cached_property
+    def _circles(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.circles()
+
+    @property
+    def centre(self) -> np.ndarray:
+        """(n, 2) float64: centre of each object's bounding circle (the position, or the sweep's midpoint)."""
+        return self._circles[0]
+
+    @property
+    def radius(self) -> np.ndarray:
+        """(n,) float64: conservative bounding-circle radius; contains every posed float vertex."""
+        return self._circles[1]
+
+    def build(self) -> None:
+        """Build every pending swept polygon into the class arrays, in place."""
+        for k, sw in self.sweeps.items():
+            sw.build(None, self.vx[k][:, sw.split :], self.vy[k][:, sw.split :])
+        self.sweeps = {}
+
+    @property
+    def xs(self) -> dict:
+        """dict K -> (K, n_K) float64: vertex x of every column, padded with the last vertex."""
+        self.build()
+        return self.vx
+
+    @property
+    def ys(self) -> dict:
+        """dict K -> (K, n_K) float64: vertex y of every column, padded with the last vertex."""
+        self.build()
+        return self.vy
+
+    def gather(self, k: int, cols: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(K, m) x and y of the columns ``cols`` (m,) of class ``k``, swept polygons
+        built for those columns only (the exact test's candidates)."""
+        sw = self.sweeps.get(k)
+        vx, vy = self.vx[k], self.vy[k]
+        if sw is None:
+            return np.take(vx, cols, axis=1), np.take(vy, cols, axis=1)
+        moved = cols >= sw.split
+        if moved.all():
+            return sw.build(cols - sw.split)
+        x, y = np.take(vx, cols, axis=1), np.take(vy, cols, axis=1)
+        at = np.flatnonzero(moved)
+        if at.size:
+            x[:, at], y[:, at] = sw.build(np.take(cols, at) - sw.split)
+        return x, y
+
+    def selector(self, k: int):
+        """The columns of class ``k`` as a slice of object indices when they are a pooled,
+        ascending run (:func:`broadsword.collision._indexing.selector`), else ``members[k]``."""
+        idx = self.members[k]
+        return idx if k in self.reordered else selector(idx)
 
     def polygon(self, i: int) -> np.ndarray:
         """The posed polygon of object ``i`` as (K, 2), padding removed."""
@@ -317,19 +438,74 @@ def pose_checked(
     ws = workspace or Workspace()
     cos, sin = shapes.rotations(angles, rotation)
     px, py = positions[:, 0], positions[:, 1]
-    radius = np.take(shapes.radius, armature)
-    centre = positions
     klass = np.take(shapes.size_class, armature)
     if swept is None:
         swept = np.zeros(n, dtype=bool)
-        turning = swept
+        turning = None
     else:
         assert prev_positions is not None and prev_angles is not None  # arguments.frame saw to it
-        pcos, psin = shapes.rotations(prev_angles, rotation)
-        turning = swept & ((pcos != cos) | (psin != sin))
-        klass[swept] = shapes.swept_class[armature[swept]]
-        klass[turning] = shapes.rotating_swept_class
-        # Bounding circle of a sweep: around the path's midpoint, radius grown by half the path.
+        if prev_angles is angles:  # the caller says nothing turned (the game's bullets)
+            turning = None
+        else:
+            pcos, psin = shapes.rotations(prev_angles, rotation)
+            turning = swept & ((pcos != cos) | (psin != sin))
+            if not turning.any():
+                turning = None
+        klass = np.where(swept, np.take(shapes.swept_class, armature), klass)
+        if turning is not None:
+            klass[turning] = shapes.rotating_swept_class
+    circles = partial(_circles, shapes.radius, armature, positions, prev_positions, swept)
+
+    slot = np.zeros(n, dtype=np.int64)
+    xs, ys, members = {}, {}, {}
+    reordered = set()
+    sweeps = {}
+    any_swept = bool(swept.any())
+    for k in shapes.classes if vertices else ():
+        idx = np.flatnonzero(klass == k)
+        if not idx.size:
+            continue
+        x = ws.get(f"pose_x{k}", (k, len(idx)))
+        y = ws.get(f"pose_y{k}", (k, len(idx)))
+        along = np.take(swept, idx) if any_swept else None
+        count = int(np.count_nonzero(along)) if along is not None else 0
+        if count == 0 or count == len(idx):
+            sel = selector(idx)
+            slot[sel] = np.arange(len(idx))
+            plain, moved = (sel, None) if count == 0 else (None, sel)
+            split = 0 if count else len(idx)
+        else:
+            # Plain objects first, then swept ones: each part is written in place.
+            assert along is not None
+            plain, moved = np.compress(~along, idx), np.compress(along, idx)
+            idx = np.concatenate([plain, moved])
+            slot[idx] = np.arange(len(idx))
+            split = len(plain)
+            reordered.add(k)
+        if plain is not None:
+            _pose_plain(shapes, k, plain, armature, px, py, cos, sin, x[:, :split], y[:, :split], ws)
+        if moved is not None:
+            assert prev_positions is not None  # swept objects have them (arguments.frame)
+            # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
+            turn = None if turning is None else pick(turning, moved)
+            hx, hy = _swept_shape(shapes, moved, armature, px, py, cos, sin, turn, k // 2, ws, f"{k}")
+            m = hx.shape[1]
+            dx = np.subtract(pick(px, moved), pick(prev_positions[:, 0], moved), out=ws.get(f"pose_dx{k}", m))
+            dy = np.subtract(pick(py, moved), pick(prev_positions[:, 1], moved), out=ws.get(f"pose_dy{k}", m))
+            sweeps[k] = Sweeps(split, hx, hy, dx, dy, ws)  # built when a tier reads them
+        xs[k], ys[k], members[k] = x, y, idx
+    return Posed(n, klass, slot, xs, ys, members, circles, swept, cos, sin, frozenset(reordered), sweeps)
+
+
+def _circles(radii, armature, positions, prev_positions, swept) -> tuple[np.ndarray, np.ndarray]:
+    """Bounding circles ``(centre (n, 2), radius (n,))`` of posed objects: around the
+    position, or around a sweep's midpoint with the radius grown by half the path (and, for
+    a sweep, by the octagon's factor, which covers a turning one); inflated by the bound
+    slack so that every posed float vertex is inside."""
+    radius = np.take(radii, armature)
+    centre = positions
+    if swept.any():
+        assert prev_positions is not None
         # Halves first: p - q overflows for p, q near +-1.7e308, p/2 - q/2 never does.
         half = 0.5 * positions - 0.5 * prev_positions
         centre = np.where(swept[:, None], positions - half, positions)
@@ -339,36 +515,7 @@ def pose_checked(
         radius = radius * (1.0 + BOUND_SLACK) + (
             BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1]) + BOUND_SLACK
         )
-
-    slot = np.zeros(n, dtype=np.int64)
-    xs, ys, members = {}, {}, {}
-    for k in shapes.classes if vertices else ():
-        idx = np.flatnonzero(klass == k)
-        if not idx.size:
-            continue
-        sel = selector(idx)
-        slot[sel] = np.arange(len(idx))
-        x = ws.get(f"pose_x{k}", (k, len(idx)))
-        y = ws.get(f"pose_y{k}", (k, len(idx)))
-        plain = ~swept[sel]
-        if plain.all():
-            _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x, y, ws)
-        else:
-            cols = np.flatnonzero(plain)
-            if cols.size:
-                x[:, cols], y[:, cols] = _pose_plain(shapes, k, idx[cols], armature, px, py, cos, sin)
-            cols = np.flatnonzero(~plain)
-            obj = idx[cols]
-            assert prev_positions is not None  # swept objects have them (arguments.frame)
-            # A swept polygon has two rows per hull row: class k sweeps k/2 hull rows.
-            hx, hy = _swept_shape(shapes, obj, armature, px, py, cos, sin, turning[obj], k // 2, ws)
-            dx, dy = px[obj] - prev_positions[obj, 0], py[obj] - prev_positions[obj, 1]
-            if len(cols) == len(idx):  # every object of the class is swept (a bullet pool): in place
-                _sweep(hx, hy, dx, dy, x, y, ws)
-            else:
-                x[:, cols], y[:, cols] = _sweep(hx, hy, dx, dy, ws=ws)
-        xs[k], ys[k], members[k] = x, y, idx
-    return Posed(n, klass, slot, xs, ys, members, centre, radius, swept, cos, sin)
+    return centre, radius
 
 
 def _pad_rows(a: np.ndarray, k: int) -> np.ndarray:
@@ -402,40 +549,42 @@ def _pose_plain(shapes, k, sel, armature, px, py, cos, sin, x=None, y=None, ws=N
     return x, y
 
 
-def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Workspace | None = None):
-    """Current-pose convex shape of each swept object, as (rows, m) arrays: its hull
-    (padded with its last vertex), or the circumscribed octagon if it turned. With one
-    armature for all (a bullet pool) the hull is broadcast, not gathered; the arrays come
-    from ``ws`` when given (same arithmetic, same bits)."""
-    arm = armature[obj]
+def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Workspace | None = None, tag=""):
+    """Current-pose convex shape of each swept object ``obj`` (a slice or an index array),
+    as (rows, m) arrays: its hull (padded with its last vertex), or the circumscribed
+    octagon where ``turning`` (None: none turned). With one armature for all (a bullet pool)
+    the hull is broadcast, not gathered; the arrays come from ``ws`` when given (same
+    arithmetic, same bits)."""
+    arm = pick(armature, obj)
     one = arm.min() == arm.max()
     cols = arm[:1] if one else arm  # one armature: a single (rows, 1) column, broadcast
     hx = _pad_rows(shapes._hx[:rows, cols], rows)
     hy = _pad_rows(shapes._hy[:rows, cols], rows)
-    c, s = cos[obj], sin[obj]
-    m = len(obj)
+    c, s = pick(cos, obj), pick(sin, obj)
+    m = len(arm)
     if ws is None:
         x, y, t = np.empty((len(hx), m)), np.empty((len(hx), m)), np.empty((len(hx), m))
     else:
-        x, y, t = (ws.get(f"swept_{name}", (len(hx), m)) for name in ("x", "y", "t"))
+        x, y, t = (ws.get(f"swept_{name}{tag}", (len(hx), m)) for name in ("x", "y", "t"))
+    ox, oy = pick(px, obj), pick(py, obj)
     np.multiply(hx, c, out=t)  # x = px + hx c - hy s
-    np.add(px[obj], t, out=x)
+    np.add(ox, t, out=x)
     np.multiply(hy, s, out=t)
     x -= t
     np.multiply(hx, s, out=t)  # y = py + hx s + hy c
-    np.add(py[obj], t, out=y)
+    np.add(oy, t, out=y)
     np.multiply(hy, c, out=t)
     y += t
-    if turning.any():
+    if turning is not None and turning.any():
         # Circumscribed octagon: its edges lie at distance r (slightly inflated) from the centre.
         h = len(hx)
         deg = 180.0 / _OCTAGON * (2 * np.arange(_OCTAGON) + 1)
-        cx, cy = px[obj][turning], py[obj][turning]
+        cx, cy = ox[turning], oy[turning]
         slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
         r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
         ts, tc = detmath.sincos_deg(deg)
-        ox = cx + tc[:, None] * r
-        oy = cy + ts[:, None] * r
-        x[:, turning] = _pad_rows(ox, h)
-        y[:, turning] = _pad_rows(oy, h)
+        ocx = cx + tc[:, None] * r
+        ocy = cy + ts[:, None] * r
+        x[:, turning] = _pad_rows(ocx, h)
+        y[:, turning] = _pad_rows(ocy, h)
     return x, y

@@ -266,6 +266,10 @@ class World:
             message = f"more than {pool.limit:,} {what} at once: the rest were not made"
             if pool.refused and message not in self.warnings:
                 self.warnings.append(message)
+        engine = self.guns.engine
+        message = f"more than {engine.max_steps:,} pattern commands in one frame: the rest wait for the next"
+        if engine.deferred and message not in self.warnings:
+            self.warnings.append(message)
 
     def _finished(self) -> bool:
         boss_done = self.boss is None or self.boss.dead

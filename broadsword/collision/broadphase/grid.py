@@ -15,6 +15,9 @@ __all__ = ["BinGrid"]
 
 #: A table entry with at most this many objects on one side skips the bins (see _GridFrame.ranges_meet).
 _DIRECT_SIDE = 8
+#: ... and so does one with at most this many object pairs (small scenes: comparing every
+#: pair's bin ranges is a handful of numpy calls, registering in bins a few dozen).
+_DIRECT_PAIRS = 1 << 14
 
 
 class BinGrid(Driver):
@@ -122,7 +125,7 @@ class _GridFrame(Frame):
         )
 
     def between(self, ia, ib, la, lb):
-        if min(len(ia), len(ib)) <= _DIRECT_SIDE:
+        if min(len(ia), len(ib)) <= _DIRECT_SIDE or len(ia) * len(ib) <= _DIRECT_PAIRS:
             return self.ranges_meet(ia, ib)
         oa, ka, ma = self.layer_entries(ia, la)
         ob, kb, mb = self.layer_entries(ib, lb)
