@@ -191,6 +191,38 @@ def test_bounded__live_bullets_are_capped():
     assert len(frames[-1]) == limits.MAX_LIVE_BULLETS
 
 
+def test_bounded__an_engine_runs_at_most_max_steps_commands_a_part_and_serves_everyone_in_turn():
+    """Ten emitters each firing a 30-bullet volley every frame (about 60 commands each) under a
+    budget of 100 commands a part: each part stops at 100 commands, and the emitters left
+    waiting go first next frame, so every emitter fires within a few frames (none starves)."""
+    from broadsword.patterns.bulletml.engine import Engine
+
+    p = top(
+        "<repeat><times>1000</times><action><repeat><times>30</times><action>"
+        + fire()
+        + "</action></repeat><wait>1</wait></action></repeat>"
+    )
+    eng = Engine(max_steps=100)
+    for k in range(10):
+        eng.add_emitter(p, (0.0, 0.0), tag=k)
+    fired = []
+    for _ in range(12):
+        before = eng.fired
+        eng.step()
+        fired.append(eng.fired - before)
+    assert eng.busiest == 100 and eng.deferred >= 12
+    assert 0 < max(fired) <= 100 and sum(fired) < 12 * 10 * 30
+    assert set(eng.bullets.tag.tolist()) == set(range(10))  # every emitter was served
+    # The same emitters without a binding budget fire every volley in full each frame.
+    free = Engine()
+    for k in range(10):
+        free.add_emitter(p, (0.0, 0.0), tag=k)
+    free.step()
+    assert free.fired == 10 * 30 and free.deferred == 0 and 0 < free.busiest < 100 * 10
+    with pytest.raises(ValueError, match="max_steps"):
+        Engine(max_steps=0)
+
+
 def test_bounded__runtime_overflow_and_division_by_zero_are_finite():
     p = top(
         fire('<direction type="absolute">$rank / ($rank - $rank)</direction>', "<speed>$rank * 1e300 * 1e300</speed>")

@@ -24,7 +24,7 @@ import numpy as np
 
 from ._trig import heading_deg
 from .expr import Expr, Scope
-from .limits import MAX_LIVE_BULLETS
+from .limits import MAX_LIVE_BULLETS, MAX_STEPS_PER_PART
 from .machine import Runner, Thread
 from .model import Pattern
 from .store import NEVER, Movers
@@ -36,10 +36,23 @@ class Engine:
     ``numpy.random.SeedSequence``). ``bullets`` is the store bullets live in (default: a new
     :class:`Movers` capped at ``max_bullets``; the game passes its enemy-bullet pool, a
     Movers with its own columns and limit). Fires past the store's limit are refused and
-    counted in ``bullets.refused``; fires from a ``mute`` emitter are dropped. Counters:
-    ``fired`` (bullets created so far), ``peak`` (most live at the end of a frame)."""
+    counted in ``bullets.refused``; fires from a ``mute`` emitter are dropped. Each part of a
+    frame runs at most ``max_steps`` commands in all (``MAX_STEPS_PER_PART``); past it, the
+    runners not yet served wait for the next frame and are served first then. Counters:
+    ``fired`` (bullets created so far), ``peak`` (most live at the end of a frame),
+    ``busiest`` (most commands run in one part of a frame), ``deferred`` (parts of frames
+    that reached ``max_steps``)."""
 
-    def __init__(self, rank: float = 0.5, seed=0, max_bullets: int = MAX_LIVE_BULLETS, bullets: Movers | None = None):
+    def __init__(
+        self,
+        rank: float = 0.5,
+        seed=0,
+        max_bullets: int = MAX_LIVE_BULLETS,
+        bullets: Movers | None = None,
+        max_steps: int = MAX_STEPS_PER_PART,
+    ):
+        if int(max_steps) < 1:
+            raise ValueError(f"max_steps must be at least 1, got {max_steps!r}")
         self.rank = float(rank)
         self.scope = Scope((), self.rank, np.random.Generator(np.random.PCG64(seed)))
         self.frame = 0
@@ -47,6 +60,12 @@ class Engine:
         self.emitters = Movers(8)
         self.bullets = bullets if bullets is not None else Movers(256, limit=max_bullets)
         self.fired = self.peak = 0
+        self.max_steps = int(max_steps)
+        self.budget = self.max_steps  # commands left in the part of the frame being run
+        self.busiest = self.deferred = 0
+        # per store (emitters, bullets): the row to serve first next time, after a part that
+        # ran out of commands (rows are served in order from it, then from row 0)
+        self._resume = {"emitters": 0, "bullets": 0}
 
     @property
     def refused(self) -> int:
@@ -155,8 +174,20 @@ class Engine:
     def _run(self, movers: Movers, m: int, now: int) -> None:
         movers.apply_changes(now, m)
         due = np.flatnonzero(movers.wake[:m] <= now)
+        which = "emitters" if movers is self.emitters else "bullets"
+        first = self._resume[which]
+        if first:  # the rows left waiting last time go first
+            due = np.concatenate([due[due >= first], due[due < first]])
+        self._resume[which] = 0
+        self.budget = self.max_steps
         for row in due.tolist():
+            if self.budget <= 0:
+                self._resume[which] = row
+                break
             movers.wake[row] = movers.runner[row].run(self, movers, row, now)
+        self.busiest = max(self.busiest, self.max_steps - self.budget)
+        if self.budget <= 0:
+            self.deferred += 1
 
     # -- questions ----------------------------------------------------------------------
     def running(self) -> int:

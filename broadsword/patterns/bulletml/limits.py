@@ -28,5 +28,11 @@ MAX_REPEAT = 100_000
 MAX_VALUE = 1e9
 #: Commands one runner may execute in one frame; past it, it resumes next frame.
 MAX_STEPS_PER_FRAME = 10_000
+#: Commands all the runners of one engine may execute in one part of a frame (the emitters'
+#: part, :meth:`~.engine.Engine.fire`, or the bullets', :meth:`~.engine.Engine.advance`);
+#: past it, every runner not yet served waits for the next frame (and is served first then).
+#: Bounds the work of a frame however many emitters fire (thousands of ships each firing
+#: 256-bullet rings every frame would otherwise run a million commands a frame).
+MAX_STEPS_PER_PART = 40_000
 #: Live bullets one pattern run may hold (``trace`` and ``check``); fires past it are refused.
 MAX_LIVE_BULLETS = 4_096

@@ -77,8 +77,9 @@ class Thread:
         stack = self.stack
         while stack and self.act_turn <= now:
             steps += 1
-            if steps > MAX_STEPS_PER_FRAME:
-                return now + 1  # a hostile loop: resume next frame, never hang
+            if steps > MAX_STEPS_PER_FRAME or eng.budget <= 0:
+                return now + 1  # a hostile loop, or the engine's work for this frame done: resume next frame
+            eng.budget -= 1
             top = stack[-1]
             if type(top) is _Rep:
                 if top.left > 0:
