@@ -56,7 +56,7 @@ def run_headless(
     if replay is not None:
         settings = Settings(rotation=replay.settings["rotation"], difficulty=replay.settings["difficulty"])
         level_ref, seed = replay.level, replay.seed
-        carry = Carry(replay.carry["score"], replay.carry["lives"], replay.carry["continues"])
+        carry = Carry(**replay.carry)
     else:
         settings, carry = Settings(rotation=rotation, difficulty=difficulty), Carry()
     world, digest = make_world(level_ref, seed, settings, carry)

@@ -47,7 +47,8 @@ def test_a_recording_carries_everything(tmp_path, capsys):
         and doc["seed"] == 3
         and doc["settings"] == {"rotation": "exact", "difficulty": "normal"}
     )
-    assert len(doc["level_sha256"]) == 64 and doc["carry"] == {"score": 0, "lives": None, "continues": 0}
+    assert len(doc["level_sha256"]) == 64
+    assert doc["carry"] == {"score": 0, "lives": None, "continues": 0, "power": None}
     frames = summary["frames"]
     assert doc["frames"] == frames and [c[0] for c in doc["checkpoints"]] == list(
         range(CHECKPOINT_EVERY, frames + 1, CHECKPOINT_EVERY)

@@ -47,6 +47,8 @@ CHECKPOINT_EVERY = 600
 SETTINGS = {"rotation": ("lut", "exact"), "difficulty": tuple(d.value for d in Difficulty)}
 #: Live toggles a recording may hold, and the values each may take.
 TOGGLES = {"rotation": ("lut", "exact"), "continue": ("yes",)}
+#: The highest shot power a carry may name (the sim clamps it to its own range).
+POWER_LIMIT = 10_000
 #: At most this many toggles (one a frame would already be absurd).
 TOGGLES_MAX = 100_000
 _HEX_DIGEST = re.compile(r"[0-9a-f]{64}\Z")
@@ -83,7 +85,7 @@ class Recording:
     checkpoints: tuple[tuple[int, str], ...] = ()
     state_hash: str = ""
     level_sha256: str = ""
-    carry: dict = field(default_factory=lambda: {"score": 0, "lives": None, "continues": 0})
+    carry: dict = field(default_factory=lambda: {"score": 0, "lives": None, "continues": 0, "power": None})
     game_version: str = __version__
 
     @property
@@ -169,20 +171,24 @@ def _settings(doc: dict, path: Path) -> dict:
 
 
 def _carry(doc: dict, path: Path) -> dict:
-    c = _field(doc, path, "carry", dict, "a table of score and lives", required=False)
+    c = _field(doc, path, "carry", dict, "a table of score, lives, continues and power", required=False)
     if c is None:
-        return {"score": 0, "lives": None, "continues": 0}
+        return {"score": 0, "lives": None, "continues": 0, "power": None}
     for key in c:
-        if key not in ("score", "lives", "continues"):
-            raise DataError(path, f"carry.{key}", "unknown field (expected score, lives, continues)")
-    score, lives, continues = c.get("score", 0), c.get("lives"), c.get("continues", 0)
+        if key not in ("score", "lives", "continues", "power"):
+            raise DataError(path, f"carry.{key}", "unknown field (expected score, lives, continues, power)")
+    score, lives, continues, power = c.get("score", 0), c.get("lives"), c.get("continues", 0), c.get("power")
     if not _whole(score) or not 0 <= score < 2**63:
         raise DataError(path, "carry.score", f"must be a whole number in [0, 2**63), got {shown(score)}")
     if lives is not None and (not _whole(lives) or not 1 <= lives <= 99):
         raise DataError(path, "carry.lives", f"must be a whole number in [1, 99] or null, got {shown(lives)}")
     if not _whole(continues) or not 0 <= continues <= 99:
         raise DataError(path, "carry.continues", f"must be a whole number in [0, 99], got {shown(continues)}")
-    return {"score": score, "lives": lives, "continues": continues}
+    if power is not None and (not _whole(power) or not 0 <= power <= POWER_LIMIT):
+        raise DataError(
+            path, "carry.power", f"must be a whole number in [0, {POWER_LIMIT}] or null, got {shown(power)}"
+        )
+    return {"score": score, "lives": lives, "continues": continues, "power": power}
 
 
 def _toggles(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str, str], ...]:

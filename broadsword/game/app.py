@@ -101,6 +101,7 @@ class App:
     ):
         self.data = Path(data) if data else (scores.path.parent if scores is not None else data_home())
         self.options, options_warning = load_options(self.data / "options.json")
+        self.saved_difficulty = self.options.difficulty  # what options.json keeps, whatever --difficulty says
         if difficulty is not None:  # --difficulty: this session's, not saved
             self.options = dataclasses.replace(self.options, difficulty=Difficulty(difficulty))
         bindings, bindings_warning = load_bindings(self.data / "controls.json")
@@ -132,7 +133,11 @@ class App:
         self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
         self._away = False  # the window went away during this frame's events (a pause is due)
         # One line for the title: a set-aside scores file, an unusable options or controls file.
-        self.message = "; ".join(w for w in (self.scores.warning, options_warning, bindings_warning) if w) or None
+        # Said on stderr too (the title names files in the data directory by their names alone).
+        warnings = [w for w in (self.scores.warning, options_warning, bindings_warning) if w]
+        for warning in warnings:
+            print(f"broadsword: {warning}", file=sys.stderr)
+        self.message = "; ".join(warnings) or None
         self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
@@ -198,6 +203,8 @@ class App:
             self.handle(event)
         self._pause_if_away()
         steps = self.stack.top.update(dt) if self.running else 0
+        if not isinstance(self.stack.top, Play):
+            self.controls.tapped.clear()  # a bomb tapped on the pause screen must not go off on resuming
         follow(self)  # the music that fits the screen now, at the options' volumes
         self.render()
         return steps
@@ -309,10 +316,15 @@ class App:
 
     # ------------------------------------------------------------------ settings
     def set_options(self, **changes) -> None:
-        """Change options and save them (atomically); a failed save is said on screen."""
+        """Change options and save them (atomically); a failed save is said on screen. A
+        ``--difficulty`` for the session is not saved with them, unless the player chose one."""
         self.options = dataclasses.replace(self.options, **changes)
+        if "difficulty" in changes:
+            self.saved_difficulty = self.options.difficulty
         try:
-            save_options(self.options, self.data / "options.json")
+            save_options(
+                dataclasses.replace(self.options, difficulty=self.saved_difficulty), self.data / "options.json"
+            )
         except OSError as exc:
             self.message = f"could not save options: {exc}"
 

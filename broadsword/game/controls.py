@@ -58,6 +58,10 @@ class Action(Enum):
         return self.value.capitalize()
 
 
+#: Ship actions a tap shorter than a step still performs (:meth:`Controls.take_input`).
+TAPPED = frozenset({Action.FIRE, Action.BOMB})
+
+
 REBINDABLE = (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN, Action.FIRE, Action.SLOW, Action.BOMB, Action.PAUSE)
 
 
@@ -252,6 +256,9 @@ class Controls:
     def __init__(self, bindings: Bindings | None = None):
         self.bindings = bindings or Bindings()
         self.held: set[int] = set()
+        #: Ship actions pressed since the last step took them (:meth:`take_input`): a tap whose
+        #: key goes down and up between two steps still fires once or bombs.
+        self.tapped: set[Action] = set()
         self.pad: pygame.joystick.JoystickType | None = None
         self.connect_pad()
 
@@ -265,8 +272,10 @@ class Controls:
 
     def track(self, event: pygame.event.Event) -> None:
         """Keep ``held`` up to date (call for every event, before any scene sees it)."""
-        if event.type == pygame.KEYDOWN:
-            self.held.add(event.key)
+        if event.type in (pygame.KEYDOWN, pygame.JOYBUTTONDOWN):
+            if event.type == pygame.KEYDOWN:
+                self.held.add(event.key)
+            self.tapped |= self.actions(event) & TAPPED
         elif event.type == pygame.KEYUP:
             self.held.discard(event.key)
         elif event.type == pygame.JOYDEVICEADDED:
@@ -275,6 +284,16 @@ class Controls:
     def release_all(self) -> None:
         """Forget held keys (the window lost focus: their KEYUPs will never come to us)."""
         self.held.clear()
+        self.tapped.clear()
+
+    def take_input(self) -> Input:
+        """This step's :class:`Input`: what is held, plus a fire or bomb tapped since the last
+        step (even if already let go), which this call uses up. :meth:`input` only looks."""
+        inp = self.input()
+        taps, self.tapped = self.tapped, set()
+        if not taps:
+            return inp
+        return Input(inp.dx, inp.dy, inp.fire or Action.FIRE in taps, inp.slow, inp.bomb or Action.BOMB in taps)
 
     def actions(self, event: pygame.event.Event) -> set[Action]:
         """The actions ``event`` presses: a key or button going down, or the d-pad pushed."""

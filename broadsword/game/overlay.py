@@ -249,13 +249,19 @@ class Overlay:
         img = self._legend[1]
         surf.blit(img, (6, surf.get_height() - img.get_height() - 40))
 
+    def panel_rect(self, size: tuple[int, int], record: FrameResult, paused: bool) -> pygame.Rect:
+        """Where the panel goes on a surface of ``size`` px, in its corner (``place``)."""
+        rows = [s for s in record.stats if s.name != "layers"]
+        height = LINE_HEIGHT * (HEADER_LINES + paused + len(rows) + 2) + GRAPH_HEIGHT + 18
+        w, h = size
+        left = w - PANEL_WIDTH - 6 if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.BOTTOM_RIGHT) else 6
+        top = PANEL_TOP if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.TOP_LEFT) else h - height - 40
+        return pygame.Rect(left, top, PANEL_WIDTH, height)
+
     def _panel(self, surf, draw, record: FrameResult, fps: float, paused: bool) -> None:
         lines = panel_lines(record, fps, paused, self.step_key, self.rotation_key)[: HEADER_LINES + paused]
         rows = [s for s in record.stats if s.name != "layers"]
-        height = LINE_HEIGHT * (len(lines) + len(rows) + 2) + GRAPH_HEIGHT + 18
-        w, h = surf.get_size()
-        left = w - PANEL_WIDTH - 6 if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.BOTTOM_RIGHT) else 6
-        top = PANEL_TOP if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.TOP_LEFT) else h - height - 40
+        left, top, _, height = self.panel_rect(surf.get_size(), record, paused)
         draw.boxes(np.array([[left, top, left + PANEL_WIDTH, top + height]], float), (0, 0, 0), width=0, alpha=170)
         y = top + 4
         for text in lines:

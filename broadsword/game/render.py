@@ -74,7 +74,12 @@ class Renderer:
             self.flash = 6
 
     # ------------------------------------------------------------- drawing
-    def draw(self, surf: pygame.Surface, world: World, alpha: float, show_armature: bool = False) -> None:
+    def draw(
+        self, surf: pygame.Surface, world: World, alpha: float, show_armature: bool = False, title_card: bool = True
+    ) -> None:
+        """The world at ``alpha`` between its last two steps. ``title_card``: the stage's
+        title fades in over its first seconds (off under a pause or replay screen, whose
+        heading would sit on it)."""
         self.tick += 1
         self.background(surf, world.frame + alpha, world.level.theme)
         self._enemies(surf, world, alpha)
@@ -84,7 +89,7 @@ class Renderer:
         self._player(surf, world, alpha, show_armature)
         self._bullets(surf, world.enemy_bullets, world, alpha)
         self._effects(surf)
-        self._hud(surf, world)
+        self._hud(surf, world, title_card)
         if self.flash:
             veil = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
             veil.fill((255, 255, 255, 28 * self.flash))
@@ -186,7 +191,7 @@ class Renderer:
                 keep.append(fx)
         self.effects = keep
 
-    def _hud(self, surf, world: World) -> None:
+    def _hud(self, surf, world: World, title_card: bool = True) -> None:
         text = self.font.render(f"SCORE {world.score.points:>9,}", True, (235, 240, 255))
         surf.blit(text, (10, 8))
         graze = self.font.render(f"GRAZE {world.score.grazes}", True, (150, 180, 255))
@@ -199,7 +204,7 @@ class Renderer:
         power = self.font.render(f"POWER {world.player.power / 100:.2f}", True, (255, 150, 140))
         surf.blit(power, (10, 48))
         draw_boss_bar(surf, world.boss, self.font)  # one segment per phase, and the phase's timer
-        if world.time < 3.0:  # the level's title fades in and out
+        if title_card and world.time < 3.0:  # the level's title fades in and out
             fade = min(1.0, world.time, 3.0 - world.time)
             title = self.big.render(world.level.title, True, (255, 230, 170))
             title.set_alpha(int(255 * max(fade, 0.0)))

@@ -25,6 +25,7 @@ class Run:
     score: int = 0
     lives: int | None = None
     continues: int = 0
+    power: int | None = None  # the shot's power, from the stage before (None: the base power)
 
     def level_ref(self, levels: list[str]) -> str:
         return self.custom or levels[self.level_index]
@@ -45,6 +46,7 @@ class Run:
         self.score = world.score.points
         self.lives = world.player.lives
         self.continues = world.progress.continues_used
+        self.power = world.player.power
 
 
 @dataclass
@@ -68,7 +70,7 @@ def load_stage(run: Run, levels: list[str], armatures, seed: int) -> Stage:
         armatures,
         seed=seed + run.level_index,
         settings=Settings(difficulty=run.difficulty),
-        carry=Carry(run.score, run.lives, run.continues),
+        carry=Carry(run.score, run.lives, run.continues, run.power),
     )
     return Stage(world, ref, file_sha256(path))
 
@@ -82,5 +84,5 @@ def replay_stage(rec: Recording, rec_path: str, armatures) -> Stage:
     level = load_level(path)
     check_level_sprites(level, armatures)
     settings = Settings(rotation=rec.settings["rotation"], difficulty=rec.settings["difficulty"])
-    carry = Carry(rec.carry["score"], rec.carry["lives"], rec.carry["continues"])
+    carry = Carry(**rec.carry)
     return Stage(World(level, armatures, rec.seed, settings, carry), rec.level, file_sha256(path))

@@ -45,7 +45,7 @@ class Recorder:
             tuple(self.checkpoints),
             self.world.state_hash(),
             self.level_sha256,
-            carry={"score": carry.score, "lives": carry.lives, "continues": carry.continues},
+            carry={"score": carry.score, "lives": carry.lives, "continues": carry.continues, "power": carry.power},
         )
 
 

@@ -35,16 +35,22 @@ class Settings:
 
 @dataclass(frozen=True)
 class Carry:
-    """What a run carries into its next level: the score so far, the lives left and the
-    continues used."""
+    """What a run carries into its next level: the score so far, the lives left, the
+    continues used and the shot's power (a stage cleared keeps the power it was won with)."""
 
     score: int = 0
     lives: int | None = None  # None: the level's own
     continues: int = 0
+    power: int | None = None  # None: the base power
 
     def __post_init__(self):
-        if self.score < 0 or (self.lives is not None and self.lives < 1) or self.continues < 0:
-            raise ValueError(f"a carry needs score >= 0, lives >= 1 and continues >= 0, got {self}")
+        if (
+            self.score < 0
+            or (self.lives is not None and self.lives < 1)
+            or self.continues < 0
+            or (self.power is not None and self.power < 0)
+        ):
+            raise ValueError(f"a carry needs score >= 0, lives >= 1, continues >= 0 and power >= 0, got {self}")
 
 
 @dataclass(frozen=True)

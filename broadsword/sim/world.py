@@ -38,7 +38,7 @@ from .input import Input
 from .items import Items
 from .kinds import ALWAYS, Kinds
 from .layers import LayerIds, game_layer_table
-from .player import Player
+from .player import POWER_MAX, POWER_MIN, Player
 from .progress import Progress
 from .rank import RankedFire
 from .scoring import Score
@@ -130,6 +130,8 @@ class World:
         self.start_lives = self.difficulty.lives or level.player.lives
         bombs = level.player.bombs if self.difficulty.bombs is None else self.difficulty.bombs
         self.player = Player(level.player, lives=self.carry.lives or self.start_lives, bombs=bombs)
+        if self.carry.power is not None:  # the power the last stage ended with
+            self.player.power = min(max(self.carry.power, POWER_MIN), POWER_MAX)
         self.score = Score(points=self.carry.score)
         self.progress = Progress(self, self.carry.continues)
         self.gun = PlayerGun(level.player, self.kinds.base["shot"])

@@ -90,3 +90,25 @@ def test_overlay_panel__every_line_fits_the_panel_paused_or_not(monkeypatch):
         widest = max(o.font.size(s)[0] for s in drawn)
         assert widest <= overlay.PANEL_WIDTH - 12, drawn
         assert any("PAUSED" in s and "F2" in s for s in drawn) == paused
+
+
+def test_overlay_panel__clear_of_the_pause_screens_heading(tmp_path):
+    """Paused with the overlay on, the top panel ends above the PAUSED heading (they overlapped
+    once the paused line had a row of its own)."""
+    from broadsword.game.app import App
+    from broadsword.game.scenes import Pause
+    from broadsword.game.scores import HighScores
+    from broadsword.sim import DT
+
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
+    app.start_run()
+    for _ in range(5):
+        app.frame(DT)
+    app.overlay.visible = True
+    app.stack.push(Pause(app, app.play))
+    app.frame(DT)
+    heading = app.painter.drawn[0]  # PAUSED, the first line the pause screen draws
+    panel = app.overlay.panel_rect(app.screen.get_size(), app.world.collision.result, paused=True)
+    assert panel.colliderect(pygame.Rect(0, 0, *app.screen.get_size()))
+    assert panel.bottom <= heading.top, (panel, heading)
+    pygame.quit()

@@ -246,7 +246,7 @@ def test_real_window__title_play_move_fire_pause(session):
     s.run("xdotool", "keyup", "Left", "z", "shift")
 
     s.run("xdotool", "key", "Escape")
-    band = (0, int(250 * SCALE), width, int(310 * SCALE))  # "PAUSED" at the field's y 280
+    band = (0, int(290 * SCALE), width, int(350 * SCALE))  # "PAUSED" at the field's y 320 (PAUSED_Y)
     paused = s.wait_for("pause screen", lambda img: count(img, PAUSED_WHITE, band) > 150)
     s.save(paused, "paused")
     outside = np.r_[0 : band[1], band[3] : height]  # rows away from the pause screen's text

@@ -238,6 +238,18 @@ def test_results__after_a_stage_then_the_next_stage_with_the_score_carried(app):
     assert app.world.level.name == app.levels[1] and app.world.score.points == score
 
 
+def test_results__the_next_stage_keeps_the_power_won(app):
+    """A stage cleared at power 2.60 starts the next at 2.60, not back at the base power
+    (and its recording carries it, so the stage replays on its own)."""
+    world = empty_stage(app)
+    world.player.power = 260
+    frames(app, 2)
+    key(pygame.K_RETURN)
+    frames(app)
+    assert isinstance(app.scene, Play) and app.world is not world
+    assert app.world.player.power == 260 and app.recorder.recording().carry["power"] == 260
+
+
 def test_results__a_missed_bonus_says_why(app):
     world = empty_stage(app)
     world.player.misses, world.progress.bombs_used = 2, 1
@@ -349,3 +361,147 @@ def test_pause__q_quits_to_the_title(app):
     key(pygame.K_q)
     frames(app)
     assert isinstance(app.scene, Title) and app.play is None
+
+
+# --------------------------------------------------------------------------- the stage's title card
+class _Fonts:
+    """A font that notes every text it renders (and renders it)."""
+
+    def __init__(self, font):
+        self.font, self.rendered = font, []
+
+    def render(self, text, *args):
+        self.rendered.append(text)
+        return self.font.render(text, *args)
+
+
+def test_title_card__shown_in_play_not_under_the_pause_screen(app):
+    """The stage's title fades in over its first seconds; under the pause screen (whose
+    PAUSED heading sits where the card does) it is not drawn."""
+    app.start_run()
+    frames(app, 30)
+    fonts = app.renderer.big = _Fonts(app.renderer.big)
+    frames(app)
+    assert app.world.level.title in fonts.rendered and app.world.time < 3.0
+    key(pygame.K_p)
+    frames(app)
+    assert isinstance(app.scene, Pause)
+    fonts.rendered.clear()
+    frames(app, 2)
+    assert app.world.level.title not in fonts.rendered
+
+
+# --------------------------------------------------------------------------- a tap between two steps
+def tap(k):
+    """A key pressed and let go within one frame's events (a quick tap, or a slow frame)."""
+    key(k)
+    pygame.event.post(pygame.event.Event(pygame.KEYUP, key=k, mod=0, unicode="", scancode=0))
+
+
+def test_bomb__a_tap_shorter_than_a_step_still_bombs_once(app):
+    app.start_run()
+    frames(app, 90)
+    bombs = app.world.player.bombs
+    tap(pygame.K_x)
+    frames(app, 5)
+    assert app.world.progress.bombs_used == 1 and app.world.player.bombs == bombs - 1
+
+
+def test_bomb__a_tap_on_the_pause_screen_does_not_go_off_on_resuming(app):
+    app.start_run()
+    frames(app, 90)
+    key(pygame.K_p)
+    frames(app)
+    assert isinstance(app.scene, Pause)
+    tap(pygame.K_x)
+    frames(app)
+    key(pygame.K_p)
+    frames(app, 5)
+    assert isinstance(app.scene, Play) and app.world.progress.bombs_used == 0
+
+
+# --------------------------------------------------------------------------- the high-score table
+def test_high_scores__columns_one_long_custom_level_does_not_shrink_its_row(app):
+    """A score made on a level file shows the file's name, not its directories, and a long
+    one is fitted in its own column: every row's score is drawn at the same size, right-aligned
+    on one edge (a whole row used to be one string, shrunk to a tiny font by a long path)."""
+    long_path = "/home/someone/levels/" + "a-very-long-custom-level-name" * 2 + ".toml"
+    for i, level in enumerate(["1-picket", long_path, "2-gauntlet"]):
+        app.scores.add(Entry("MAMMOTH", 900_000 - i * 1000, level, "2026-11-27"))
+    drawn = []
+    real = app.painter.text
+
+    def text(s, y, *args, **kwargs):
+        rect = real(s, y, *args, **kwargs)
+        drawn.append((s, rect))
+        return rect
+
+    app.painter.text = text
+    app.stack.reset(HighScoresScene(app))
+    frames(app)
+    scores = [r for s, r in drawn if s in {f"{e.score:,}" for e in app.scores.entries}]
+    assert len(scores) == 3
+    assert len({r.right for r in scores}) == 1 and len({r.height for r in scores}) == 1
+    assert not any("/" in s for s, _ in drawn) and any(s.startswith("a-very-long") for s, _ in drawn)
+    field = app.screen.get_rect()
+    assert all(field.contains(r) for _, r in drawn)
+
+
+def test_title__both_unusable_settings_files_are_said_in_full(tmp_path, capsys):
+    """A broken options file and a broken controls file: the title names both (by file name;
+    the first used to take both lines and end in "..."), and stderr has each in full."""
+    data = tmp_path / "a-data-directory-with-a-rather-long-name"
+    data.mkdir()
+    (data / "options.json").write_text("garbage")
+    (data / "controls.json").write_text('{"version": 1, "keys": {"left": 5}}')
+    a = App(seed=1, audio=False, scores=HighScores(data / "scores.json"), data=data)
+    drawn = []
+    real = a.painter.text
+    a.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
+    frames(a)
+    shown = " ".join(drawn)
+    assert "options.json not used" in shown and "controls.json not used" in shown
+    assert "default keys" in shown and not shown.endswith("...")
+    err = capsys.readouterr().err
+    assert str(data / "options.json") in err and str(data / "controls.json") in err
+    pygame.quit()
+
+
+def test_options__a_session_difficulty_is_not_saved_with_other_options(tmp_path):
+    """``--difficulty lunatic`` plays this session on Lunatic; changing the music volume saves
+    the options without it (the file kept "lunatic" once any option changed); choosing a
+    difficulty saves that."""
+    import json
+
+    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path, difficulty=Difficulty.LUNATIC)
+    a.set_options(music=3)
+    saved = json.loads((tmp_path / "options.json").read_text())
+    assert saved["music"] == 3 and saved["difficulty"] == "normal" and a.difficulty is Difficulty.LUNATIC
+    a.set_options(difficulty=Difficulty.HARD)
+    assert json.loads((tmp_path / "options.json").read_text())["difficulty"] == "hard"
+    assert a.difficulty is Difficulty.HARD
+    pygame.quit()
+
+
+def test_play__slow_motion_and_a_rotation_switch_are_said_on_screen(app):
+    """F3 slows the game and F4 switches the rotation mode: the HUD says so while they are on
+    (nothing on screen used to tell a player why the game had slowed)."""
+    app.start_run()
+    drawn = []
+    real = app.painter.text
+    app.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
+    frames(app, 2)
+    assert not any("SLOW" in s or "rotation" in s for s in drawn)
+    key(pygame.K_F3)
+    key(pygame.K_F4)
+    frames(app)
+    drawn.clear()
+    frames(app)
+    shown = " ".join(drawn)
+    assert "SLOW MOTION (F3)" in shown and f"rotation {app.world.rotation} (F4)" in shown
+    key(pygame.K_F3)
+    key(pygame.K_F4)
+    frames(app)
+    drawn.clear()
+    frames(app)
+    assert not any("SLOW" in s or "rotation" in s for s in drawn)

@@ -77,10 +77,20 @@ def test_toggles_change_the_game():
 
 
 def test_carry_is_part_of_the_recording():
-    w, rec = record(toggles_at=(), carry=Carry(score=5000, lives=2))
-    assert rec.carry == {"score": 5000, "lives": 2, "continues": 0}
+    w, rec = record(toggles_at=(), carry=Carry(score=5000, lives=2, power=250))
+    assert rec.carry == {"score": 5000, "lives": 2, "continues": 0, "power": 250}
     again, p = play(rec)
     assert p.mismatch is None and p.final_check() is True and again.score.points >= 5000
+
+
+def test_carry__the_next_stage_starts_with_the_power_the_last_one_ended_with():
+    """Power won in one stage is kept into the next (clamped to the ship's range); no carried
+    power is the base power."""
+    from broadsword.sim.player import POWER_MAX, POWER_MIN
+
+    assert World(LEVEL, ARMATURES).player.power == POWER_MIN
+    assert World(LEVEL, ARMATURES, carry=Carry(power=275)).player.power == 275
+    assert World(LEVEL, ARMATURES, carry=Carry(power=POWER_MAX + 50)).player.power == POWER_MAX
 
 
 def test_apply_refuses_a_toggle_for_another_frame():

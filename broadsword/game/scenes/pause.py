@@ -7,6 +7,9 @@ import pygame
 from .. import ui
 from ..controls import Action
 
+#: The PAUSED heading's centre, px down the field.
+PAUSED_Y = 320
+
 
 class Pause:
     opaque = False
@@ -40,5 +43,6 @@ class Pause:
     def draw(self, surf: pygame.Surface) -> None:
         p = self.app.painter
         p.veil(110)
-        p.text("PAUSED", 280, ui.BIG)
-        p.text("Esc / P resume   F2 step a frame   Q quit to title", 330)
+        # at the field's middle: clear of the F1 panel's graph (it ends near y 270)
+        p.text("PAUSED", PAUSED_Y, ui.BIG)
+        p.text("Esc / P resume   F2 step a frame   Q quit to title", PAUSED_Y + 50)

@@ -21,6 +21,8 @@ from ..controls import Action, Controls
 SLOW_MOTION = 0.25
 #: At most this many steps a frame, whatever the elapsed time (App.MAX_CATCH_UP).
 MAX_CATCH_UP = 5
+#: The HUD's note of a live mode (slow motion, a rotation switch): font size and colour.
+MODE_SIZE, MODE_COLOUR = 18, (255, 220, 140)
 
 
 class InputSource(Protocol):
@@ -42,7 +44,7 @@ class PlayerInput:
         self.controls = controls
 
     def next(self, world: World) -> Input:
-        return self.controls.input()
+        return self.controls.take_input()  # a bomb tapped between two steps still bombs
 
     def stepped(self, world: World) -> None:
         pass
@@ -197,11 +199,23 @@ class Play:
         self.accumulator = 0.0
 
     # ------------------------------------------------------------------ drawing
+    def modes(self) -> list[str]:
+        """The live switches that change how the stage runs, for the HUD: slow motion (F3), and
+        the rotation mode (F4) when it is not the level's own."""
+        modes = ["SLOW MOTION (F3)"] if self.slow_motion else []
+        if self.world.rotation != self.world.level.scene.rotation:
+            modes.append(f"rotation {self.world.rotation} (F4)")
+        return modes
+
     def draw(self, surf: pygame.Surface) -> None:
         app = self.app
         alpha = min(self.accumulator / DT, 1.0) if app.stack.top is self else 1.0
         hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
-        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox)
+        on_top = app.stack.top is self  # else a screen's heading (pause, replay end) is over the field
+        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
+        modes = self.modes()
+        if modes:  # top centre, between graze and bombs (below the lives): why the game looks different
+            app.painter.text("   ".join(modes), 38, MODE_SIZE, colour=MODE_COLOUR)
         if app.overlay.visible:
             record = self.world.collision
             from .pause import Pause

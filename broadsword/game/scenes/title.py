@@ -17,6 +17,8 @@ ERROR_LINES = 7  # at most this many wrapped lines of a load error (the rest: ".
 ERROR_TEXT = (255, 214, 200)
 ERROR_WRAP = int(FIELD[0]) - 64  # px: the width of a load error's lines in its panel
 ERROR_X, ERROR_Y = 20, 334
+#: A warning on the title (a file not used, a save that failed): at most this many lines, in this font size.
+MESSAGE_LINES, MESSAGE_SIZE = 4, 18
 DIFFICULTIES = list(Difficulty)
 
 
@@ -118,9 +120,10 @@ class Title:
         if app.scores.entries:
             best = app.scores.entries[0]
             p.text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
-        if app.message:
-            for i, line in enumerate(p.lines(app.message, w - 20, 2)):
-                p.text(line, 600 + 20 * i, colour=ui.WARN)
+        if app.message:  # below the high score: up to MESSAGE_LINES small lines
+            message = app.message.replace(str(app.data / "_")[:-1], "")  # files in the data dir by name
+            for i, line in enumerate(p.lines(message, w - 20, MESSAGE_LINES, MESSAGE_SIZE)):
+                p.text(line, 592 + 14 * i, MESSAGE_SIZE, colour=ui.WARN)
 
     def _draw_controls(self) -> None:
         p = self.app.painter
