@@ -36,18 +36,11 @@ SCALE = 1.25
 
 
 def _present(screen) -> None:
-    """Scale the field into the window and flip, as the game's window does."""
-    import pygame
+    """Scale the field into the window and flip: the game's own :meth:`Window.present
+    <broadsword.game.window.Window.present>`."""
+    from ..game.window import Window
 
-    win = pygame.display.get_surface()
-    assert win is not None  # the bench opened the display
-    ww, wh = win.get_size()
-    fw, fh = screen.get_size()
-    k = min(ww / fw, wh / fh)
-    size = (max(1, int(fw * k)), max(1, int(fh * k)))
-    win.fill((0, 0, 0))
-    win.blit(pygame.transform.scale(screen, size), ((ww - size[0]) // 2, (wh - size[1]) // 2))
-    pygame.display.flip()
+    Window.present(screen)
 
 
 def run_game_frames(

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import detmath
+from ._indexing import selector
 from .posing import Posed
 from .tolerance import BOUND_SLACK
 
@@ -39,28 +40,38 @@ def aabbs(posed: Posed) -> np.ndarray:
     outside it (an edge parallel to the path), so it is conservative either way.
     """
     out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
-    for k in posed.members:
-        x, y, sel = posed.vx[k], posed.vy[k], posed.selector(k)
-        # A pool's rows straight into place; otherwise into one (4, n_K) block, scattered once.
-        part = out[:, sel] if isinstance(sel, slice) else np.empty((4, x.shape[1]))
+    for k, idx in posed.members.items():
+        x, y = posed.vx[k], posed.vy[k]
         sw = posed.sweeps.get(k)
         cut = x.shape[1] if sw is None else sw.split
-        if cut:
-            xp, yp = x[:, :cut], y[:, :cut]
-            for row, (v, reduce) in enumerate(((xp, np.min), (yp, np.min), (xp, np.max), (yp, np.max))):
-                reduce(v, axis=0, out=part[row, :cut])
-        if sw is not None:
-            lo, hi = part[:, cut:][:2], part[:, cut:][2:]
-            with np.errstate(over="ignore", invalid="ignore"):  # as the built sweep's vertices would
-                np.min(sw.hx, axis=0, out=lo[0])
-                np.min(sw.hy, axis=0, out=lo[1])
-                np.max(sw.hx, axis=0, out=hi[0])
-                np.max(sw.hy, axis=0, out=hi[1])
-                path = np.stack([sw.dx, sw.dy])
-                np.minimum(lo, lo - path, out=lo)
-                np.maximum(hi, hi - path, out=hi)
-        if not isinstance(sel, slice):
-            out[:, sel] = part
+        # Plain columns [0, cut), swept ones [cut, n_K); each part is ascending (posing.Posed).
+        parts: list[tuple[int, int, slice | np.ndarray]] = (
+            [(0, cut, selector(idx[:cut])), (cut, len(idx), selector(idx[cut:]))]
+            if k in posed.reordered
+            else [(0, len(idx), posed.selector(k))]
+        )
+        for a, b, sel in parts:
+            # A pool's rows straight into place; otherwise into one (4, m) block, scattered once.
+            dest = out[:, sel] if isinstance(sel, slice) else np.empty((4, b - a))
+            if a < cut:  # posed polygons: min and max of their vertices
+                xp, yp = x[:, a:b], y[:, a:b]
+                np.min(xp, axis=0, out=dest[0])
+                np.min(yp, axis=0, out=dest[1])
+                np.max(xp, axis=0, out=dest[2])
+                np.max(yp, axis=0, out=dest[3])
+            else:  # sweeps not built: the shape's box joined with it moved back along the path
+                assert sw is not None
+                lo, hi = dest[:2], dest[2:]
+                with np.errstate(over="ignore", invalid="ignore"):  # as the built sweep's vertices would
+                    np.min(sw.hx, axis=0, out=lo[0])
+                    np.min(sw.hy, axis=0, out=lo[1])
+                    np.max(sw.hx, axis=0, out=hi[0])
+                    np.max(sw.hy, axis=0, out=hi[1])
+                    path = np.stack([sw.dx, sw.dy])
+                    np.minimum(lo, lo - path, out=lo)
+                    np.maximum(hi, hi - path, out=hi)
+            if not isinstance(sel, slice):
+                out[:, sel] = dest
     return out.T
 
 

@@ -271,7 +271,7 @@ def collide_pairs(
     ki, kj = posed.klass[i], posed.klass[j]
     group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
     ws = workspace or Workspace()
-    for g in np.unique(group).tolist():  # a handful of groups
+    for g in np.flatnonzero(np.bincount(group)).tolist():  # a handful of groups (np.unique sorts: slower)
         sel = np.flatnonzero(group == g)
         a, b = np.take(i, sel), np.take(j, sel)
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])

@@ -477,10 +477,13 @@ def pose_checked(
         else:
             # Plain objects first, then swept ones: each part is written in place.
             assert along is not None
-            plain, moved = np.compress(~along, idx), np.compress(along, idx)
-            idx = np.concatenate([plain, moved])
-            slot[idx] = np.arange(len(idx))
-            split = len(plain)
+            plain_idx, moved_idx = np.compress(~along, idx), np.compress(along, idx)
+            idx = np.concatenate([plain_idx, moved_idx])
+            split = len(plain_idx)
+            # Each part is ascending: a pool (the bullets) is a slice, read as views.
+            plain, moved = selector(plain_idx), selector(moved_idx)
+            slot[plain] = np.arange(split)
+            slot[moved] = np.arange(split, len(idx))
             reordered.add(k)
         if plain is not None:
             _pose_plain(shapes, k, plain, armature, px, py, cos, sin, x[:, :split], y[:, :split], ws)

@@ -119,8 +119,15 @@ class Window:
         fw, fh = field.get_size()
         k, _, _ = letterbox((ww, wh), (fw, fh))
         size = (max(1, int(fw * k)), max(1, int(fh * k)))
-        win.fill((0, 0, 0))
-        win.blit(pygame.transform.scale(field, size), ((ww - size[0]) // 2, (wh - size[1]) // 2))
+        place = pygame.Rect((ww - size[0]) // 2, (wh - size[1]) // 2, *size)
+        if place.size != (ww, wh):
+            win.fill((0, 0, 0))  # the letterbox bars
+        if win.get_rect().contains(place):
+            # Scaled straight into the window: no window-sized temporary to allocate and blit
+            # (0.65 -> 0.33 ms a frame at 800 x 1200, same pixels; docs/PERFORMANCE.md).
+            pygame.transform.scale(field, size, win.subsurface(place))
+        else:  # a window smaller than one scaled pixel: clipped by the blit
+            win.blit(pygame.transform.scale(field, size), place)
         pygame.display.flip()
 
     @staticmethod
