@@ -6,8 +6,11 @@
   run) and ``ci`` (derandomised, no example database: the same examples on every run and
   machine, so CI never fails by luck). ``HYPOTHESIS_PROFILE=ci`` selects it; ``.ci/run`` does.
   Each test's own ``@settings(max_examples=...)`` still applies on top of the profile.
-* The ``quick`` marker: ``python -m pytest -m quick`` runs the modules in :data:`QUICK`, a
+* The ``quick`` marker: ``python -m pytest -n 0 -m quick`` runs the modules in :data:`QUICK`, a
   subset of every layer that finishes in seconds.
+* Order: the modules in :data:`FIRST` (the long ones) run first, so a parallel run
+  (pytest-xdist, on by default in pyproject.toml) does not end with one worker busy on a
+  long test while the others wait.
 * Fixtures: ``armatures`` (the sprite bank, loaded once per process; see shipped.py
   for the helpers behind it).
 """
@@ -43,14 +46,48 @@ QUICK = (
     "game/test_scores.py",
 )
 
+#: Test modules (paths under tests/) that take longest, longest first: they start first.
+#: Seconds of CPU each on an idle 2-core machine (``--durations``); a new test module taking
+#: more than ~10 s belongs here.
+FIRST = (
+    "test_determinism_machines.py",  # ~150 (in two processes of its own)
+    "test_determinism.py",  # ~45
+    "test_balance.py",
+    "test_soak.py",
+    "sim/test_replay.py",
+    "test_bench.py",
+    "test_recordings.py",
+    "sim/test_progress.py",
+    "sim/test_tunnelling.py",
+    "test_cli.py",
+    "sim/test_world.py",
+    "sim/test_extremes.py",
+)
+
 _HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+def _check_lists() -> None:
+    """A renamed or removed module must leave QUICK and FIRST too (else it silently drops out)."""
+    for m in QUICK + FIRST:
+        if not os.path.isfile(os.path.join(_HERE, *m.split("/"))):
+            raise RuntimeError(f"tests/conftest.py: QUICK or FIRST names tests/{m}, which is not a file")
+
+
+_check_lists()
+
+
+def _paths(modules) -> dict[str, int]:
+    return {os.path.join(_HERE, *m.split("/")): k for k, m in enumerate(modules)}
+
+
 def pytest_collection_modifyitems(config, items):
-    quick = {os.path.join(_HERE, *m.split("/")) for m in QUICK}
+    quick = _paths(QUICK)
     for item in items:
         if str(item.path) in quick:
             item.add_marker(pytest.mark.quick)
+    first = _paths(FIRST)
+    items.sort(key=lambda item: first.get(str(item.path), len(first)))  # stable: the rest keep their order
 
 
 @pytest.fixture(scope="session")

@@ -69,14 +69,15 @@ def aabbs(posed: Posed) -> np.ndarray:
                     np.min(sw.hy, axis=0, out=lo[1])
                     np.max(sw.hx, axis=0, out=hi[0])
                     np.max(sw.hy, axis=0, out=hi[1])
-                    path = np.stack([sw.dx, sw.dy])
                     if sw.far is None:
-                        np.minimum(lo, lo - path, out=lo)
-                        np.maximum(hi, hi - path, out=hi)
+                        for row, d in enumerate((sw.dx, sw.dy)):
+                            np.minimum(lo[row], lo[row] - d, out=lo[row])
+                            np.maximum(hi[row], hi[row] - d, out=hi[row])
                     else:  # far paths are halves, and swept in halves: v - d is 2 (v/2 - d/2) there
                         scale = np.where(sw.far, 2.0, 1.0)  # 1 elsewhere: the same bits as above
-                        np.minimum(lo, (lo / scale - path) * scale, out=lo)
-                        np.maximum(hi, (hi / scale - path) * scale, out=hi)
+                        for row, d in enumerate((sw.dx, sw.dy)):
+                            np.minimum(lo[row], (lo[row] / scale - d) * scale, out=lo[row])
+                            np.maximum(hi[row], (hi[row] / scale - d) * scale, out=hi[row])
                 np.clip(lo, -_MAX, _MAX, out=lo)  # a sweep past the doubles is its clamped box (Sweeps.build)
                 np.clip(hi, -_MAX, _MAX, out=hi)
             if not isinstance(sel, slice):

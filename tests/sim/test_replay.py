@@ -1,6 +1,7 @@
 """Recording and playing back through the sim: inputs, live toggles and checkpoints."""
 
 import dataclasses
+import functools
 
 import pytest
 import shipped
@@ -15,8 +16,10 @@ LEVEL = load_level(resolve_level("3-broadsword"))
 FRAMES = 2 * CHECKPOINT_EVERY + 150
 
 
+@functools.cache
 def record(seed=1, toggles_at=(200, 700), carry=None) -> tuple[World, object]:
-    """An autopilot run that switches rotation mode at the given frames (as F4 does)."""
+    """An autopilot run that switches rotation mode at the given frames (as F4 does). Made
+    once per process for each set of arguments and shared: tests must not change the world."""
     w = World(LEVEL, ARMATURES, seed, carry=carry)
     pilot = Pilot()
     rec = Recorder(w, "3-broadsword")

@@ -225,8 +225,9 @@ def test_world__same_seed_same_hash(name, armatures):
             w.step(pilot(w))
         return w.state_hash()
 
-    assert run(5) == run(5)
-    assert run(5) != run(6)
+    five = run(5)
+    assert run(5) == five
+    assert run(6) != five
 
 
 def test_world__level_completes_when_waves_are_cleared(quiet_level, armatures):
