@@ -67,9 +67,9 @@ def aabbs(posed: Posed) -> np.ndarray:
                     np.min(sw.hy, axis=0, out=lo[1])
                     np.max(sw.hx, axis=0, out=hi[0])
                     np.max(sw.hy, axis=0, out=hi[1])
-                    path = np.stack([sw.dx, sw.dy])
-                    np.minimum(lo, lo - path, out=lo)
-                    np.maximum(hi, hi - path, out=hi)
+                    for row, d in enumerate((sw.dx, sw.dy)):
+                        np.minimum(lo[row], lo[row] - d, out=lo[row])
+                        np.maximum(hi[row], hi[row] - d, out=hi[row])
             if not isinstance(sel, slice):
                 out[:, sel] = dest
     return out.T

@@ -559,12 +559,18 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Wor
     the hull is broadcast, not gathered; the arrays come from ``ws`` when given (same
     arithmetic, same bits)."""
     arm = pick(armature, obj)
-    one = arm.min() == arm.max()
-    cols = arm[:1] if one else arm  # one armature: a single (rows, 1) column, broadcast
-    hx = _pad_rows(shapes._hx[:rows, cols], rows)
-    hy = _pad_rows(shapes._hy[:rows, cols], rows)
-    c, s = pick(cos, obj), pick(sin, obj)
     m = len(arm)
+    one = arm.min() == arm.max()
+    if one:  # one armature: a single (rows, 1) column, broadcast
+        hx = _pad_rows(shapes._hx[:rows, arm[:1]], rows)
+        hy = _pad_rows(shapes._hy[:rows, arm[:1]], rows)
+    elif ws is not None and rows <= len(shapes._hx):  # gathered into scratch, not a fresh array
+        hx = np.take(shapes._hx[:rows], arm, axis=1, out=ws.get(f"swept_hx{tag}", (rows, m)))
+        hy = np.take(shapes._hy[:rows], arm, axis=1, out=ws.get(f"swept_hy{tag}", (rows, m)))
+    else:
+        hx = _pad_rows(shapes._hx[:rows, arm], rows)
+        hy = _pad_rows(shapes._hy[:rows, arm], rows)
+    c, s = pick(cos, obj), pick(sin, obj)
     if ws is None:
         x, y, t = np.empty((len(hx), m)), np.empty((len(hx), m)), np.empty((len(hx), m))
     else:
