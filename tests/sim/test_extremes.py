@@ -234,7 +234,9 @@ def test_a_level_with_nothing_in_it():
 
 
 def test_a_level_with_only_a_boss():
-    level = dataclasses.replace(BROADSWORD, waves=())
+    """No waves: the stage waits for its boss (5 s here; stage 3's own 76 s would be 4,560
+    idle frames more of the same) instead of ending, then the boss fights."""
+    level = dataclasses.replace(BROADSWORD, waves=(), boss=dataclasses.replace(BROADSWORD.boss, at=5.0))
     w = World(level, ARMATURES, seed=8)
     play(w, int((level.boss.at + 3.0) / DT))
     assert w.boss.state in (BossState.FIGHTING, BossState.DEAD) and w.frame > level.boss.at / DT
