@@ -105,12 +105,14 @@ def _scaling_row(scene: ReferenceScene, frames: int, warmup: int, brute: bool) -
     def jobs():
         pos, ang = scene.advance()
         boxes = aabbs(pose(scene.shapes, scene.armature, pos, ang, "lut"))
-        out = {name: partial(p.find_pairs, boxes, scene.layer, scene.table) for name, p in phases.items()}
+        out: dict[str, Callable[[], object]] = {
+            name: partial(p.find_pairs, boxes, scene.layer, scene.table) for name, p in phases.items()
+        }
         out["pipeline"] = partial(pipe.step, scene.armature, scene.layer, pos, ang)
         return out
 
     ms, kept = _interleave(frames, warmup, jobs, lambda name, r: len(r.hits) if name == "pipeline" else len(r))
-    row = {
+    row: dict[str, float | None] = {
         "n": scene.n,
         "ships": scene.enemies + 1,
         "bullets": scene.bullets,

@@ -37,7 +37,9 @@ def aabbs(posed: Posed) -> np.ndarray:
     rounded subtraction, and rounding is monotonic, so ``min_k (v_k - d)`` is
     ``(min_k v_k) - d`` rounded: the union holds every vertex of the sweep. It equals the
     sweep's own box except where the sweep leaves out a candidate vertex that rounding put
-    outside it (an edge parallel to the path), so it is conservative either way.
+    outside it (an edge parallel to the path), so it is conservative either way. A path
+    longer than the largest double is taken in halves, as the sweep is; and the box is
+    clamped to the doubles, as a sweep that reaches past them is.
     """
     out = np.empty((4, posed.n))  # built row-wise: each row is one contiguous write
     for k, idx in posed.members.items():
@@ -67,9 +69,17 @@ def aabbs(posed: Posed) -> np.ndarray:
                     np.min(sw.hy, axis=0, out=lo[1])
                     np.max(sw.hx, axis=0, out=hi[0])
                     np.max(sw.hy, axis=0, out=hi[1])
-                    for row, d in enumerate((sw.dx, sw.dy)):
-                        np.minimum(lo[row], lo[row] - d, out=lo[row])
-                        np.maximum(hi[row], hi[row] - d, out=hi[row])
+                    if sw.far is None:
+                        for row, d in enumerate((sw.dx, sw.dy)):
+                            np.minimum(lo[row], lo[row] - d, out=lo[row])
+                            np.maximum(hi[row], hi[row] - d, out=hi[row])
+                    else:  # far paths are halves, and swept in halves: v - d is 2 (v/2 - d/2) there
+                        scale = np.where(sw.far, 2.0, 1.0)  # 1 elsewhere: the same bits as above
+                        for row, d in enumerate((sw.dx, sw.dy)):
+                            np.minimum(lo[row], (lo[row] / scale - d) * scale, out=lo[row])
+                            np.maximum(hi[row], (hi[row] / scale - d) * scale, out=hi[row])
+                np.clip(lo, -_MAX, _MAX, out=lo)  # a sweep past the doubles is its clamped box (Sweeps.build)
+                np.clip(hi, -_MAX, _MAX, out=hi)
             if not isinstance(sel, slice):
                 out[:, sel] = dest
     return out.T

@@ -31,6 +31,14 @@ exactly ``hull(C_prev U C_now)``. When it also turned, the hull is replaced by t
 octagon circumscribing its bounding circle, which contains every rotation of it, so the
 sweep is still conservative. The other objects of the pair are taken at their current
 pose; sweeping is meant for small, fast things (bullets) against slower ones (ships).
+
+Every finite path is swept, up to one across the whole range of the doubles: a path whose
+length overflows (``p - q`` past 1.8e308) is swept in halves, which are exact there; the
+sign tests are scaled so that no product overflows; a shape that has no width across its
+path at the coordinates' precision (a point or a segment, as small shapes become far out)
+still sweeps the whole path; and the rare sweep whose end pose reaches past the doubles
+(a turning one within 2**-40 of the largest double) becomes its bounding box clamped to
+them, with no bounding circle (``_sweep``, :class:`Sweeps`).
 """
 
 from __future__ import annotations
@@ -50,6 +58,15 @@ from .workspace import Workspace
 __all__ = ["ArmatureSet", "Posed", "pose", "pose_checked", "rotation_table", "ROTATION_MODES"]
 
 ROTATION_MODES = ("exact", "lut")
+
+#: The largest finite double.
+_MAX = float(np.finfo(np.float64).max)
+
+#: A swept polygon none of whose edges has ``e x s`` above this times its largest
+#: ``|x sy| + |y sx|`` (``s`` the path scaled into [0.5, 1)) is within the rounding of posing
+#: of having no width across the path (``_sweep``): 16 eps, several times the few ulps posing
+#: commits in each coordinate.
+_THIN = 16.0 * 2.0**-53
 
 #: Vertex count of the shape a rotating swept object is replaced by.
 _OCTAGON = 8
@@ -167,9 +184,11 @@ class Sweeps:
         Each swept object's convex shape at its current pose (its hull padded with its last
         vertex, or the octagon of a turning one), ``H = K / 2``.
     dx, dy : (m,) float64
-        Each path: current position minus previous.
+        Each path: current position minus previous; half that in the ``far`` columns.
     workspace : Workspace
         Scratch for :func:`_sweep`.
+    far : (m,) bool or None
+        Paths longer than the largest double (``p - q`` overflows; None: none is).
     """
 
     split: int
@@ -178,21 +197,31 @@ class Sweeps:
     dx: np.ndarray
     dy: np.ndarray
     workspace: Workspace
+    far: np.ndarray | None = None
 
     def build(self, cols: np.ndarray | None = None, ox=None, oy=None) -> tuple[np.ndarray, np.ndarray]:
         """(2H, m') swept polygons of the columns ``cols`` (positions among the swept
-        objects; all of them when ``None``), into ``ox``, ``oy`` when given."""
+        objects; all of them when ``None``), into ``ox``, ``oy`` when given.
+
+        A far column is swept in halves: its path overflowed, so ``|p|, |q| >= 2**970`` and
+        so are its shape's vertices, whose halves are exact; ``v - d = 2 (v/2 - d/2)``, with
+        ``d/2 = p/2 - q/2`` (never overflows) and ``v/2 - d/2`` near ``q/2``, and the sweep's
+        sign tests do not change with scale. A polygon that still reaches past the doubles
+        (an end pose beyond them) becomes its clamped bounding box (:func:`_box_unbounded`)."""
         if cols is None:
-            return _sweep(self.hx, self.hy, self.dx, self.dy, ox, oy, self.workspace)
-        return _sweep(
-            np.take(self.hx, cols, axis=1),
-            np.take(self.hy, cols, axis=1),
-            np.take(self.dx, cols),
-            np.take(self.dy, cols),
-            ox,
-            oy,
-            self.workspace,
-        )
+            hx, hy, dx, dy, far = self.hx, self.hy, self.dx, self.dy, self.far
+        else:
+            hx, hy = np.take(self.hx, cols, axis=1), np.take(self.hy, cols, axis=1)
+            dx, dy = np.take(self.dx, cols), np.take(self.dy, cols)
+            far = None if self.far is None else np.take(self.far, cols)
+        x, y = _sweep(hx, hy, dx, dy, ox, oy, self.workspace)
+        if far is not None and far.any():
+            f = np.flatnonzero(far)
+            fx, fy = _sweep(0.5 * np.take(hx, f, axis=1), 0.5 * np.take(hy, f, axis=1), dx[f], dy[f])
+            with np.errstate(over="ignore"):  # past the doubles: boxed below
+                x[:, f], y[:, f] = 2.0 * fx, 2.0 * fy
+        _box_unbounded(x, y)
+        return x, y
 
 
 @dataclass
@@ -326,11 +355,23 @@ def _sweep(
 
     Returns (2H, m) arrays (``ox``, ``oy`` when given, filled in place): vertex ``k`` of each
     polygon is emitted twice, shifted back by ``d`` when its incoming (first copy) or
-    outgoing (second copy) edge faces backwards along the path. Edges facing backwards are
-    those with ``e x d > 0``; the outward normal of a CCW edge ``e`` is ``(ey, -ex)``, and
-    ``(ey, -ex) . (-d) = ex dy - ey dx``. Scratch arrays come from ``ws`` (no fresh
-    allocation per frame: at 10,000 bullets fresh temporaries cost more in page faults than
-    the arithmetic); the arithmetic, and so every bit of the result, is the same either way.
+    outgoing (second copy) edge faces backwards along the path: ``v - d * back``. Edges
+    facing backwards are those with ``e x d > 0``; the outward normal of a CCW edge ``e`` is
+    ``(ey, -ex)``, and ``(ey, -ex) . (-d) = ex dy - ey dx``. That sign is taken with ``d``
+    scaled by a power of two to at most 1 in magnitude (:func:`_unit_scale`: exact, so the
+    same sign, and ``e x d`` cannot overflow however long the path).
+
+    Posed vertices carry rounding of a few ulps of ``|x|`` and ``|y|``, so a sign can be wrong
+    where ``|e x s|`` is below about ``_THIN (|x sy| + |y sx|)``: for an edge nearly parallel
+    to the path, where the back chain begins or ends, harmlessly -- unless the whole polygon
+    is that thin across the path (a point, a segment along it, a sliver: small shapes far
+    out, where coordinates are coarse). Then noisy signs could leave most of the path
+    uncovered, so a polygon with no ``e x s`` above that takes its back chain from its
+    vertices instead (:func:`_back_by_vertices`).
+
+    Scratch arrays come from ``ws`` (no fresh allocation per frame: at 10,000 bullets fresh
+    temporaries cost more in page faults than the arithmetic); the arithmetic, and so every
+    bit of the result, is the same either way.
     """
     ws = ws or Workspace()
     h, m = vx.shape
@@ -341,20 +382,70 @@ def _sweep(
     np.subtract(vx[:1], vx[-1:], out=ex[-1:])
     np.subtract(vy[1:], vy[:-1], out=ey[:-1])
     np.subtract(vy[:1], vy[-1:], out=ey[-1:])
+    sx, sy = _unit_scale(dx, dy)
     t, u = ws.get("sweep_t", (h, m)), ws.get("sweep_u", (h, m))
-    np.multiply(ex, dy, out=t)
-    np.multiply(ey, dx, out=u)
+    np.multiply(ex, sy, out=t)
+    np.multiply(ey, sx, out=u)
     np.subtract(t, u, out=t)
     back_out = np.greater(t, 0, out=ws.get("sweep_out", (h, m), bool))  # edge k -> k+1
+    np.abs(vx, out=u)  # (|x sy| + |y sx|) / 2, largest per polygon: in halves, it cannot overflow
+    u *= 0.5 * np.abs(sy)
+    u += np.abs(vy) * (0.5 * np.abs(sx))
+    thin = t.max(axis=0) <= (2.0 * _THIN) * u.max(axis=0)
+    if thin.any():  # every edge within rounding of parallel to the path: see above
+        f = np.flatnonzero(thin)
+        back_out[:, f] = _back_by_vertices(vx[:, f], vy[:, f], sx[f], sy[f])
     back_in = ws.get("sweep_in", (h, m), bool)  # edge k-1 -> k
     back_in[1:] = back_out[:-1]
     back_in[:1] = back_out[-1:]
-    for rows, back in ((slice(0, None, 2), back_in), (slice(1, None, 2), back_out)):
-        np.multiply(dx, back, out=t)
-        np.subtract(vx, t, out=ox[rows])
-        np.multiply(dy, back, out=t)
-        np.subtract(vy, t, out=oy[rows])
+    with np.errstate(over="ignore"):  # an end pose past the doubles: Sweeps.build boxes it
+        for rows, back in ((slice(0, None, 2), back_in), (slice(1, None, 2), back_out)):
+            np.multiply(dx, back, out=t)
+            np.subtract(vx, t, out=ox[rows])
+            np.multiply(dy, back, out=t)
+            np.subtract(vy, t, out=oy[rows])
     return ox, oy
+
+
+def _back_by_vertices(vx: np.ndarray, vy: np.ndarray, sx: np.ndarray, sy: np.ndarray) -> np.ndarray:
+    """(H, m) bool: back edges of polygons ``vx``, ``vy`` (H, m) with no width across their
+    paths ``s`` (m,) (:func:`_sweep`): the chain from the vertex furthest along the path round
+    to the nearest. Such a polygon is a segment along the path (up to rounding), and with its
+    return half shifted back the sweep runs from its far end back to ``d`` behind its near
+    end, whatever the rounding of its edges; a point (both ends one vertex) gets its first
+    edge: the segment from ``v`` to ``v - d``."""
+    h = len(vx)
+    along = (vx - vx[:1]) * sx + (vy - vy[:1]) * sy
+    first, last = along.argmax(axis=0), along.argmin(axis=0)
+    k = np.arange(h)[:, None]
+    back = (k - first) % h < (last - first) % h
+    back[0, first == last] = True
+    return back
+
+
+def _unit_scale(dx: np.ndarray, dy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(dx, dy)`` (m,) times the power of two that brings the larger magnitude of each pair
+    into [0.5, 1) (zero stays zero): exact (barring a component below 2**-1022 of the other),
+    so every sign of a product with it is the sign with ``d``, and no such product overflows."""
+    _, e = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
+    return np.ldexp(dx, -e), np.ldexp(dy, -e)
+
+
+def _box_unbounded(x: np.ndarray, y: np.ndarray) -> None:
+    """Replace, in place, every column of the polygons ``x``, ``y`` (k, m) (k a multiple of 4)
+    with a vertex past the doubles (an infinite coordinate) by its bounding box clamped to the
+    doubles, corners counter-clockwise. Rounding is monotone, so the computed extremes bound
+    the true ones: the clamped box holds every finite point of the polygon (and every point
+    of every pose is finite). Clamping the vertices one by one would not: a clamped polygon
+    can miss points of the original inside the doubles."""
+    if np.isfinite(x).all() and np.isfinite(y).all():
+        return
+    bad = np.flatnonzero(~(np.isfinite(x).all(axis=0) & np.isfinite(y).all(axis=0)))
+    x0, x1 = (np.clip(v, -_MAX, _MAX) for v in (x[:, bad].min(axis=0), x[:, bad].max(axis=0)))
+    y0, y1 = (np.clip(v, -_MAX, _MAX) for v in (y[:, bad].min(axis=0), y[:, bad].max(axis=0)))
+    reps = len(x) // 4
+    x[:, bad] = np.repeat(np.stack([x0, x1, x1, x0]), reps, axis=0)
+    y[:, bad] = np.repeat(np.stack([y0, y0, y1, y1]), reps, axis=0)
 
 
 def pose(
@@ -493,9 +584,17 @@ def pose_checked(
             turn = None if turning is None else pick(turning, moved)
             hx, hy = _swept_shape(shapes, moved, armature, px, py, cos, sin, turn, k // 2, ws, f"{k}")
             m = hx.shape[1]
-            dx = np.subtract(pick(px, moved), pick(prev_positions[:, 0], moved), out=ws.get(f"pose_dx{k}", m))
-            dy = np.subtract(pick(py, moved), pick(prev_positions[:, 1], moved), out=ws.get(f"pose_dy{k}", m))
-            sweeps[k] = Sweeps(split, hx, hy, dx, dy, ws)  # built when a tier reads them
+            qx, qy = pick(prev_positions[:, 0], moved), pick(prev_positions[:, 1], moved)
+            with np.errstate(over="ignore"):  # a path longer than the largest double: halves, below
+                dx = np.subtract(pick(px, moved), qx, out=ws.get(f"pose_dx{k}", m))
+                dy = np.subtract(pick(py, moved), qy, out=ws.get(f"pose_dy{k}", m))
+            far = None
+            if not (np.isfinite(dx).all() and np.isfinite(dy).all()):
+                far = ~(np.isfinite(dx) & np.isfinite(dy))
+                f = np.flatnonzero(far)
+                dx[f] = 0.5 * np.take(pick(px, moved), f) - 0.5 * np.take(qx, f)
+                dy[f] = 0.5 * np.take(pick(py, moved), f) - 0.5 * np.take(qy, f)
+            sweeps[k] = Sweeps(split, hx, hy, dx, dy, ws, far)  # built when a tier reads them
         xs[k], ys[k], members[k] = x, y, idx
     return Posed(n, klass, slot, xs, ys, members, circles, swept, cos, sin, frozenset(reordered), sweeps)
 
@@ -518,6 +617,15 @@ def _circles(radii, armature, positions, prev_positions, swept) -> tuple[np.ndar
         radius = radius * (1.0 + BOUND_SLACK) + (
             BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1]) + BOUND_SLACK
         )
+    if swept.any():
+        # A sweep whose polygon may reach past the doubles becomes its clamped bounding box
+        # (Sweeps.build), which is not inside this circle: no circle rejects it. Reaching
+        # past them takes |p| or |q| plus the shape's reach (under 1.1 r + 2**-39 |p|) above
+        # 2**1024; the test below (in halves, so it cannot overflow) is far looser.
+        assert prev_positions is not None
+        far = np.maximum(np.abs(positions).max(axis=1), np.abs(prev_positions).max(axis=1))
+        reach = 0.5 * far * (1.0 + 2.0**-30) + np.take(radii, armature) >= 2.0**1022
+        radius = np.where(swept & reach, np.inf, radius)
     return centre, radius
 
 
@@ -592,8 +700,19 @@ def _swept_shape(shapes, obj, armature, px, py, cos, sin, turning, rows, ws: Wor
         slack = BOUND_SLACK * np.abs(cx) + BOUND_SLACK * np.abs(cy) + BOUND_SLACK  # |cx| + |cy| may overflow
         r = (shapes.radius[arm[turning]] * (1.0 + BOUND_SLACK) + slack) / _OCTAGON_COS
         ts, tc = detmath.sincos_deg(deg)
-        ocx = cx + tc[:, None] * r
-        ocy = cy + ts[:, None] * r
+        with np.errstate(over="ignore"):  # within 2**-40 of the largest double: see below
+            ocx = cx + tc[:, None] * r
+            ocy = cy + ts[:, None] * r
+        out = ~(np.isfinite(ocx).all(axis=0) & np.isfinite(ocy).all(axis=0))
+        if out.any():
+            # The octagon reaches past the doubles: its bounding square (edges at distance r,
+            # as the octagon's), clamped to the doubles, holds every finite point it holds.
+            sx, sy, sr = cx[out], cy[out], r[out]
+            with np.errstate(over="ignore"):
+                x0, x1 = np.clip(sx - sr, -_MAX, _MAX), np.clip(sx + sr, -_MAX, _MAX)
+                y0, y1 = np.clip(sy - sr, -_MAX, _MAX), np.clip(sy + sr, -_MAX, _MAX)
+            ocx[:, out] = np.repeat(np.stack([x1, x1, x0, x0]), 2, axis=0)  # corners CCW, each twice
+            ocy[:, out] = np.repeat(np.stack([y0, y1, y1, y0]), 2, axis=0)
         x[:, turning] = _pad_rows(ocx, h)
         y[:, turning] = _pad_rows(ocy, h)
     return x, y

@@ -202,7 +202,7 @@ class App:
         for event in pygame.event.get():
             self.handle(event)
         self._pause_if_away()
-        steps = self.stack.top.update(dt) if self.running else 0
+        steps = self.stack.current.update(dt) if self.running else 0
         if not isinstance(self.stack.top, Play):
             self.controls.tapped.clear()  # a bomb tapped on the pause screen must not go off on resuming
         follow(self)  # the music that fits the screen now, at the options' volumes
@@ -224,7 +224,7 @@ class App:
             self.focused |= t == pygame.WINDOWFOCUSGAINED
         if t == pygame.KEYDOWN and self.overlay.visible and self.overlay.handle_key(event.key):
             return  # F5-F7: the overlay's own keys (swept outlines, panel place, lens)
-        if self.stack.top.handle(event):
+        if self.stack.current.handle(event):
             return
         actions = self.controls.actions(event)
         if Action.MUTE in actions:

@@ -295,7 +295,7 @@ class Audio:
             return False
         for sound in sounds.values():
             sound.set_volume(self._sound_volume)
-        self._sounds, self._spec = sounds, tuple(spec)
+        self._sounds, self._spec = sounds, (frequency, size, channels)
         return True
 
     # ------------------------------------------------------------------ volume and mute

@@ -33,12 +33,16 @@ class BulletSprites:
         self.bank = bank
         self.names = list(names)
         self.frames = np.asarray(frames, dtype=np.int64).tolist()
-        k = len(self.names)
         self.turns = np.array([0 if n in ROUND_BULLETS else 1 for n in self.names], dtype=np.int64)
+        self._empty()
+
+    def _empty(self) -> None:
+        """Forget every turned image (at the start, and when the bank converted its images)."""
+        k = len(self.names)
         self.images: list[pygame.Surface | None] = [None] * (k * DEGREES)
         self.half = np.zeros((k * DEGREES, 2))  # (K * 360, 2) half width and height of each entry
         self.ready = np.zeros(k * DEGREES, dtype=bool)
-        self.version = bank.version
+        self.version = self.bank.version
 
     def _fill(self, entries: np.ndarray) -> None:
         for e in np.unique(entries).tolist():
@@ -62,7 +66,7 @@ class BulletSprites:
         angles (n,) degrees, centres (n, 2) pixels; in the bullets' order (later ones drawn
         over earlier)."""
         if self.version != self.bank.version:  # the bank converted its images: start again
-            self.__init__(self.bank, self.names, np.array(self.frames))
+            self._empty()
         e = self.entries(kinds, angles)
         if not self.ready[e].all():
             self._fill(e[~self.ready[e]])

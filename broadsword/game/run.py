@@ -14,6 +14,29 @@ from ..data.recordings import Recording, check_level_digest, file_sha256
 from ..sim import Carry, Settings, World
 
 
+@dataclass(frozen=True)
+class RunTotals:
+    """What a run has done over its stages so far, for the final screen."""
+
+    stages: int = 0  # stages cleared
+    seconds: float = 0.0  # time in play (game time, not wall time)
+    misses: int = 0
+    bombs: int = 0
+    grazes: int = 0
+    items: int = 0
+
+    def plus(self, world: World, cleared: bool) -> RunTotals:
+        """These totals with ``world``'s stage added (``cleared``: it counts as a stage cleared)."""
+        return RunTotals(
+            self.stages + int(cleared),
+            self.seconds + world.time,
+            self.misses + world.player.misses,
+            self.bombs + world.progress.bombs_used,
+            self.grazes + world.score.grazes,
+            self.items + world.score.items,
+        )
+
+
 @dataclass
 class Run:
     """``level_index`` indexes the shipped levels, unless ``custom`` names a level file
@@ -26,6 +49,7 @@ class Run:
     lives: int | None = None
     continues: int = 0
     power: int | None = None  # the shot's power, from the stage before (None: the base power)
+    totals: RunTotals = RunTotals()  # the stages cleared so far (the one in play is not in it)
 
     def level_ref(self, levels: list[str]) -> str:
         return self.custom or levels[self.level_index]
@@ -47,6 +71,7 @@ class Run:
         self.lives = world.player.lives
         self.continues = world.progress.continues_used
         self.power = world.player.power
+        self.totals = self.totals.plus(world, cleared=True)
 
 
 @dataclass

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..collision.detmath import heading_deg
-from ..patterns.bulletml.store import AX, AY, DIR, NEVER, Movers
+from ..patterns.bulletml.store import AX, AY, DIR, NEVER, Columns, Movers
 from .field import DT, FIELD
 from .motion import heading
 from .pool import Pool
@@ -69,11 +69,7 @@ class EnemyBullets(Movers):
         """Add bullets flying straight at ``vel`` (n, 2) px/s (no pattern), as a
         :class:`~.pool.Pool` would; returns how many were added (fewer at the limit)."""
         pos = np.asarray(pos, dtype=np.float64).reshape(-1, 2)
-        k = len(pos)
-        if self.limit is not None and self.n + k > self.limit:
-            take = max(0, self.limit - self.n)
-            self.refused += k - take
-            k = take
+        k = self._take(len(pos))
         if not k:
             return 0
         i, j = self.n, self.n + k
@@ -145,7 +141,7 @@ def move_bullets(pool: Pool) -> None:
         pool.pos[:] += pool.vel * DT
 
 
-def cull_bullets(pool: Pool) -> None:
+def cull_bullets(pool: Columns) -> None:
     """Forget bullets more than ``CULL_MARGIN`` px off the field."""
     if pool.n:
         w, h, m = FIELD[0], FIELD[1], CULL_MARGIN

@@ -104,14 +104,14 @@ class EnemyGuns:
             if (e.owner < 0).any():
                 e.keep(e.owner >= 0)
             self.boss_phase = phase
-            if phase is not None:
+            if phase is not None and parts is not None:
                 for i, part in enumerate(parts.part.tolist()):
                     spec = boss.fire_of(part)
                     if spec.fires:
                         wait = float(parts.next_fire[i] - parts.age[i])
                         self._add(spec, parts.pos[i], -1 - part, kinds_base[spec.bullet], wait)
         rows = np.flatnonzero(e.owner < 0)
-        if len(rows):
+        if len(rows) and parts is not None:  # boss emitters exist only while it has parts
             idx = np.searchsorted(parts.part, -1 - e.owner[rows])  # parts in part order
             e.pos[rows] = parts.pos[idx]
             e.mute[rows] = ~on_field(parts.pos[idx])

@@ -307,3 +307,96 @@ def test_first_defect__large_polygons():
         if 1 < abs(i - j) < n - 1 and q_segments(*edge(i), *edge(j))
     )
     assert meets and first_defect(crossed) == ("meet", *meets[0])
+
+
+# --------------------------------------------------------------------------- sweeps across the range
+MAXD = 1.7976931348623157e308
+SWEEP_SHAPES = [WALL, Armature.box(2, 4, name="sweeping bullet")]  # half sizes 1 x 20 and 1 x 2
+SWEEP_TABLE = LayerTable(("wall", "bullet"), [("wall", "bullet")])
+SWEEP_MIXES = [("brute", "armature"), *TIER_MIXES]
+
+
+def _beyond(v):
+    return math.nextafter(v, math.inf)
+
+
+def sweep_scenes():
+    """``(wall at, bullet now, bullet before, angle, touches)``: a bullet swept across the whole
+    range of the doubles (p - q overflows), past a wall at its side, touching it (gap 0) or
+    clear by the next double; then diagonals through a wall's corner. At these magnitudes the
+    bullet's posed vertices collapse onto the coarse coordinates (a segment, or a point)."""
+    for big in (M, MAXD):
+        for angle in (0.0, 90.0, 180.0, 270.0):
+            hx, hy = (1.0, 2.0) if angle in (0.0, 180.0) else (2.0, 1.0)  # the bullet's half sizes, turned
+            for y, touches in ((20.0 + hy, True), (-20.0 - hy, True), (_beyond(20.0 + hy), False)):
+                yield (0.0, 0.0), (big, y), (-big, y), angle, touches  # along x, at height y
+                yield (0.0, 0.0), (-big, y), (big, y), angle, touches
+            for x, touches in ((1.0 + hx, True), (_beyond(1.0 + hx), False)):
+                yield (0.0, 0.0), (x, big), (x, -big), angle, touches  # along y
+        # the bullet collapses to a point; the lines y = x and y = x / 2 meet the wall's corner
+        # (x0 - 1, 20) at x0 = 21 and 41
+        for x0, touches in ((21.0, True), (_beyond(21.0), False)):
+            yield (x0, 0.0), (big, big), (-big, -big), 0.0, touches
+        for x0, touches in ((41.0, True), (_beyond(41.0), False)):
+            yield (x0, 0.0), (big, big / 2), (-big, -big / 2), 0.0, touches
+
+
+def _q_polygon(posed, i):
+    return [(Fraction(x), Fraction(y)) for x, y in posed.polygon(i).tolist()]
+
+
+@pytest.mark.parametrize("rotation", ["lut", "exact"])
+def test_sweep_across_the_whole_range__equals_the_rational_sweep(rotation):
+    """The issue's case (a bullet swept from -1.7e308 to +1.7e308 was refused, "boxes must be
+    finite"): every tier mix now finds exactly the pairs of the rational oracle -- the wall's
+    posed polygon against the hull of the bullet's posed polygons at both ends of its path
+    (exact arithmetic on the doubles, no overflow) -- touching pairs included."""
+    shapes = ArmatureSet(SWEEP_SHAPES)
+    pipes = [Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=t, rotation=rotation) for t in SWEEP_MIXES]
+    touching = 0
+    for wall, now, before, angle, touches in sweep_scenes():
+        ends = pose(shapes, [0, 1, 1], [wall, now, before], [0.0, angle, angle], rotation)
+        swept = q_hull(_q_polygon(ends, 1) + _q_polygon(ends, 2))
+        want = q_collide(_q_polygon(ends, 0), swept)
+        assert want is touches, (wall, now, before, angle)  # the oracle sees the geometry meant
+        for pipe in pipes:
+            got = pipe.step(
+                [0, 1], [0, 1], [wall, now], [0.0, angle], [wall, before], [0.0, angle], [False, True]
+            ).hits.tolist()
+            assert got == ([[0, 1]] if want else []), (pipe.tiers, wall, now, before, angle)
+        touching += want
+    assert touching >= 30
+
+
+def turning_sweep_scenes():
+    """Sweeps that also turn (the octagon), across the range and from its very edge, where
+    the octagon itself reaches past the largest double."""
+    for big in (M, MAXD):
+        yield (big, 22.0), (-big, 22.0)
+        yield (22.0, big), (22.0, -big)
+        yield (big, big), (-big, -big)
+    yield (MAXD, 0.0), (0.0, MAXD)
+    yield (MAXD, MAXD), (MAXD, -MAXD)
+    yield (-MAXD, 5.0), (1e300, 5.0)
+
+
+@pytest.mark.parametrize("rotation", ["lut", "exact"])
+def test_turning_sweep_across_the_whole_range__conservative_and_exact(rotation):
+    """A bullet that turns while it sweeps is replaced by a conservative shape: it holds the
+    bullet's posed polygons at both ends (rational point-in-polygon), every tier mix keeps
+    exactly the pairs the exact test keeps, and that test is exact on the swept polygon."""
+    shapes = ArmatureSet(SWEEP_SHAPES)
+    exact = Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=("brute", "armature"), rotation=rotation)
+    pipes = [Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=t, rotation=rotation) for t in TIER_MIXES]
+    for now, before in turning_sweep_scenes():
+        for wall in [(0.0, 0.0), (now[0], 0.0), (0.0, now[1]), (before[0] / 2, before[1] / 2)]:
+            args = dict(prev_positions=[wall, before], prev_angles=[0.0, 10.0], swept=[False, True])
+            want = exact.step([0, 1], [0, 1], [wall, now], [0.0, 75.0], **args)
+            sweep = _q_polygon(want.posed, 1)
+            ends = pose(shapes, [1, 1], [now, before], [75.0, 10.0], rotation)
+            for p in _q_polygon(ends, 0) + _q_polygon(ends, 1):
+                assert q_inside(p, sweep), (now, before, p)
+            assert (want.hits.tolist() == [[0, 1]]) is q_collide(_q_polygon(want.posed, 0), sweep)
+            for pipe in pipes:
+                got = pipe.step([0, 1], [0, 1], [wall, now], [0.0, 75.0], **args).hits.tolist()
+                assert got == want.hits.tolist(), (pipe.tiers, wall, now, before)

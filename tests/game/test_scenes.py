@@ -270,6 +270,30 @@ def test_results__the_last_stage_leads_to_the_final_results_and_the_name(app):
     assert isinstance(app.scene, NameEntry) and app.scene.score == world.score.points
 
 
+def test_final_results__the_runs_totals_add_every_stage_cleared(app):
+    """Two emptied stages cleared one after the other: the final screen adds both stages'
+    misses, bombs, grazes, items and time (the run's totals, not the last stage's)."""
+    first = empty_stage(app, Run(len(app.levels) - 2))
+    first.player.misses, first.progress.bombs_used, first.score.grazes, first.score.items = 1, 2, 30, 4
+    frames(app, 2)
+    key(pygame.K_RETURN)  # results -> the last stage
+    frames(app)
+    run = app.play.run
+    assert app.world is not first and run.totals.stages == 1
+    last = empty_stage(app, run)  # the last stage, emptied the same way
+    last.player.misses, last.progress.bombs_used, last.score.grazes, last.score.items = 2, 1, 12, 6
+    frames(app, 2)
+    key(pygame.K_RETURN)
+    frames(app)
+    over = app.scene
+    assert isinstance(over, GameOver) and over.victory
+    t = over.totals
+    assert (t.stages, t.misses, t.bombs, t.grazes, t.items) == (2, 3, 3, 42, 10)
+    assert t.seconds == first.time + last.time
+    rows = dict(over.rows())
+    assert rows["Stages cleared"] == "2" and rows["Misses"] == "3" and rows["Grazes"] == "42"
+
+
 # --------------------------------------------------------------------------- continues
 def test_continue__play_on_with_the_score_counting_continues(app):
     world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
@@ -291,6 +315,8 @@ def test_continue__declined_or_timed_out_ends_the_run(app):
     assert isinstance(app.scene, Continue)
     app.frame(11.0)  # ten seconds to decide
     assert isinstance(app.scene, GameOver) and not app.scene.victory and app.scene.qualifies
+    t = app.scene.totals  # the stage lost counts in the totals, not as cleared
+    assert t.stages == 0 and t.misses == world.player.misses >= 1 and t.seconds == world.time > 0
 
 
 def test_continue__none_left_goes_straight_to_game_over(app):

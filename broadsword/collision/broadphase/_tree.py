@@ -8,6 +8,9 @@ from .. import detmath
 from ._shared import Driver, Frame, auto_bin_size
 from .base import TreeLayout
 
+#: The largest finite double.
+_MAX = float(np.finfo(np.float64).max)
+
 
 class TreeDriver(Driver):
     """A quadtree's configuration; ``frame_class`` says where objects live in it.
@@ -48,6 +51,7 @@ class TreeFrame(Frame):
         self.magnitude = max(abs(x0), abs(y0), abs(x1), abs(y1))
         half = max(0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0)
         half = half * (1 + 2**-20) + 1e-9 * self.magnitude + 1e-300  # keep the max edge inside
+        half = min(half, _MAX)  # a span of the whole double range: the root holds all, edges clipped into it
         leaf = tree.leaf_size or auto_bin_size(boxes, groups) / 2.0
         depth = int(np.clip(detmath.ceil_log2(half / leaf) + 1, 0, tree.max_depth))
         self.origin, self.half, self.depth = (x0, y0), half, depth

@@ -20,7 +20,9 @@ class _LooseFrame(TreeFrame):
         # into a neighbouring node never lets the box leave the loose bounds. Half-values
         # throughout, so nothing overflows.
         ext = np.maximum(0.5 * boxes[:, 2] - 0.5 * boxes[:, 0], 0.5 * boxes[:, 3] - 0.5 * boxes[:, 1])
-        ext = ext * (1 + 1e-9) + 1e-12 * self.magnitude + 1e-300
+        with np.errstate(over="ignore"):  # a box spanning the doubles: inf, then the root's half
+            ext = ext * (1 + 1e-9) + 1e-12 * self.magnitude + 1e-300
+        ext = np.minimum(ext, self.half)  # at most the root (both reach the largest double for a full-range span)
         level = np.clip(detmath.floor_log2(self.half / ext), 0, self.depth).astype(np.int64)
         level -= (level > 0) & (self.half / (1 << level).astype(np.float64) < ext)
         cx = 0.5 * boxes[:, 0] + 0.5 * boxes[:, 2]

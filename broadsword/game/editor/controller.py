@@ -210,7 +210,7 @@ class Controller:
         elif hover.kind == HoverKind.VERTEX:
             s.selected = hover.index
             self._edit(pos, DragKind.VERTEX, here, hover.index)
-        elif hover.kind == HoverKind.EDGE:
+        elif hover.kind == HoverKind.EDGE and hover.point is not None:  # an edge hover always has its point
             if s.insert_vertex(hover.index, hover.point, drag_from=here):
                 self.gesture = Gesture(GestureKind.EDIT, pos)
         else:

@@ -131,7 +131,7 @@ class SpriteView:
         if s.drag is not None and s.drag.rejected is not None:
             pygame.draw.lines(win, REJECTED, True, self._screen_points(s.drag.rejected), 1)
         still = not c.dragging
-        if c.hover.kind == HoverKind.EDGE and still:
+        if c.hover.kind == HoverKind.EDGE and c.hover.point is not None and still:
             px, py = c.viewport.to_screen(*c.hover.point)
             pygame.draw.circle(win, SELECTED, (round(px), round(py)), HANDLE, 1)
             pygame.draw.line(win, SELECTED, (px - 3, py), (px + 3, py))
@@ -148,7 +148,7 @@ class SpriteView:
             else:
                 pygame.draw.rect(win, HANDLE_FILL, r)
                 pygame.draw.rect(win, colour, r, 2)
-        for i in {s.selected, hovered} - {None}:
+        for i in {j for j in (s.selected, hovered) if j is not None}:
             if i < len(screen):
                 label = self.small.render(str(i), True, SELECTED)
                 win.blit(label, (round(screen[i][0]) + HANDLE + 3, round(screen[i][1]) - HANDLE - 12))

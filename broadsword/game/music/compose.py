@@ -96,7 +96,7 @@ def _melody(song: Song, rng: np.random.Generator) -> list[Note]:
         for i, ((onset, length), move) in enumerate(zip(rhythm, contour)):
             start = base + onset
             degree = song.chord_at(start)
-            if i == 0:  # a section starts near its anchor, leaning towards where the last one ended
+            if prev is None or i == 0:  # a section starts near its anchor, leaning towards where the last one ended
                 step = _snap(key, anchor if prev is None else (anchor + prev + 1) // 2, degree, 1)
             else:
                 step = prev + int(move)

@@ -80,7 +80,13 @@ class MusicPlayer:
         self._closed = False
         self._channel = 0  # index into MUSIC_CHANNELS of the channel in use
         ref = weakref.ref(self)
-        pygame.register_quit(lambda: (player := ref()) is not None and player.close())
+
+        def close_if_alive() -> None:  # at pygame.quit(), without keeping the player alive
+            player = ref()
+            if player is not None:
+                player.close()
+
+        pygame.register_quit(close_if_alive)
 
     # ------------------------------------------------------------------ requests
     def play(self, track: Track) -> None:
@@ -170,10 +176,11 @@ class MusicPlayer:
             return False
         if spec is None:
             return False
-        if tuple(spec) != self._spec:
+        frequency, size, channels = spec
+        if (frequency, size, channels) != self._spec:
             self._queue.clear()
             self._sounds.clear()
-            self._spec, self.playing = tuple(spec), None
+            self._spec, self.playing = (frequency, size, channels), None
             if pygame.mixer.get_num_channels() < len(MUSIC_CHANNELS) + 8:
                 pygame.mixer.set_num_channels(len(MUSIC_CHANNELS) + 14)
             pygame.mixer.set_reserved(len(MUSIC_CHANNELS))

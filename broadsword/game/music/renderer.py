@@ -110,7 +110,9 @@ def render(song: Song, rate: int, bars: int | None = None) -> np.ndarray:
     layers["pad"] = fft_filter(layers["pad"], rate, low=120.0, high=min(2600.0, nyq))
     layers["arp"] = _echo(fft_filter(layers["arp"], rate, low=200.0), 3 * per_step, song.loop)
     layers["lead"] = _echo(layers["lead"], 3 * per_step, song.loop)
-    mix = sum(_balanced(layers[name], share) for name, share in MIX.items())
+    mix = np.zeros((n, 2))
+    for name, share in MIX.items():
+        mix += _balanced(layers[name], share)
     if song.loop:
         mix -= mix.mean(axis=0)  # a loop's DC offset would be a constant; nothing else moves
     else:

@@ -44,6 +44,13 @@ class SceneStack:
     def top(self) -> Scene | None:
         return self.scenes[-1] if self.scenes else None
 
+    @property
+    def current(self) -> Scene:
+        """The top scene, for a stack that must not be empty (the running game's never is)."""
+        if not self.scenes:
+            raise RuntimeError("the scene stack is empty")
+        return self.scenes[-1]
+
     def push(self, scene: Scene) -> None:
         self.scenes.append(scene)
 

@@ -18,6 +18,9 @@ class GameOver:
         self.score = world.score.points
         self.level = world.level.name
         self.continues = world.progress.continues_used
+        run = play.run
+        # A cleared run's last stage is already in its totals (the results screen added it).
+        self.totals = run.totals if victory else run.totals.plus(world, cleared=False)
 
     @property
     def qualifies(self) -> bool:
@@ -45,12 +48,29 @@ class GameOver:
         p.veil()
         if self.victory and self.play.run.custom is not None:  # a level file played on its own
             p.text("STAGE CLEARED", 250, ui.BIG, ui.GOLD)
-            p.text(f"{self.play.world.level.title} on {self.play.run.difficulty.title}", 300, colour=ui.CREAM)
+            p.text(f"{self.play.world.level.title} on {self.play.run.difficulty.title}", 296, colour=ui.CREAM)
         elif self.victory:
             p.text("BROADSWORD FALLS", 250, ui.BIG, ui.GOLD)
-            p.text(f"Every stage cleared on {self.play.run.difficulty.title}", 300, colour=ui.CREAM)
+            p.text(f"Every stage cleared on {self.play.run.difficulty.title}", 296, colour=ui.CREAM)
         else:
             p.text("GAME OVER", 270, ui.BIG, ui.BAD)
-        p.text(f"Final score {self.score:,}", 330)
-        p.text(f"Continues used: {self.continues}", 356, colour=ui.DIM)
-        p.text("Enter to enter your name" if self.qualifies else "Enter for the title", 400, colour=ui.DIM)
+        p.text(f"Final score {self.score:,}", 340, ui.HEADING, ui.GOLD)
+        for i, (label, value) in enumerate(self.rows()):
+            y = 380 + 24 * i
+            p.text(label, y, 22, ui.DIM, x=surf.get_width() / 2 - 8, anchor="midright")
+            p.text(value, y, 22, ui.WHITE, x=surf.get_width() / 2 + 8, anchor="midleft")
+        p.text("Enter to enter your name" if self.qualifies else "Enter for the title", 560, colour=ui.DIM)
+
+    def rows(self) -> list[tuple[str, str]]:
+        """``(label, value)`` of the run's totals, as the screen lists them."""
+        t = self.totals
+        minutes, seconds = divmod(int(t.seconds), 60)
+        return [
+            ("Stages cleared", f"{t.stages}"),
+            ("Time in play", f"{minutes}:{seconds:02d}"),
+            ("Misses", f"{t.misses}"),
+            ("Bombs used", f"{t.bombs}"),
+            ("Grazes", f"{t.grazes:,}"),
+            ("Items", f"{t.items:,}"),
+            ("Continues used", f"{self.continues}"),
+        ]

@@ -91,7 +91,10 @@ class Engine:
         emitter's own direction (what ``relative`` means at the top) starts at ``direction``."""
         runner = Runner([Thread(pattern, (top,), tuple(float(p) for p in params)) for top in pattern.top])
         wake = self.frame if start is None else max(int(start), self.frame)
-        return self.emitters.add_one(float(pos[0]), float(pos[1]), direction, 0.0, runner, wake, tag, owner)
+        row = self.emitters.add_one(float(pos[0]), float(pos[1]), direction, 0.0, runner, wake, tag, owner)
+        if row is None:  # cannot happen: the emitters' store has no limit
+            raise RuntimeError("the emitter store refused an emitter")
+        return row
 
     # -- what the machine calls ---------------------------------------------------------
     def evaluate(self, expr: Expr, params) -> float:

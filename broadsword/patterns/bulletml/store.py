@@ -11,7 +11,10 @@ bullet flying straight costs one addition a frame.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+
 import numpy as np
+from numpy.typing import DTypeLike
 
 from ._trig import velocity_deg
 
@@ -23,7 +26,7 @@ NEVER = np.iinfo(np.int64).max
 DIR, SPD, AX, AY = 0, 1, 2, 3
 
 #: The columns every Movers has: name -> (shape per row, dtype).
-COLUMNS = {
+COLUMNS: dict[str, tuple[tuple[int, ...], DTypeLike]] = {
     "pos": ((2,), np.float64),
     "state": ((4,), np.float64),
     "step": ((2,), np.float64),
@@ -42,7 +45,82 @@ COLUMNS = {
 }
 
 
-class Movers:
+class Columns:
+    """Named parallel numpy arrays ("columns") with a live count ``n``: the struct-of-arrays
+    store under the BulletML :class:`Movers` and the game's pools (``broadsword.sim.Pool``
+    builds on it; ``patterns`` cannot import ``sim``, so the one implementation lives here).
+
+    Live rows are packed first (Game Programming Patterns, "Data Locality"); removal is
+    "mark, then compact" by :meth:`keep`, which keeps order, so the contents do not depend on
+    the order of removals. Attribute access gives a column's live rows: a column declared
+    with shape ``s`` reads as an ``(n, *s)`` array. ``spec`` maps each column's name to
+    ``(shape per row, dtype)``. ``limit`` caps the rows (None: no cap); rows past it are
+    refused and counted in ``refused``.
+    """
+
+    def __init__(self, capacity: int, limit: int | None, spec: Mapping[str, tuple[Sequence[int], DTypeLike]]):
+        self._spec = {k: (tuple(shape), np.dtype(dtype)) for k, (shape, dtype) in spec.items()}
+        self._data = {k: np.zeros((max(1, capacity), *shape), dtype) for k, (shape, dtype) in self._spec.items()}
+        self.n = 0
+        self.limit = limit  # at most this many live rows (None: no limit)
+        self.refused = 0  # rows not added because the store was full, so far
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        data = self.__dict__.get("_data")
+        if data is not None and name in data:
+            return data[name][: self.n]
+        raise AttributeError(name)
+
+    def __len__(self) -> int:
+        return self.n
+
+    def full(self) -> bool:
+        return self.limit is not None and self.n >= self.limit
+
+    def _take(self, k: int) -> int:
+        """How many of ``k`` new rows fit under the limit; the rest are counted as refused."""
+        if self.limit is not None and self.n + k > self.limit:
+            take = max(0, self.limit - self.n)
+            self.refused += k - take
+            return take
+        return k
+
+    def _grow(self, need: int) -> None:
+        """Make room for ``need`` rows (at least doubling), keeping the live ones."""
+        cap = len(next(iter(self._data.values())))
+        if need <= cap:
+            return
+        cap = max(need, 2 * cap)
+        for k, arr in self._data.items():
+            grown = np.zeros((cap, *arr.shape[1:]), arr.dtype)
+            grown[: self.n] = arr[: self.n]
+            self._data[k] = grown
+
+    def keep(self, mask: np.ndarray) -> None:
+        """Keep the live rows where ``mask`` (n,) is True, packed, in order."""
+        k = int(np.count_nonzero(mask))
+        if k == self.n:
+            return
+        # Rows before the first one to go stay where they are; the survivors after it are
+        # gathered once by index for every column (a boolean mask would be re-scanned per
+        # column: at 10,000 bullets and ~20 columns that was most of a culling frame).
+        first = int(np.argmin(mask))
+        rows = np.flatnonzero(mask[first:])
+        rows += first
+        for arr in self._data.values():
+            arr[first:k] = np.take(arr, rows, axis=0)
+        self._forget(k, self.n)
+        self.n = k
+
+    def clear(self) -> None:
+        self._forget(0, self.n)
+        self.n = 0
+
+    def _forget(self, start: int, stop: int) -> None:
+        """Hook: rows ``[start, stop)`` are no longer live (drop what they refer to)."""
+
+
+class Movers(Columns):
     """Rows of moving things, packed first (``n`` live), removal by mask (order kept).
 
     Attribute access gives the live rows (``movers.pos`` is ``(n, 2)``), as the game's pools
@@ -61,41 +139,14 @@ class Movers:
     """
 
     def __init__(self, capacity: int = 64, limit: int | None = None, **extra):
-        self._spec = {**COLUMNS, **{k: (tuple(s), np.dtype(d)) for k, (s, d) in extra.items()}}
-        self._data = {k: np.zeros((max(1, capacity), *shape), dtype) for k, (shape, dtype) in self._spec.items()}
-        self.n = 0
-        self.limit = limit
-        self.refused = 0
-
-    def __getattr__(self, name):
-        data = self.__dict__.get("_data")
-        if data is not None and name in data:
-            return data[name][: self.n]
-        raise AttributeError(name)
-
-    def __len__(self) -> int:
-        return self.n
-
-    def full(self) -> bool:
-        return self.limit is not None and self.n >= self.limit
-
-    def _grow(self, need: int) -> None:
-        cap = len(self._data["pos"])
-        if need <= cap:
-            return
-        cap = max(need, 2 * cap)
-        for k, arr in self._data.items():
-            grown = np.zeros((cap, *arr.shape[1:]), arr.dtype)
-            grown[: self.n] = arr[: self.n]
-            self._data[k] = grown
+        super().__init__(capacity, limit, {**COLUMNS, **extra})
 
     def add_one(
         self, x: float, y: float, direction: float, speed: float, runner, wake: int, tag: int = 0, owner: int = 0
     ) -> int | None:
         """Append one row (its velocity is computed at the next :meth:`settle`); returns its
         index, or None if the movers are at their ``limit``."""
-        if self.full():
-            self.refused += 1
+        if not self._take(1):
             return None
         i = self.n
         self._grow(i + 1)
@@ -160,22 +211,5 @@ class Movers:
         if m:
             self.pos[:m] += self.step[:m]
 
-    def keep(self, mask: np.ndarray) -> None:
-        """Keep the live rows where ``mask`` (n,) is True, packed, in order."""
-        k = int(np.count_nonzero(mask))
-        if k == self.n:
-            return
-        # Rows before the first one to go stay where they are; the survivors after it are
-        # gathered once by index for every column (a boolean mask would be re-scanned per
-        # column: at 10,000 bullets and ~20 columns that was most of a culling frame).
-        first = int(np.argmin(mask))
-        rows = np.flatnonzero(mask[first:])
-        rows += first
-        for arr in self._data.values():
-            arr[first:k] = np.take(arr, rows, axis=0)
-        self._data["runner"][k : self.n] = None  # let finished runners go
-        self.n = k
-
-    def clear(self) -> None:
-        self._data["runner"][: self.n] = None
-        self.n = 0
+    def _forget(self, start: int, stop: int) -> None:
+        self._data["runner"][start:stop] = None  # let finished runners go
