@@ -46,22 +46,20 @@ QUICK = (
     "game/test_scores.py",
 )
 
-#: Test modules (paths under tests/) that take longest, longest first: they start first.
-#: Seconds of CPU each on an idle 2-core machine (``--durations``); a new test module taking
-#: more than ~10 s belongs here.
+#: Test modules (paths under tests/) with the longest single tests, longest first: they start
+#: first. Seconds of wall per module in a parallel run on a 2-core machine under load
+#: (``--durations=0``); a module with a test of more than ~5 s belongs here.
 FIRST = (
-    "test_determinism_machines.py",  # ~150 (in two processes of its own)
-    "test_determinism.py",  # ~45
-    "test_balance.py",
-    "test_soak.py",
-    "sim/test_replay.py",
-    "test_bench.py",
-    "test_recordings.py",
-    "sim/test_progress.py",
-    "sim/test_tunnelling.py",
-    "test_cli.py",
-    "sim/test_world.py",
-    "sim/test_extremes.py",
+    "test_determinism_machines.py",  # ~100, one test (in two processes of its own)
+    "test_soak.py",  # ~50, the short soak alone 15-25
+    "data/test_fuzz_loaders.py",  # ~25, two fuzzers of 10-25 each
+    "test_bench.py",  # ~13, one test
+    "test_balance.py",  # one test of ~6
+    "sim/test_replay.py",  # ~27, four tests
+    "test_recordings.py",  # ~17, two of 8
+    "collision/test_reference_tiers.py",  # one test of ~8
+    "test_determinism.py",  # ~43, fifteen tests of 1-5
+    "sim/test_tunnelling.py",  # ~30, tests of 2-4
 )
 
 _HERE = os.path.dirname(os.path.abspath(__file__))

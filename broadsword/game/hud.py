@@ -1,4 +1,5 @@
-"""The boss's part of the HUD: a health bar in one segment per phase, and the phase's timer.
+"""The boss's part of the HUD: a health bar in one segment per phase, and the phase's timer;
+a mid-boss's bar (one segment, its name over it) in the same place while it flies.
 
 Segments left of the current phase are spent (drawn empty), the current one shows what is
 left of its hit points, the ones after it are whole. The timer counts the current phase's
@@ -45,3 +46,17 @@ def draw_boss_bar(surf: pygame.Surface, boss, font: pygame.font.Font) -> None:
     left = boss.time_left
     timer = font.render(f"{left:4.1f}", True, WARN if left < TIMER_WARN else TEXT)
     surf.blit(timer, timer.get_rect(midright=(fw - x0, y - 10)))
+
+
+def draw_midboss_bar(surf: pygame.Surface, mid, font: pygame.font.Font) -> None:
+    """Draw mid-boss ``mid``'s bar and name (a :class:`broadsword.sim.waves.MidBoss`, or None: nothing)."""
+    if mid is None:
+        return
+    fw, fh = surf.get_size()
+    x0, y = BAR_MARGIN, fh - BAR_BOTTOM - BAR_HEIGHT
+    rect = pygame.Rect(x0, y, fw - 2 * BAR_MARGIN, BAR_HEIGHT)
+    pygame.draw.rect(surf, SPENT, rect)
+    frac = max(mid.hp, 0) / mid.max_hp
+    pygame.draw.rect(surf, FULL, (rect.x, y, round(rect.w * frac), BAR_HEIGHT))
+    label = font.render(mid.name.upper(), True, TEXT)
+    surf.blit(label, label.get_rect(midleft=(x0, y - 10)))

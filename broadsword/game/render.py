@@ -18,7 +18,7 @@ from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .backdrop import Backdrop
 from .bullets import BulletSprites
-from .hud import draw_boss_bar
+from .hud import draw_boss_bar, draw_midboss_bar
 from .sprites import SpriteBank
 
 LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
@@ -204,6 +204,8 @@ class Renderer:
         power = self.font.render(f"POWER {world.player.power / 100:.2f}", True, (255, 150, 140))
         surf.blit(power, (10, 48))
         draw_boss_bar(surf, world.boss, self.font)  # one segment per phase, and the phase's timer
+        if world.boss is None or not world.boss.fighting:
+            draw_midboss_bar(surf, world.ships.midboss(), self.font)
         if title_card and world.time < 3.0:  # the level's title fades in and out
             fade = min(1.0, world.time, 3.0 - world.time)
             title = self.big.render(world.level.title, True, (255, 230, 170))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..data.difficulty import DEFAULT_SPECS, Difficulty, DifficultySpec
@@ -43,6 +45,15 @@ class WaveTimeline:
         return out
 
 
+@dataclass(frozen=True)
+class MidBoss:
+    """A mid-boss in flight, for the HUD: its name, hit points left and at the start."""
+
+    name: str
+    hp: int
+    max_hp: int
+
+
 class WaveShips:
     """The ships the waves have sent: a pool, its spawning, motion and culling."""
 
@@ -56,6 +67,7 @@ class WaveShips:
         self.hp = [difficulty.scale_hp(w.hp) for w in waves]  # under the difficulty
         self.paths = [w.path for w in waves]
         self.kind = [kinds_base[w.enemy] for w in waves]  # each wave's armature kind
+        self.mid = np.array([bool(w.midboss) for w in waves], dtype=bool)  # (n_waves,) mid-boss waves
         self.pool = Pool(
             limit=SHIPS_LIMIT,
             pos=((2,), float),
@@ -99,6 +111,18 @@ class WaveShips:
             uid=np.arange(self.next_uid, self.next_uid + k),
         )
         self.next_uid += k
+
+    def midboss(self) -> MidBoss | None:
+        """The first mid-boss alive (a ship of a wave with a ``midboss`` name), or None."""
+        e = self.pool
+        if not e.n or not self.mid.any():
+            return None
+        alive = np.flatnonzero(self.mid[e.wave])
+        if not len(alive):
+            return None
+        i = int(alive[0])
+        w = int(e.wave[i])
+        return MidBoss(self.waves[w].midboss, int(e.hp[i]), self.hp[w])
 
     def move(self, player: np.ndarray) -> None:
         move_wave_ships(self.pool, self.paths, player)

@@ -80,3 +80,40 @@ def test_boss_bar__nothing_without_a_fighting_boss():
     surf = pygame.Surface((64, 64))
     draw_boss_bar(surf, None, pygame.font.Font(None, 22))
     assert not pygame.surfarray.array3d(surf).any()
+
+
+def test_midboss_bar__shows_the_hp_left_and_only_while_no_boss_fights():
+    """Stage 3's mid-boss (a shipped level's ``midboss`` wave): the bar is full when it comes,
+    half when half its hp is gone, and the game's HUD draws it, until the boss fights."""
+    from broadsword.game.hud import draw_midboss_bar
+    from broadsword.game.render import Renderer
+    from broadsword.sim import Input
+    from broadsword.sim.waves import MidBoss
+
+    pygame.init()
+    pygame.display.set_mode((8, 8))
+    font = pygame.font.Font(None, 22)
+    y = int(FIELD[1]) - BAR_BOTTOM - BAR_HEIGHT // 2
+    width = int(FIELD[0]) - 2 * BAR_MARGIN
+    for hp, share in ((80, 1.0), (40, 0.5), (0, 0.0)):
+        surf = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
+        draw_midboss_bar(surf, MidBoss("Warden", hp, 80), font)
+        full = (pygame.surfarray.array3d(surf)[:, y] == FULL).all(axis=1).sum()
+        assert full == round(width * share)
+    surf = pygame.Surface((64, 64))
+    draw_midboss_bar(surf, None, font)
+    assert not pygame.surfarray.array3d(surf).any()
+
+    bank = SpriteBank()
+    level = load_level(resolve_level("3-broadsword"))
+    (w,) = [i for i, wave in enumerate(level.waves) if wave.midboss]
+    level = dataclasses.replace(level, waves=(dataclasses.replace(level.waves[w], at=0.0),), boss=None)
+    world = World(level, bank.armatures, seed=1)
+    world.player.invulnerable = 1e9
+    for _ in range(5):
+        world.step(Input())
+    mid = world.ships.midboss()
+    assert mid is not None and mid.name == level.waves[0].midboss and mid.hp == mid.max_hp
+    surf = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
+    Renderer(bank).draw(surf, world, 1.0)
+    assert (pygame.surfarray.array3d(surf)[:, y] == FULL).all(axis=1).sum() == width

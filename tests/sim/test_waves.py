@@ -50,3 +50,23 @@ def test_ships__culled_only_when_far_off_and_older_than_a_second():
     p.age[:] = [0.5, 1.5, 5.0]
     ships.cull()
     assert p.n == 2 and p.age.tolist() == [0.5, 5.0]
+
+
+def test_ships__a_midboss_is_reported_while_it_flies_with_its_hp_under_the_difficulty():
+    from dataclasses import replace
+
+    from broadsword.data.difficulty import DEFAULT_SPECS, Difficulty
+
+    hard = DEFAULT_SPECS[Difficulty.HARD]
+    ships = WaveShips((wave(0.0, hp=100), replace(wave(0.0, hp=100), midboss="Warden")), {"scout": 7}, hard)
+    rng = np.random.default_rng(0)
+    ships.spawn(0, rng)
+    assert ships.midboss() is None  # an ordinary wave's ship is not one
+    ships.spawn(1, rng)
+    mid = ships.midboss()
+    full = hard.scale_hp(100)
+    assert mid is not None and (mid.name, mid.hp, mid.max_hp) == ("Warden", full, full)
+    ships.pool.hp[1] -= 30
+    assert ships.midboss().hp == full - 30
+    ships.pool.keep(np.array([True, False]))  # it dies
+    assert ships.midboss() is None

@@ -336,8 +336,11 @@ def load_level(path: str | Path) -> Level:
                 mirror=t.bool("mirror", False),
                 difficulties=_difficulties(t),
                 drops=_drops(t, Drops()),
+                midboss=t.str("midboss", ""),
             )
         )
+        if waves[-1].midboss and (waves[-1].count != 1 or waves[-1].mirror):
+            raise t.error("midboss", "a mid-boss is one ship: its wave needs count = 1 and no mirror")
         t.done(FIRE_KEYS)
         ships += waves[-1].count * (2 if waves[-1].mirror else 1)
         if ships > SHIPS_MAX:

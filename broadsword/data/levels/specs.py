@@ -154,6 +154,7 @@ class WaveSpec:
     mirror: bool  # also spawn each ship mirrored about the centre line
     difficulties: frozenset[Difficulty] = frozenset(Difficulty)  # the difficulties it flies on
     drops: Drops = Drops()
+    midboss: str = ""  # a mid-boss's name, shown over its health bar ("": an ordinary wave)
 
 
 @dataclass(frozen=True)
