@@ -23,6 +23,7 @@ the game. Modules, one idea each:
 * ``workspace``   reused scratch buffers, and retain_heap() for applications
 """
 
+from ._kernel import Kernel, check_kernel
 from .armature import Armature, convex_hull, lut_max_displacement
 from .broadphase import (
     AUTO_BIN_FACTOR,
@@ -63,11 +64,13 @@ __all__ = [
     "FrameObjects",
     "FrameResult",
     "GridLayout",
+    "Kernel",
     "LAST_TIERS",
     "TIERS",
     "Tier",
     "TierKind",
     "TreeLayout",
+    "check_kernel",
     "check_tiers",
     "kdops",
     "kdops_overlap",

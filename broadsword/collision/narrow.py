@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._kernel import UNDECIDED, Kernel, filter_pairs
 from .posing import Posed
 from .predicates import _orient_exact, _polygons_collide
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
@@ -189,7 +190,9 @@ def _touching(o1, o2, o3, o4, valid, pxe, pye, qxe, qye) -> np.ndarray:
     return (touch & valid).any(axis=(0, 1))
 
 
-def polygons_collide_padded(px, py, qx, qy, workspace: Workspace | None = None) -> np.ndarray:
+def polygons_collide_padded(
+    px, py, qx, qy, workspace: Workspace | None = None, kernel: Kernel = Kernel.NUMPY
+) -> np.ndarray:
     """Exact closed-polygon collision for many pairs at once.
 
     Parameters
@@ -202,6 +205,9 @@ def polygons_collide_padded(px, py, qx, qy, workspace: Workspace | None = None) 
 
     workspace : Workspace, optional
         Scratch buffers to reuse across calls (a pipeline passes its own).
+    kernel : Kernel
+        ``Kernel.NUMPY`` (the reference) or ``Kernel.NUMBA``: the compiled float filter
+        decides the pairs whose signs it certifies and hands the rest to the reference.
 
     Returns
     -------
@@ -218,6 +224,13 @@ def polygons_collide_padded(px, py, qx, qy, workspace: Workspace | None = None) 
     for w, v, k in ((pxe, px, k1), (pye, py, k1), (qxe, qx, k2), (qye, qy, k2)):
         w[:k] = v
         w[k] = v[0]
+    if kernel is Kernel.NUMBA:
+        verdict = filter_pairs(pxe, pye, qxe, qye)
+        out = verdict == 1
+        rest = np.flatnonzero(verdict == UNDECIDED)
+        if rest.size:
+            out[rest] = polygons_collide_padded(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], ws)
+        return out
     err = _error_bounds(px, py, qx, qy)
     if n <= BLOCK:
         return _block(pxe, pye, qxe, qye, err, ws)
@@ -256,13 +269,18 @@ def paper_collide_padded(px, py, qx, qy) -> np.ndarray:
 
 
 def collide_pairs(
-    posed: Posed, pairs: np.ndarray, workspace: Workspace | None = None, narrow=polygons_collide_padded
+    posed: Posed,
+    pairs: np.ndarray,
+    workspace: Workspace | None = None,
+    narrow=polygons_collide_padded,
+    kernel: Kernel = Kernel.NUMPY,
 ) -> np.ndarray:
     """(m,) bool: collision of the posed polygons of each pair in ``pairs`` (m, 2).
 
     Pairs are grouped by the two objects' size classes so each group is one padded batch
     for ``narrow`` (by default the exact
-    :func:`~broadsword.collision.narrow.polygons_collide_padded`).
+    :func:`~broadsword.collision.narrow.polygons_collide_padded`, with the float filter
+    ``kernel``).
     """
     out = np.zeros(len(pairs), dtype=bool)
     if not len(pairs):
@@ -277,5 +295,5 @@ def collide_pairs(
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
         batch = (*posed.gather(k1, sa), *posed.gather(k2, sb))  # sweeps built for these columns only
-        out[sel] = narrow(*batch, ws) if narrow is polygons_collide_padded else narrow(*batch)
+        out[sel] = narrow(*batch, ws, kernel) if narrow is polygons_collide_padded else narrow(*batch)
     return out

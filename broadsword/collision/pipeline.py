@@ -21,6 +21,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import arguments, bounds
+from ._kernel import Kernel, check_kernel, warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
@@ -65,6 +66,11 @@ class Pipeline:
     keep_tier_pairs : bool
         Keep every tier's surviving pairs in :attr:`FrameResult.tier_pairs` (for the
         overlay and for tests); costs a little memory.
+    kernel : Kernel, {"numpy", "numba"} or None
+        The exact narrow phase's float filter. ``None``: ``BROADSWORD_KERNEL`` if set,
+        else numba when it is installed (``pip install 'broadsword[fast]'``), else numpy.
+        Both give the same answers; pairs the compiled filter cannot decide go to the
+        numpy reference and its rational fallback.
 
     Attributes
     ----------
@@ -83,6 +89,7 @@ class Pipeline:
         bin_size: float | None = None,
         field: Sequence[float] | None = None,
         keep_tier_pairs: bool = False,
+        kernel: Kernel | str | None = None,
     ):
         self.armatures = armatures if isinstance(armatures, ArmatureSet) else ArmatureSet(armatures)
         self.layers = layers or LayerTable.shmup()
@@ -96,6 +103,9 @@ class Pipeline:
         self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
+        self.kernel = check_kernel(kernel)
+        if self.kernel is Kernel.NUMBA:
+            warm_kernel()  # load (or compile, saying so) now, not in the first frame
 
     def step(
         self,
@@ -192,7 +202,7 @@ class Pipeline:
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0].value] = pairs
 
-        inp = TierInput(objects, posed, boxes, self.workspace, self.masks)
+        inp = TierInput(objects, posed, boxes, self.workspace, self.masks, self.kernel)
         for tier in self.tiers[1:]:
             t0 = clock()
             n_in = len(pairs)

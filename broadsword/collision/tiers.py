@@ -31,6 +31,7 @@ from enum import Enum, StrEnum
 import numpy as np
 
 from . import bounds, kdop
+from ._kernel import Kernel
 from .frame import FrameObjects
 from .narrow import collide_pairs, paper_collide_padded
 from .pixels import MaskCache
@@ -81,7 +82,8 @@ class TierInput:
     """What a filtering tier may read in one frame (built by the pipeline).
 
     ``posed`` is ``None`` when no configured tier needs vertices; ``boxes`` (n, 4) are the
-    boxes the broad phase used; ``masks`` exists when the ``pixel`` tier is configured.
+    boxes the broad phase used; ``masks`` exists when the ``pixel`` tier is configured;
+    ``kernel`` is the narrow phase's float filter (:class:`~broadsword.collision.Kernel`).
     """
 
     objects: FrameObjects
@@ -89,6 +91,7 @@ class TierInput:
     boxes: np.ndarray
     workspace: Workspace
     masks: MaskCache | None
+    kernel: Kernel = Kernel.NUMPY
 
 
 #: A filtering tier: (frame input, pairs (m, 2) int64) -> (m,) bool, True to keep the pair.
@@ -132,7 +135,12 @@ TIERS: Mapping[Tier, TierSpec] = dict(
             lambda inp, pairs: bounds.oriented_boxes_overlap(bounds.oriented_boxes(inp.posed), pairs),
         ),
         _spec(Tier.KDOP, TierKind.BOUND, True, lambda inp, pairs: kdop.kdops_overlap(kdop.kdops(inp.posed), pairs)),
-        _spec(Tier.ARMATURE, TierKind.EXACT, True, lambda inp, pairs: collide_pairs(inp.posed, pairs, inp.workspace)),
+        _spec(
+            Tier.ARMATURE,
+            TierKind.EXACT,
+            True,
+            lambda inp, pairs: collide_pairs(inp.posed, pairs, inp.workspace, kernel=inp.kernel),
+        ),
         _spec(
             Tier.PAPER,
             TierKind.LAST,

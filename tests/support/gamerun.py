@@ -63,7 +63,16 @@ def autopilot_digests(
     """``[(frame, state_hash, exact_digest), ...]`` every ``every`` frames and at the end of
     an autopilot run of ``frames`` frames (or until the game ends) of ``scenario`` (a key
     of :func:`scenarios`) of a shipped level, with every transcendental function moved one
-    ulp towards ``direction * inf`` (0: untouched) for the whole run, loading included."""
+    ulp towards ``direction * inf`` (0: untouched) for the whole run, loading included.
+
+    The optional numba kernel is loaded first when the pipeline will use it: importing
+    numba inspects numpy's ufuncs, which the perturbation replaces by Python functions
+    (the kernel itself calls no transcendental)."""
+    from broadsword.collision import Kernel, check_kernel
+    from broadsword.collision._kernel import warm_kernel
+
+    if check_kernel(None) is Kernel.NUMBA:
+        warm_kernel()
     with perturbed_transcendentals(direction) if direction else contextlib.nullcontext():
         from broadsword.data import data_dir, load_armatures, load_level, resolve_level
         from broadsword.sim import Pilot, World
