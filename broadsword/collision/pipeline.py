@@ -141,6 +141,20 @@ class Pipeline:
         """
         return self.run(FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept))
 
+    @staticmethod
+    def _refuse_overflow(boxes: np.ndarray) -> None:
+        """Raise a ValueError naming the first object whose posed shape (or sweep) reaches past
+        the largest double (every input finite, but position + armature extent is not
+        representable: within about one armature's size of +-1.797e308). ``boxes``: (n, 4)."""
+        bad = np.flatnonzero(~np.isfinite(boxes).all(axis=1))
+        if len(bad):
+            i = int(bad[0])
+            raise ValueError(
+                f"positions[{i}]: the object's armature, posed there (or swept to there), reaches past the "
+                f"largest float64 ({np.finfo(np.float64).max:.4g}); {len(bad)} object(s) do; keep "
+                "|position| + the armature's extent within the float64 range"
+            )
+
     def run(self, objects: FrameObjects) -> FrameResult:
         """Run every tier on ``objects`` (one frame, after all movement); see :meth:`step`."""
         layer = objects.layer
@@ -178,7 +192,11 @@ class Pipeline:
             t0 = clock()
         else:
             boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
-        pairs, broad = self.broad_phase.query(boxes, layer, self.layers)
+        try:
+            pairs, broad = self.broad_phase.query(boxes, layer, self.layers)
+        except ValueError:
+            self._refuse_overflow(boxes)
+            raise
         candidates = pairs
         stats.append(TierStats(self.tiers[0].value, stats[0].pairs_out, len(pairs), (clock() - t0) * 1e3))
         if self.keep_tier_pairs:

@@ -400,3 +400,21 @@ def test_turning_sweep_across_the_whole_range__conservative_and_exact(rotation):
             for pipe in pipes:
                 got = pipe.step([0, 1], [0, 1], [wall, now], [0.0, 75.0], **args).hits.tolist()
                 assert got == want.hits.tolist(), (pipe.tiers, wall, now, before)
+
+
+@pytest.mark.parametrize("rotation", ["lut", "exact"])
+def test_a_shape_posed_past_the_largest_double_is_refused_naming_the_position(rotation):
+    """Every input finite, but a 2e292-wide armature centred on the largest double reaches past
+    it: the posed polygon is not representable. A ValueError names the object, not the broad
+    phase's boxes; one step inside (the same armature at 1.7e308) is answered."""
+    import warnings
+
+    big = Armature(np.array([[-1e292, -1e292], [1e292, -1e292], [1e292, 1e292], [-1e292, 1e292]]))
+    pipe = Pipeline([big, big], rotation=rotation)
+    top = np.finfo(np.float64).max
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # numpy says the posing overflowed
+        with pytest.raises(ValueError, match=r"^positions\[1\]: .*largest float64"):
+            pipe.step(np.array([0, 1]), np.array([0, 1]), np.array([[0.0, 0.0], [top, 0.0]]), np.zeros(2))
+    r = pipe.step(np.array([0, 1]), np.array([0, 1]), np.array([[1.7e308, 0.0], [1.7e308, 0.0]]), np.zeros(2))
+    assert r.hits.tolist() == [[0, 1]]
