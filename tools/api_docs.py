@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 import pkgutil
 import sys
+import warnings
 from pathlib import Path
 
 PACKAGES = ("broadsword.collision", "broadsword.patterns")
@@ -41,7 +42,12 @@ def main(argv: list[str]) -> int:
     names = modules()
     if not names:
         return 1
-    pdoc.pdoc(*names, output_directory=out)
+    with warnings.catch_warnings():
+        # Every public submodule is listed (a package's __all__ may not name them), and pdoc
+        # also walks a package without __all__ itself: it then says each such module was
+        # added twice, and documents it once. Nothing is lost; the note is noise.
+        warnings.filterwarnings("ignore", message=r"The module specification .* has already been added")
+        pdoc.pdoc(*names, output_directory=out)
     pages = sorted(out.rglob("*.html"))
     print(f"api_docs: {len(names)} modules, {len(pages)} pages in {out}")
     return 0 if pages else 1
