@@ -157,6 +157,7 @@ def test_m_is_the_editors_key_not_mute(app, files):
 def test_a_file_the_editor_refuses_is_said_on_the_list_and_the_game_goes_on(app, tmp_path):
     bad = tmp_path / "bad.armature.toml"
     bad.write_text("this is not toml [")
+    before = pygame.display.get_surface().get_size()
     key(app, pygame.K_e)
     app.stack.pop()
     app.stack.push(ArmatureList(app, [bad]))
@@ -164,4 +165,5 @@ def test_a_file_the_editor_refuses_is_said_on_the_list_and_the_game_goes_on(app,
     scene = app.scene
     assert isinstance(scene, ArmatureList) and "bad.armature.toml" in scene.note
     assert app.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
+    assert pygame.display.get_surface().get_size() == before  # the window kept its size
     app.frame(DT)

@@ -57,7 +57,6 @@ class ArmatureList:
         try:
             scene = EditorScene(self.app, path)
         except (OSError, ValueError, pygame.error) as exc:  # DataError is a ValueError
-            self.app.use_screen(None)
             self.note = f"cannot edit {path.name}: {exc}"
             return
         self.note = ""

@@ -32,9 +32,10 @@ class EditorScene:
     def __init__(self, app, path: str | Path):
         self.app = app
         self.back_to = app.window.windowed_size()
+        # The editor first: a file it refuses raises here, before the screen or window change.
+        self.editor = Editor(path, surface=pygame.Surface(WINDOW_SIZE))
         app.use_screen(WINDOW_SIZE)
         app.window.resize(WINDOW_SIZE)
-        self.editor = Editor(path, surface=app.screen)
         self.closed = False
 
     def handle(self, event: pygame.event.Event) -> bool:
