@@ -20,7 +20,7 @@ import pygame
 
 from ..controls import Action
 from ..editor import WINDOW_SIZE, Editor
-from ..window import to_surface
+from ..window import letterbox, to_surface
 
 #: Mouse events whose ``pos`` is a window position.
 POINTER_EVENTS = (pygame.MOUSEMOTION, pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP)
@@ -64,7 +64,7 @@ class EditorScene:
         attrs = dict(event.__dict__)
         attrs["pos"] = (int(pos[0]), int(pos[1]))
         if "rel" in attrs:
-            k = min(win.get_width() / size[0], win.get_height() / size[1])
+            k, _, _ = letterbox(win.get_size(), size)
             attrs["rel"] = (int(attrs["rel"][0] / k), int(attrs["rel"][1] / k))
         return pygame.event.Event(event.type, attrs)
 
