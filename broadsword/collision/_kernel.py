@@ -25,7 +25,16 @@ import numpy as np
 
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
 
-__all__ = ["Kernel", "UNDECIDED", "check_kernel", "filter_pairs", "kernel_from_env", "numba_available", "warm_kernel"]
+__all__ = [
+    "Kernel",
+    "UNDECIDED",
+    "check_kernel",
+    "filter_pairs",
+    "jit",
+    "kernel_from_env",
+    "numba_available",
+    "warm_kernel",
+]
 
 #: Kernel verdicts, one int8 per pair.
 MISS, HIT, UNDECIDED = 0, 1, 2
@@ -181,43 +190,57 @@ def _filter_py(pxe, pye, qxe, qye, out):  # pragma: no cover - compiled by numba
 
 
 class _Compiled:
-    """Holds the compiled kernel per process (built on first use, not at import)."""
+    """The compiled kernels of this process, by qualified name (built on first use, not at
+    import), and whether the compile message was shown."""
 
-    fn: Any = None  # a numba Dispatcher once built
+    fns: dict[str, Any] = {}  # noqa: RUF012 - one registry per process, by design
+    told = False
 
 
-def _compiled():
-    if _Compiled.fn is None:
+def jit(fn, signature: str):
+    """``fn`` compiled by numba for ``signature`` (loaded from numba's on-disk cache when it
+    holds the kernel, else compiled, saying so once on stderr). Explicit signatures compile
+    at load time, never in a frame, and refuse arguments of another type or layout."""
+    key = f"{fn.__module__}.{fn.__qualname__}"
+    got = _Compiled.fns.get(key)
+    if got is None:
         import numba
 
-        jitted = numba.njit(cache=True, nogil=True, error_model="numpy")(_filter_py)
-        sig = (np.zeros((2, 1)),) * 4 + (np.zeros(1, dtype=np.int8),)
-        # Probe the on-disk cache quietly; say something before a real compilation.
-        if not jitted.stats.cache_hits and not _cache_present(jitted):
-            print("broadsword: compiling the numba narrow-phase kernel (once, then cached)...", file=sys.stderr)
-        jitted(*sig)
-        _Compiled.fn = jitted
-    return _Compiled.fn
+        if not _Compiled.told and not _cache_present(fn):
+            print("broadsword: compiling the numba collision kernels (once, then cached)...", file=sys.stderr)
+            _Compiled.told = True
+        got = numba.njit(signature, cache=True, nogil=True, error_model="numpy")(fn)
+        _Compiled.fns[key] = got
+    return got
 
 
-def _cache_present(jitted) -> bool:
-    """Whether numba's cache holds an entry for the kernel (best effort)."""
+def _cache_present(fn) -> bool:
+    """Whether numba's on-disk cache holds an index for ``fn`` (best effort)."""
+    import inspect
+
     try:
-        cache = jitted._cache
-        return os.path.exists(cache._cache_path) and any(
-            _filter_py.__name__ in f and f.endswith(".nbi") for f in os.listdir(cache._cache_path)
-        )
-    except (AttributeError, OSError):
+        where = os.path.join(os.path.dirname(inspect.getfile(fn)), "__pycache__")
+        stem = f"{fn.__module__.rsplit('.', 1)[-1]}.{fn.__qualname__}-"
+        return any(f.startswith(stem) and f.endswith(".nbi") for f in os.listdir(where))
+    except (OSError, TypeError):
         return False
 
 
+#: Signature of :func:`_filter_py`.
+_FILTER_SIG = "void(float64[:, :], float64[:, :], float64[:, :], float64[:, :], int8[:])"
+
+
 def warm_kernel() -> None:
-    """Import numba and load the kernel from its cache, compiling it (with a message) if needed."""
-    _compiled()
+    """Import numba and load every compiled kernel from its cache, compiling (with a
+    message) what is not there, so that no frame waits for a compilation."""
+    from .broadphase import _grid_kernel
+
+    jit(_filter_py, _FILTER_SIG)
+    _grid_kernel.load()
 
 
 def filter_pairs(pxe, pye, qxe, qye) -> np.ndarray:
     """(P,) int8 verdicts (MISS / HIT / UNDECIDED) for wrapped (K+1, P) float64 arrays."""
     out = np.empty(pxe.shape[1], dtype=np.int8)
-    _compiled()(pxe, pye, qxe, qye, out)
+    jit(_filter_py, _FILTER_SIG)(pxe, pye, qxe, qye, out)
     return out

@@ -67,10 +67,11 @@ class Pipeline:
         Keep every tier's surviving pairs in :attr:`FrameResult.tier_pairs` (for the
         overlay and for tests); costs a little memory.
     kernel : Kernel, {"numpy", "numba"} or None
-        The exact narrow phase's float filter. ``None``: ``BROADSWORD_KERNEL`` if set,
-        else numba when it is installed (``pip install 'broadsword[fast]'``), else numpy.
-        Both give the same answers; pairs the compiled filter cannot decide go to the
-        numpy reference and its rational fallback.
+        How the bin grid and the exact narrow phase's float filter run. ``None``:
+        ``BROADSWORD_KERNEL`` if set, else numba when it is installed
+        (``pip install 'broadsword[fast]'``), else numpy. Both give the same pairs in the
+        same order; pairs the compiled filter cannot decide go to the numpy reference and
+        its rational fallback.
 
     Attributes
     ----------
@@ -98,14 +99,16 @@ class Pipeline:
         self.tiers = check_tiers(tiers)
         self.rotation = rotation
         self.keep_tier_pairs = keep_tier_pairs
-        broad = self.tiers[0]
-        self.broad_phase: BroadPhase = BinGrid(bin_size, field) if broad is Tier.BINS else BROAD_PHASES[broad]()
-        self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
-        self.workspace = Workspace()
-        self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
         self.kernel = check_kernel(kernel)
         if self.kernel is Kernel.NUMBA:
             warm_kernel()  # load (or compile, saying so) now, not in the first frame
+        broad = self.tiers[0]
+        self.broad_phase: BroadPhase = (
+            BinGrid(bin_size, field, kernel=self.kernel) if broad is Tier.BINS else BROAD_PHASES[broad]()
+        )
+        self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
+        self.workspace = Workspace()
+        self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
 
     def step(
         self,

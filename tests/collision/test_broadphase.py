@@ -24,12 +24,14 @@ from broadsword.collision import (
     BroadPhaseStats,
     BruteForce,
     GridLayout,
+    Kernel,
     LayerTable,
     LooseQuadTree,
     QuadTree,
     TreeLayout,
     auto_bin_size,
 )
+from broadsword.collision._kernel import numba_available
 
 # --------------------------------------------------------------------------- helpers
 
@@ -41,7 +43,25 @@ TABLES = {"shmup": SHMUP, "self": SELF, "mixed": MIXED, "reversed": REVERSED}
 
 
 def phases():
-    """Every phase under test, with a few configurations each (fresh instances)."""
+    """Every phase under test, with a few configurations each (fresh instances); the
+    compiled bin grid too when numba is installed."""
+    return [*_phases(), *_compiled_phases()]
+
+
+def _compiled_phases():
+    if not numba_available():
+        return []
+    numba = Kernel.NUMBA
+    return [
+        ("bins auto numba", BinGrid(kernel=numba)),
+        ("bins 10 numba", BinGrid(bin_size=10.0, kernel=numba)),
+        ("bins 3 field numba", BinGrid(bin_size=3.0, field=(0.0, 0.0, 100.0, 100.0), kernel=numba)),
+        ("bins tiny cap numba", BinGrid(bin_size=1e-4, field=(0.0, 0.0, 1000.0, 1000.0), kernel=numba)),
+        ("bins max_cells 4 numba", BinGrid(bin_size=1.0, max_cells=4, kernel=numba)),
+    ]
+
+
+def _phases():
     return [
         ("brute", BruteForce()),
         ("brute chunk 7", BruteForce(chunk=7)),

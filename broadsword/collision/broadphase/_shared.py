@@ -53,18 +53,7 @@ class Driver:
 
     def query(self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable) -> tuple[np.ndarray, BroadPhaseStats]:
         """``(pairs (m, 2) int64, stats)``; see :mod:`broadsword.collision.broadphase.base`."""
-        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
-        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
-        if len(boxes) != len(layers):
-            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
-        if not np.isfinite(boxes).all():
-            raise ValueError("boxes must be finite")
-        members = {}
-        for a, b in table.entries:
-            for k in (a, b):
-                if k not in members:
-                    members[k] = np.flatnonzero(layers == k)
-        present = [members[k] for k in members if len(members[k])]
+        boxes, layers, members, present = self._members(boxes, layers, table)
         if not present:
             return _EMPTY.copy(), BroadPhaseStats(self.name, 0, 0, None)
         sel = np.concatenate(present) if len(present) > 1 else present[0]
@@ -83,6 +72,25 @@ class Driver:
                 out.append(np.column_stack([_positions_to_objects(ia, i), _positions_to_objects(ib, j)]))
         pairs = np.concatenate(out).astype(np.int64, copy=False) if out else _EMPTY.copy()
         return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), frame.layout())
+
+    @staticmethod
+    def _members(boxes, layers, table: LayerTable):
+        """The checked ``boxes`` (n, 4) float64 and ``layers`` (n,) int64, each tested layer's
+        members ``{layer: (k,) int64}`` and the non-empty ones in the table's order.
+
+        Raises ``ValueError`` on a length mismatch or a non-finite box."""
+        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
+        if len(boxes) != len(layers):
+            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
+        if not np.isfinite(boxes).all():
+            raise ValueError("boxes must be finite")
+        members = {}
+        for a, b in table.entries:
+            for k in (a, b):
+                if k not in members:
+                    members[k] = np.flatnonzero(layers == k)
+        return boxes, layers, members, [members[k] for k in members if len(members[k])]
 
     def find_pairs(self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable) -> np.ndarray:
         """The pairs of :meth:`query` alone, (m, 2) int64."""

@@ -8,8 +8,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from .._indexing import pick, selector
-from ._shared import Driver, Frame, auto_bin_size, expand, join
-from .base import GridLayout
+from .._kernel import Kernel
+from ..layers import LayerTable
+from ._shared import _EMPTY, Driver, Frame, auto_bin_size, expand, join
+from .base import BroadPhaseStats, GridLayout
 
 __all__ = ["BinGrid"]
 
@@ -33,6 +35,10 @@ class BinGrid(Driver):
         field register in the bins along its border (clamping keeps every overlap).
     max_cells : int
         Upper bound on bins; a frame whose field would need more uses larger bins.
+    kernel : Kernel
+        ``Kernel.NUMBA`` runs each query as one compiled call (:mod:`._grid_kernel`: the
+        same pairs in the same order; numba must be installed); ``Kernel.NUMPY`` (the
+        default, and the reference) as numpy passes.
 
     Each object registers in every bin its box overlaps. For each table entry the side
     with fewer bin entries is indexed and the other looks its bins up; a pair found in a
@@ -43,12 +49,41 @@ class BinGrid(Driver):
 
     name = "bins"
 
-    def __init__(self, bin_size: float | None = None, field: Sequence[float] | None = None, max_cells: int = 1 << 16):
+    def __init__(
+        self,
+        bin_size: float | None = None,
+        field: Sequence[float] | None = None,
+        max_cells: int = 1 << 16,
+        kernel: Kernel = Kernel.NUMPY,
+    ):
         if bin_size is not None and not (np.isfinite(bin_size) and bin_size > 0):
             raise ValueError(f"bin_size must be a positive number or None, got {bin_size!r}")
         self.bin_size = bin_size
         self.field = None if field is None else tuple(float(v) for v in field)
         self.max_cells = int(max_cells)
+        self.kernel = Kernel(kernel)
+        if self.kernel is Kernel.NUMBA:
+            from . import _grid_kernel
+
+            _grid_kernel.load()  # numba imported and the kernel loaded now, not in a frame
+
+    def query(self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable) -> tuple[np.ndarray, BroadPhaseStats]:
+        """``(pairs (m, 2) int64, stats)``; see :mod:`broadsword.collision.broadphase.base`."""
+        if self.kernel is not Kernel.NUMBA:
+            return super().query(boxes, layers, table)
+        from . import _grid_kernel
+
+        boxes, layers, _, present = self._members(boxes, layers, table)
+        if not present:
+            return _EMPTY.copy(), BroadPhaseStats(self.name, 0, 0, None)
+        sel = np.concatenate(present) if len(present) > 1 else present[0]
+        size, origin, shape = self.layout_for(boxes, present, sel)
+        entries = np.array(table.entries, dtype=np.int64).reshape(-1, 2)
+        pairs, ranges = _grid_kernel.grid_pairs(
+            boxes, layers, entries, origin, size, shape, _DIRECT_SIDE, _DIRECT_PAIRS
+        )
+        layout = GridLayout(origin, size, shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
+        return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), layout)
 
     def layout_for(self, boxes: np.ndarray, groups: list[np.ndarray], sel: np.ndarray) -> tuple[float, tuple, tuple]:
         """``(size, origin, (cols, rows))`` of the grid for a frame (see :meth:`_frame`)."""

@@ -1,0 +1,197 @@
+"""The bin grid's query compiled with numba (``pip install broadsword[fast]``): the same pairs,
+in the same order, as the numpy :class:`~broadsword.collision.broadphase.BinGrid`.
+
+One call does what the numpy grid does in a few dozen: every box's bin range (``cell_ranges``:
+``(v - origin) / size``, clipped to the grid, truncated), each layer's members, and per table
+entry either the direct comparison of bin ranges (small entries: ``ranges_meet``) or the
+registration of both sides in the bins and the join of their keys, a pair kept only in the
+first bin its two boxes share. Order matters as much as the set: the game applies hits in
+the order the pipeline gives them, so a replay must not depend on whether numba is
+installed. Each loop below walks the pairs in the order the numpy code emits them; the tests
+(``tests/collision/test_kernel.py``) compare the two arrays, not sets.
+
+numba is imported when :func:`load` is first called (by a pipeline or grid that chose it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._kernel import jit
+
+__all__ = ["grid_pairs", "load"]
+
+#: (boxes, layer, entries, ox, oy, inv, cols, rows, direct_side, direct_pairs, ranges) -> pairs
+_SIGNATURE = "int64[:, :](float64[:, :], int64[:], int64[:, :], float64, float64, float64, int64, int64, int64, int64, int64[:, :])"
+
+
+def _grid_pairs_py(
+    boxes, layer, entries, ox, oy, inv, cols, rows, direct_side, direct_pairs, ranges
+):  # pragma: no cover - compiled by numba
+    """(m, 2) int64 candidate pairs; fills ``ranges`` (4, n) with the inclusive bin ranges
+    ``(col0, row0, col1, row1)`` of every box. ``boxes`` (n, 4), ``layer`` (n,), ``entries``
+    (E, 2): the layer table's entries, in order. Mirrors ``grid._GridFrame``."""
+    n = boxes.shape[0]
+    xhi = float(cols - 1)
+    yhi = float(rows - 1)
+    for i in range(n):
+        for c in range(4):
+            if c % 2 == 0:
+                v = (boxes[i, c] - ox) * inv
+                hi = xhi
+            else:
+                v = (boxes[i, c] - oy) * inv
+                hi = yhi
+            v = max(v, 0.0)  # np.clip(v, 0, hi), then truncation (v >= 0: the floor)
+            v = min(v, hi)
+            ranges[c, i] = np.int64(v)
+    x0 = ranges[0]
+    y0 = ranges[1]
+    x1 = ranges[2]
+    y1 = ranges[3]
+    nkeys = cols * rows
+
+    # Each layer's members, ascending (np.flatnonzero(layer == k)).
+    nl = 0
+    for i in range(n):
+        nl = max(nl, layer[i] + 1)
+    for e in range(entries.shape[0]):
+        nl = max(nl, entries[e, 0] + 1, entries[e, 1] + 1)
+    lstart = np.zeros(nl + 1, dtype=np.int64)
+    for i in range(n):
+        lstart[layer[i] + 1] += 1
+    for k in range(nl):
+        lstart[k + 1] += lstart[k]
+    mem = np.empty(n, dtype=np.int64)
+    fill = lstart.copy()
+    for i in range(n):
+        mem[fill[layer[i]]] = i
+        fill[layer[i]] += 1
+
+    def expand(ids):
+        """(obj position, bin key, object spans several bins, any does) per bin entry: every
+        object's first bin, then the other bins of those spanning several (``_shared.expand``)."""
+        m = len(ids)
+        total = 0
+        for p in range(m):
+            g = ids[p]
+            total += (x1[g] - x0[g] + 1) * (y1[g] - y0[g] + 1)
+        obj = np.empty(total, dtype=np.int64)
+        key = np.empty(total, dtype=np.int64)
+        multi = np.zeros(total, dtype=np.bool_)
+        for p in range(m):
+            g = ids[p]
+            obj[p] = p
+            key[p] = y0[g] * cols + x0[g]
+            multi[p] = (x0[g] != x1[g]) | (y0[g] != y1[g])
+        at = m
+        for p in range(m):
+            g = ids[p]
+            w = x1[g] - x0[g] + 1
+            count = w * (y1[g] - y0[g] + 1)
+            for local in range(1, count):
+                obj[at] = p
+                key[at] = (y0[g] + local // w) * cols + x0[g] + local % w
+                multi[at] = True
+                at += 1
+        return obj, key, multi, total > m
+
+    def buckets(key):
+        """Counting sort of ``key``: (start (nkeys + 1,), order), stable."""
+        start = np.zeros(nkeys + 1, dtype=np.int64)
+        for k in key:
+            start[k + 1] += 1
+        for k in range(nkeys):
+            start[k + 1] += start[k]
+        order = np.empty(len(key), dtype=np.int64)
+        put = start.copy()
+        for p in range(len(key)):
+            order[put[key[p]]] = p
+            put[key[p]] += 1
+        return start, order
+
+    def first_shared(ga, gb, key):
+        return key % cols == max(x0[ga], x0[gb]) and key // cols == max(y0[ga], y0[gb])
+
+    out = np.empty((max(16, n), 2), dtype=np.int64)
+    m = 0
+    for e in range(entries.shape[0]):
+        a = entries[e, 0]
+        b = entries[e, 1]
+        ia = mem[lstart[a] : lstart[a + 1]]
+        ib = mem[lstart[b] : lstart[b + 1]]
+        na = len(ia)
+        nb = len(ib)
+        if a == b:
+            if na < 2:
+                continue
+            o, k, _, _ = expand(ia)
+            start, order = buckets(k)
+            for q in range(len(k)):
+                for r in range(start[k[q]], start[k[q] + 1]):
+                    i = order[r]
+                    if o[q] < o[i] and first_shared(ia[o[q]], ia[o[i]], k[q]):
+                        if m == len(out):
+                            grown = np.empty((2 * m, 2), dtype=np.int64)
+                            grown[:m] = out[:m]
+                            out = grown
+                        out[m, 0] = ia[o[q]]
+                        out[m, 1] = ia[o[i]]
+                        m += 1
+            continue
+        if na == 0 or nb == 0:
+            continue
+        if min(na, nb) <= direct_side or na * nb <= direct_pairs:
+            # Bin ranges compared directly, walked as np.nonzero walks the (small, big) matrix.
+            outer = na if na <= nb else nb
+            inner = nb if na <= nb else na
+            for s in range(outer):
+                for t in range(inner):
+                    ga = ia[s] if na <= nb else ia[t]
+                    gb = ib[t] if na <= nb else ib[s]
+                    if x0[ga] <= x1[gb] and x0[gb] <= x1[ga] and y0[ga] <= y1[gb] and y0[gb] <= y1[ga]:
+                        if m == len(out):
+                            grown = np.empty((2 * m, 2), dtype=np.int64)
+                            grown[:m] = out[:m]
+                            out = grown
+                        out[m, 0] = ga
+                        out[m, 1] = gb
+                        m += 1
+            continue
+        oa, ka, ma, any_a = expand(ia)
+        ob, kb, mb, any_b = expand(ib)
+        both_multi = any_a and any_b
+        index_a = len(oa) <= len(ob)  # index the side with fewer entries; the other queries it
+        start, order = buckets(ka if index_a else kb)
+        qkeys = kb if index_a else ka
+        for q in range(len(qkeys)):
+            for r in range(start[qkeys[q]], start[qkeys[q] + 1]):
+                ea = order[r] if index_a else q
+                eb = q if index_a else order[r]
+                ga = ia[oa[ea]]
+                gb = ib[ob[eb]]
+                if both_multi and ma[ea] and mb[eb] and not first_shared(ga, gb, ka[ea]):
+                    continue
+                if m == len(out):
+                    grown = np.empty((2 * m, 2), dtype=np.int64)
+                    grown[:m] = out[:m]
+                    out = grown
+                out[m, 0] = ga
+                out[m, 1] = gb
+                m += 1
+    return out[:m]
+
+
+def load():
+    """The compiled query (numba imported, the kernel loaded or compiled)."""
+    return jit(_grid_pairs_py, _SIGNATURE)
+
+
+def grid_pairs(boxes, layer, entries, origin, size, shape, direct_side, direct_pairs):
+    """``(pairs (m, 2) int64, ranges (4, n) int64)`` of one frame on the grid ``origin``,
+    ``size``, ``shape = (cols, rows)``; ``entries`` (E, 2) int64, the layer table's entries."""
+    ranges = np.empty((4, len(boxes)), dtype=np.int64)
+    pairs = load()(
+        boxes, layer, entries, origin[0], origin[1], 1.0 / size, shape[0], shape[1], direct_side, direct_pairs, ranges
+    )
+    return pairs, ranges
