@@ -1,17 +1,16 @@
-"""Optional compiled float filter for the narrow phase (numba; ``pip install broadsword[fast]``).
+"""Choosing and loading the optional compiled kernels (numba; ``pip install broadsword[fast]``).
 
-The kernel decides, pair by pair, exactly what :func:`narrow._block_body` decides when its
-float filter certifies every sign of the pair: the same per-pair bound
-(``tolerance.PAIR_EPS * D^2``, declined below ``UNDERFLOW_GUARD`` and on overflow), the same
-orientation expressions evaluated with the same float operations (no fused multiply-add:
-numba compiles without ``fastmath``), the same edge-crossing and crossing-number rules. A
-pair with any uncertain sign on a real edge, or with no real edge, is returned as
-undecided and goes to the numpy reference, which settles it with rational arithmetic. So
-every answer the kernel gives is one the exact reference gives.
+Three parts of the pipeline have a compiled twin: the exact narrow phase's float filter
+(:mod:`._narrow_kernel`), the bin grid's query (:mod:`.broadphase._grid_kernel`) and
+posing (:mod:`._pose_kernel`). Each gives the same answers, in the same order, as the
+numpy code, which stays the reference the tests compare it with. :class:`Kernel` names
+the choice; :func:`check_kernel` resolves it (argument, ``BROADSWORD_KERNEL``, then numba
+when installed); :func:`jit` compiles a kernel.
 
-numba is imported on first use, never at ``import broadsword.collision``; compilation is
-cached on disk (``cache=True``) and the first compilation prints a line to stderr so a
-first launch never stalls silently.
+numba is imported on first use, never at ``import broadsword.collision``; kernels have
+explicit signatures, so they compile when loaded (a pipeline loads them when it is made,
+never in a frame); compilation is cached on disk (``cache=True``) and the first one prints
+a line to stderr so a first launch never stalls silently.
 """
 
 from __future__ import annotations
@@ -21,23 +20,14 @@ import sys
 from enum import Enum
 from typing import Any
 
-import numpy as np
-
-from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
-
 __all__ = [
     "Kernel",
-    "UNDECIDED",
     "check_kernel",
-    "filter_pairs",
     "jit",
     "kernel_from_env",
     "numba_available",
     "warm_kernel",
 ]
-
-#: Kernel verdicts, one int8 per pair.
-MISS, HIT, UNDECIDED = 0, 1, 2
 
 #: Environment variable forcing the narrow-phase kernel (values of :class:`Kernel`).
 ENV_VAR = "BROADSWORD_KERNEL"
@@ -96,99 +86,6 @@ def check_kernel(kernel: Kernel | str | None) -> Kernel:
     return k
 
 
-def _filter_py(pxe, pye, qxe, qye, out):  # pragma: no cover - compiled by numba
-    """Per pair: MISS / HIT when every real-edge sign is certain, else UNDECIDED.
-
-    pxe, pye : (K1+1, P) float64, wrapped (first vertex repeated); qxe, qye : (K2+1, P).
-    out : (P,) int8, written. Signs are computed without branches (random signs would
-    mispredict), on a contiguous copy of the pair's vertices.
-    """
-    k1 = pxe.shape[0] - 1
-    k2 = qxe.shape[0] - 1
-    n = pxe.shape[1]
-    sa = np.zeros((k1, k2 + 1), dtype=np.int8)
-    sb = np.zeros((k1 + 1, k2), dtype=np.int8)
-    vp = np.zeros(k1, dtype=np.bool_)
-    vq = np.zeros(k2, dtype=np.bool_)
-    x1 = np.empty(k1 + 1)
-    y1 = np.empty(k1 + 1)
-    x2 = np.empty(k2 + 1)
-    y2 = np.empty(k2 + 1)
-    for p in range(n):
-        for i in range(k1 + 1):
-            x1[i] = pxe[i, p]
-            y1[i] = pye[i, p]
-        for j in range(k2 + 1):
-            x2[j] = qxe[j, p]
-            y2[j] = qye[j, p]
-        # Per-pair bound: the larger side of the joint box, squared (narrow._error_bounds).
-        xmax = x1[0]
-        xmin = xmax
-        ymax = y1[0]
-        ymin = ymax
-        for i in range(k1):
-            xmax = max(xmax, x1[i])
-            xmin = min(xmin, x1[i])
-            ymax = max(ymax, y1[i])
-            ymin = min(ymin, y1[i])
-        for j in range(k2):
-            xmax = max(xmax, x2[j])
-            xmin = min(xmin, x2[j])
-            ymax = max(ymax, y2[j])
-            ymin = min(ymin, y2[j])
-        d = max(xmax - xmin, ymax - ymin)
-        d = d * d
-        if not (d >= UNDERFLOW_GUARD) or d == np.inf:  # underflow risk, overflow, nan
-            out[p] = UNDECIDED
-            continue
-        err = PAIR_EPS * d
-        nerr = -err
-        zeros = 0  # real-edge entries the filter could not sign
-        anyp = False
-        anyq = False
-        for i in range(k1):
-            ex = x1[i + 1] - x1[i]
-            ey = y1[i + 1] - y1[i]
-            v = (ex != 0) | (ey != 0)
-            vp[i] = v
-            anyp |= v
-            for j in range(k2 + 1):
-                a = ex * (y2[j] - y1[i]) - ey * (x2[j] - x1[i])
-                s = np.int8(a > err) - np.int8(a < nerr)
-                sa[i, j] = s
-                zeros += v & (s == 0)
-        for j in range(k2):
-            ex = x2[j + 1] - x2[j]
-            ey = y2[j + 1] - y2[j]
-            v = (ex != 0) | (ey != 0)
-            vq[j] = v
-            anyq |= v
-            for i in range(k1 + 1):
-                b = ey * (x2[j] - x1[i]) - ex * (y2[j] - y1[i])
-                s = np.int8(b > err) - np.int8(b < nerr)
-                sb[i, j] = s
-                zeros += v & (s == 0)
-        if zeros or not anyp or not anyq:
-            out[p] = UNDECIDED
-            continue
-        hit = False
-        for i in range(k1):
-            for j in range(k2):
-                hit |= vp[i] & vq[j] & (sa[i, j] * sa[i, j + 1] < 0) & (sb[i, j] * sb[i + 1, j] < 0)
-        if not hit:
-            # Crossing number (half-open y rule), signs from the matrices as in the reference.
-            p0y = y1[0]
-            inside = False
-            for j in range(k2):
-                inside ^= ((y2[j] > p0y) != (y2[j + 1] > p0y)) & ((sb[0, j] > 0) == (y2[j + 1] > y2[j]))
-            q0y = y2[0]
-            inside_q = False
-            for i in range(k1):
-                inside_q ^= ((y1[i] > q0y) != (y1[i + 1] > q0y)) & ((sa[i, 0] > 0) == (y1[i + 1] > y1[i]))
-            hit = inside | inside_q
-        out[p] = HIT if hit else MISS
-
-
 class _Compiled:
     """The compiled kernels of this process, by qualified name (built on first use, not at
     import), and whether the compile message was shown."""
@@ -226,21 +123,11 @@ def _cache_present(fn) -> bool:
         return False
 
 
-#: Signature of :func:`_filter_py`.
-_FILTER_SIG = "void(float64[:, :], float64[:, :], float64[:, :], float64[:, :], int8[:])"
-
-
 def warm_kernel() -> None:
     """Import numba and load every compiled kernel from its cache, compiling (with a
     message) what is not there, so that no frame waits for a compilation."""
+    from . import _narrow_kernel
     from .broadphase import _grid_kernel
 
-    jit(_filter_py, _FILTER_SIG)
+    _narrow_kernel.load()
     _grid_kernel.load()
-
-
-def filter_pairs(pxe, pye, qxe, qye) -> np.ndarray:
-    """(P,) int8 verdicts (MISS / HIT / UNDECIDED) for wrapped (K+1, P) float64 arrays."""
-    out = np.empty(pxe.shape[1], dtype=np.int8)
-    jit(_filter_py, _FILTER_SIG)(pxe, pye, qxe, qye, out)
-    return out

@@ -31,7 +31,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._kernel import UNDECIDED, Kernel, filter_pairs
+from . import _narrow_kernel
+from ._kernel import Kernel
 from .posing import Posed
 from .predicates import _orient_exact, _polygons_collide
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
@@ -217,6 +218,13 @@ def polygons_collide_padded(
     """
     px, py, qx, qy = (np.asarray(a, dtype=np.float64) for a in (px, py, qx, qy))
     ws = workspace or Workspace()
+    if kernel is Kernel.NUMBA:
+        verdict = _narrow_kernel.filter_pairs(px, py, qx, qy)
+        out = verdict == _narrow_kernel.HIT
+        rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
+        if rest.size:
+            out[rest] = polygons_collide_padded(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], ws)
+        return out
     k1, n = px.shape
     k2 = qx.shape[0]
     pxe, pye = ws.get("pxe", (k1 + 1, n)), ws.get("pye", (k1 + 1, n))
@@ -224,13 +232,6 @@ def polygons_collide_padded(
     for w, v, k in ((pxe, px, k1), (pye, py, k1), (qxe, qx, k2), (qye, qy, k2)):
         w[:k] = v
         w[k] = v[0]
-    if kernel is Kernel.NUMBA:
-        verdict = filter_pairs(pxe, pye, qxe, qye)
-        out = verdict == 1
-        rest = np.flatnonzero(verdict == UNDECIDED)
-        if rest.size:
-            out[rest] = polygons_collide_padded(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], ws)
-        return out
     err = _error_bounds(px, py, qx, qy)
     if n <= BLOCK:
         return _block(pxe, pye, qxe, qye, err, ws)
@@ -294,6 +295,24 @@ def collide_pairs(
         a, b = np.take(i, sel), np.take(j, sel)
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
+        if kernel is Kernel.NUMBA and narrow is polygons_collide_padded:
+            out[sel] = _compiled_group(posed, k1, sa, k2, sb, ws)
+            continue
         batch = (*posed.gather(k1, sa), *posed.gather(k2, sb))  # sweeps built for these columns only
         out[sel] = narrow(*batch, ws, kernel) if narrow is polygons_collide_padded else narrow(*batch)
+    return out
+
+
+def _compiled_group(posed: Posed, k1: int, sa: np.ndarray, k2: int, sb: np.ndarray, ws: Workspace) -> np.ndarray:
+    """One (class, class) group of pairs, columns ``sa`` of class ``k1`` against ``sb`` of
+    ``k2``: the compiled filter reads the class arrays in place (sweeps built on the fly);
+    the pairs it leaves undecided are gathered and settled by the numpy reference."""
+    side1 = _narrow_kernel.side(posed.vx[k1], posed.vy[k1], posed.sweeps.get(k1))
+    side2 = _narrow_kernel.side(posed.vx[k2], posed.vy[k2], posed.sweeps.get(k2))
+    verdict = _narrow_kernel.filter_columns(side1, sa, side2, sb)
+    out = verdict == _narrow_kernel.HIT
+    rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
+    if rest.size:
+        ra, rb = np.take(sa, rest), np.take(sb, rest)
+        out[rest] = polygons_collide_padded(*posed.gather(k1, ra), *posed.gather(k2, rb), ws)
     return out

@@ -66,7 +66,7 @@ _MAX = float(np.finfo(np.float64).max)
 #: ``|x sy| + |y sx|`` (``s`` the path scaled into [0.5, 1)) is within the rounding of posing
 #: of having no width across the path (``_sweep``): 16 eps, several times the few ulps posing
 #: commits in each coordinate.
-_THIN = 16.0 * 2.0**-53
+THIN = 16.0 * 2.0**-53
 
 #: Vertex count of the shape a rotating swept object is replaced by.
 _OCTAGON = 8
@@ -362,7 +362,7 @@ def _sweep(
     same sign, and ``e x d`` cannot overflow however long the path).
 
     Posed vertices carry rounding of a few ulps of ``|x|`` and ``|y|``, so a sign can be wrong
-    where ``|e x s|`` is below about ``_THIN (|x sy| + |y sx|)``: for an edge nearly parallel
+    where ``|e x s|`` is below about ``THIN (|x sy| + |y sx|)``: for an edge nearly parallel
     to the path, where the back chain begins or ends, harmlessly -- unless the whole polygon
     is that thin across the path (a point, a segment along it, a sliver: small shapes far
     out, where coordinates are coarse). Then noisy signs could leave most of the path
@@ -391,7 +391,7 @@ def _sweep(
     np.abs(vx, out=u)  # (|x sy| + |y sx|) / 2, largest per polygon: in halves, it cannot overflow
     u *= 0.5 * np.abs(sy)
     u += np.abs(vy) * (0.5 * np.abs(sx))
-    thin = t.max(axis=0) <= (2.0 * _THIN) * u.max(axis=0)
+    thin = t.max(axis=0) <= (2.0 * THIN) * u.max(axis=0)
     if thin.any():  # every edge within rounding of parallel to the path: see above
         f = np.flatnonzero(thin)
         back_out[:, f] = _back_by_vertices(vx[:, f], vy[:, f], sx[f], sy[f])

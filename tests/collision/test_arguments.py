@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from kernels import KERNELS
 
 from broadsword.collision import (
     Armature,
@@ -345,14 +346,15 @@ def _q_polygon(posed, i):
     return [(Fraction(x), Fraction(y)) for x, y in posed.polygon(i).tolist()]
 
 
+@pytest.mark.parametrize("kernel", KERNELS)
 @pytest.mark.parametrize("rotation", ["lut", "exact"])
-def test_sweep_across_the_whole_range__equals_the_rational_sweep(rotation):
+def test_sweep_across_the_whole_range__equals_the_rational_sweep(rotation, kernel):
     """The issue's case (a bullet swept from -1.7e308 to +1.7e308 was refused, "boxes must be
     finite"): every tier mix now finds exactly the pairs of the rational oracle -- the wall's
     posed polygon against the hull of the bullet's posed polygons at both ends of its path
     (exact arithmetic on the doubles, no overflow) -- touching pairs included."""
     shapes = ArmatureSet(SWEEP_SHAPES)
-    pipes = [Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=t, rotation=rotation) for t in SWEEP_MIXES]
+    pipes = [Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=t, rotation=rotation, kernel=kernel) for t in SWEEP_MIXES]
     touching = 0
     for wall, now, before, angle, touches in sweep_scenes():
         ends = pose(shapes, [0, 1, 1], [wall, now, before], [0.0, angle, angle], rotation)
@@ -380,14 +382,15 @@ def turning_sweep_scenes():
     yield (-MAXD, 5.0), (1e300, 5.0)
 
 
+@pytest.mark.parametrize("kernel", KERNELS)
 @pytest.mark.parametrize("rotation", ["lut", "exact"])
-def test_turning_sweep_across_the_whole_range__conservative_and_exact(rotation):
+def test_turning_sweep_across_the_whole_range__conservative_and_exact(rotation, kernel):
     """A bullet that turns while it sweeps is replaced by a conservative shape: it holds the
     bullet's posed polygons at both ends (rational point-in-polygon), every tier mix keeps
     exactly the pairs the exact test keeps, and that test is exact on the swept polygon."""
     shapes = ArmatureSet(SWEEP_SHAPES)
-    exact = Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=("brute", "armature"), rotation=rotation)
-    pipes = [Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=t, rotation=rotation) for t in TIER_MIXES]
+    exact = Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=("brute", "armature"), rotation=rotation, kernel="numpy")
+    pipes = [Pipeline(SWEEP_SHAPES, SWEEP_TABLE, tiers=t, rotation=rotation, kernel=kernel) for t in TIER_MIXES]
     for now, before in turning_sweep_scenes():
         for wall in [(0.0, 0.0), (now[0], 0.0), (0.0, now[1]), (before[0] / 2, before[1] / 2)]:
             args = dict(prev_positions=[wall, before], prev_angles=[0.0, 10.0], swept=[False, True])

@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_narrow import BASE, M, R, exact_map, grid_pairs, pad, random_pairs, simple_grid_pairs, touching_pairs
 
-from broadsword.collision import Kernel, Pipeline, _kernel, check_kernel, polygons_collide_padded
+from broadsword.collision import Kernel, Pipeline, _kernel, _narrow_kernel, check_kernel, polygons_collide_padded
 
 needs_numba = pytest.mark.skipif(not _kernel.numba_available(), reason="numba not installed (extra 'fast')")
 
@@ -47,8 +47,7 @@ def verdicts(pairs, k1=None, k2=None):
     """The kernel's raw verdicts and the reference answers."""
     px, py = pad([p for p, _ in pairs], k1)
     qx, qy = pad([q for _, q in pairs], k2)
-    wrap = [np.concatenate([a, a[:1]]) for a in (px, py, qx, qy)]
-    return _kernel.filter_pairs(*wrap), polygons_collide_padded(px, py, qx, qy)
+    return _narrow_kernel.filter_pairs(px, py, qx, qy), polygons_collide_padded(px, py, qx, qy)
 
 
 @needs_numba
@@ -72,13 +71,13 @@ def test_kernel__matches_reference_on_narrow_families(family):
 def test_kernel__decides_generic_pairs_and_defers_touching_ones():
     """Generic pairs are decided by the filter; exactly touching ones are left undecided."""
     v, ref = verdicts(random_pairs(random.Random(5), 300))
-    decided = v != _kernel.UNDECIDED
+    decided = v != _narrow_kernel.UNDECIDED
     assert decided.mean() > 0.9
-    assert np.array_equal(v[decided] == _kernel.HIT, ref[decided])
+    assert np.array_equal(v[decided] == _narrow_kernel.HIT, ref[decided])
     square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
     corner = [(1.0, 1.0), (2.0, 1.0), (2.0, 2.0)]  # touches the square at one vertex
     v, ref = verdicts([(square, corner)])
-    assert v[0] == _kernel.UNDECIDED and ref[0]
+    assert v[0] == _narrow_kernel.UNDECIDED and ref[0]
 
 
 @needs_numba
@@ -180,3 +179,36 @@ def test_check_kernel__numba_missing(monkeypatch):
     monkeypatch.setenv(_kernel.ENV_VAR, "numba")
     with pytest.raises(ImportError, match=_kernel.ENV_VAR):
         check_kernel(None)
+
+
+@needs_numba
+@pytest.mark.parametrize("turning", [False, True], ids=["straight", "turning"])
+def test_kernel__decides_sweeps_read_in_place(turning):
+    """The filter reads the class arrays by column and builds each sweep on the fly: it
+    decides nearly every candidate pair of a swept frame (octagons too, when bullets turn),
+    and every pair it decides is decided as the reference decides the numpy-built sweep."""
+    from broadsword.collision import pose
+    from broadsword.collision.scenarios import ReferenceScene
+
+    scene = ReferenceScene(enemies=120, bullets=3000, seed=9)
+    pos, ang = scene.advance()
+    prev_ang = scene.prev_angle if turning else ang
+    swept = scene.layer >= 2
+    posed = pose(scene.shapes, scene.armature, pos, ang, "lut", pos - scene.vel * scene.dt, prev_ang, swept)
+    cand = Pipeline(scene.shapes, scene.table, tiers=("bins", "aabb"), kernel="numpy").step(
+        scene.armature, scene.layer, pos, ang, pos - scene.vel * scene.dt, prev_ang, swept
+    )
+    pairs = cand.hits
+    assert posed.sweeps, "test bug: nothing swept lazily"
+    ki, kj = posed.klass[pairs[:, 0]], posed.klass[pairs[:, 1]]
+    decided_total = 0
+    for k1, k2 in set(zip(ki.tolist(), kj.tolist(), strict=True)):
+        sel = np.flatnonzero((ki == k1) & (kj == k2))
+        sa, sb = posed.slot[pairs[sel, 0]], posed.slot[pairs[sel, 1]]
+        sides = [_narrow_kernel.side(posed.vx[k], posed.vy[k], posed.sweeps.get(k)) for k in (k1, k2)]
+        v = _narrow_kernel.filter_columns(sides[0], sa, sides[1], sb)
+        ref = polygons_collide_padded(*posed.gather(k1, sa), *posed.gather(k2, sb))
+        decided = v != _narrow_kernel.UNDECIDED
+        assert np.array_equal(v[decided] == _narrow_kernel.HIT, ref[decided]), (k1, k2)
+        decided_total += int(decided.sum())
+    assert decided_total >= 0.95 * len(pairs) and len(pairs) > 200

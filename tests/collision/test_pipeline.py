@@ -8,6 +8,7 @@ import sys
 
 import numpy as np
 import pytest
+from kernels import KERNELS
 
 from broadsword.collision import (
     BROAD_PHASES,
@@ -71,11 +72,12 @@ def oracle(scene_frame):
     return out
 
 
+@pytest.mark.parametrize("kernel", KERNELS)
 @pytest.mark.parametrize("rotation", ["lut", "exact"])
 @pytest.mark.parametrize("tiers", TIER_MIXES, ids=lambda t: "+".join(t))
-def test_pipeline__equals_brute_exact(scene_frame, oracle, tiers, rotation):
+def test_pipeline__equals_brute_exact(scene_frame, oracle, tiers, rotation, kernel):
     scene, pos, ang, *_ = scene_frame
-    p = Pipeline(scene.shapes, scene.table, tiers=tiers, rotation=rotation, keep_tier_pairs=True)
+    p = Pipeline(scene.shapes, scene.table, tiers=tiers, rotation=rotation, keep_tier_pairs=True, kernel=kernel)
     r = p.step(scene.armature, scene.layer, pos, ang)
     expected = oracle[rotation, False]
     assert expected, "the scene should have some hits, or the test proves nothing"
@@ -87,8 +89,9 @@ def test_pipeline__equals_brute_exact(scene_frame, oracle, tiers, rotation):
     assert len(as_set(r.hits)) == len(r.hits)
 
 
+@pytest.mark.parametrize("kernel", KERNELS)
 @pytest.mark.parametrize("broad", list(BROAD_PHASES))
-def test_pipeline__equals_brute_exact_with_sweeps(scene_frame, oracle, broad):
+def test_pipeline__equals_brute_exact_with_sweeps(scene_frame, oracle, broad, kernel):
     scene, pos, ang, prev_pos, prev_ang = scene_frame
     swept = scene.layer >= 2
     for rotation in ("lut", "exact"):
@@ -98,6 +101,7 @@ def test_pipeline__equals_brute_exact_with_sweeps(scene_frame, oracle, broad):
             tiers=(broad, "aabb", "circle", "obb", "kdop", "armature"),
             rotation=rotation,
             keep_tier_pairs=True,
+            kernel=kernel,
         )
         r = p.step(scene.armature, scene.layer, pos, ang, prev_pos, prev_ang, swept)
         expected = oracle[rotation, True]
