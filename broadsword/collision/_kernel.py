@@ -126,8 +126,9 @@ def _cache_present(fn) -> bool:
 def warm_kernel() -> None:
     """Import numba and load every compiled kernel from its cache, compiling (with a
     message) what is not there, so that no frame waits for a compilation."""
-    from . import _narrow_kernel
+    from . import _narrow_kernel, _pose_kernel
     from .broadphase import _grid_kernel
 
     _narrow_kernel.load()
     _grid_kernel.load()
+    _pose_kernel.load()

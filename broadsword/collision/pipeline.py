@@ -20,7 +20,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import arguments, bounds
+from . import _pose_kernel, arguments, bounds
 from ._kernel import Kernel, check_kernel, warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
@@ -174,7 +174,7 @@ class Pipeline:
 
         t0 = clock()
         swept = objects.swept if objects.swept is not None and objects.swept.any() else None
-        posed = pose_checked(
+        args = (
             self.armatures,
             objects.armature,
             objects.positions,
@@ -183,14 +183,20 @@ class Pipeline:
             objects.prev_positions,
             objects.prev_angles,
             swept,
-            vertices=self.needs_vertices,
-            workspace=self.workspace,
         )
+        compiled = None
+        if self.kernel is Kernel.NUMBA and self.needs_vertices:
+            compiled = _pose_kernel.pose(*args, self.workspace)  # None: a frame for numpy's special paths
+        if compiled is not None:
+            posed, boxes = compiled
+        else:
+            posed = pose_checked(*args, vertices=self.needs_vertices, workspace=self.workspace)
         if self.needs_vertices:
             # Posing every object at once and boxing the polygons tightly beats posing only
             # the survivors of cheap tiers: measured, the tighter boxes save the broad phase
             # more than the skipped posing costs (docs/PERFORMANCE.md).
-            boxes = bounds.aabbs(posed)
+            if compiled is None:
+                boxes = bounds.aabbs(posed)
             stats.append(TierStats("pose", n, n, (clock() - t0) * 1e3))
             t0 = clock()
         else:

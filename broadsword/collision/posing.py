@@ -131,6 +131,7 @@ class ArmatureSet:
         self._hx, self._hy = _padded([a.hull for a in self.armatures], hmax)
         self.hull_count = hulls
         self.classes = tuple(sorted({*self.size_class.tolist(), *self.swept_class.tolist(), self.rotating_swept_class}))
+        self.class_array = np.array(self.classes, dtype=np.int64)
         self._cos, self._sin = rotation_table()
         # The table three times over, for degrees -360..719: an angle already in that range
         # (most are) indexes it directly, with no reduction (same entries, same bits).
@@ -535,17 +536,11 @@ def pose_checked(
         turning = None
     else:
         assert prev_positions is not None and prev_angles is not None  # arguments.frame saw to it
-        if prev_angles is angles:  # the caller says nothing turned (the game's bullets)
-            turning = None
-        else:
-            pcos, psin = shapes.rotations(prev_angles, rotation)
-            turning = swept & ((pcos != cos) | (psin != sin))
-            if not turning.any():
-                turning = None
+        turning = turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin)
         klass = np.where(swept, np.take(shapes.swept_class, armature), klass)
         if turning is not None:
             klass[turning] = shapes.rotating_swept_class
-    circles = partial(_circles, shapes.radius, armature, positions, prev_positions, swept)
+    circles = circles_of(shapes, armature, positions, prev_positions, swept)
 
     slot = np.zeros(n, dtype=np.int64)
     xs, ys, members = {}, {}, {}
@@ -597,6 +592,22 @@ def pose_checked(
             sweeps[k] = Sweeps(split, hx, hy, dx, dy, ws, far)  # built when a tier reads them
         xs[k], ys[k], members[k] = x, y, idx
     return Posed(n, klass, slot, xs, ys, members, circles, swept, cos, sin, frozenset(reordered), sweeps)
+
+
+def turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin) -> np.ndarray | None:
+    """(n,) bool: the swept objects whose rotation changed since the previous pose (posed
+    with ``cos``, ``sin``), or None when none did. ``prev_angles is angles`` says nothing
+    turned (the game's bullets) without comparing."""
+    if prev_angles is angles:
+        return None
+    pcos, psin = shapes.rotations(prev_angles, rotation)
+    turning = swept & ((pcos != cos) | (psin != sin))
+    return turning if turning.any() else None
+
+
+def circles_of(shapes, armature, positions, prev_positions, swept) -> Callable[[], tuple[np.ndarray, np.ndarray]]:
+    """The deferred bounding circles of a frame (:attr:`Posed.circles`)."""
+    return partial(_circles, shapes.radius, armature, positions, prev_positions, swept)
 
 
 def _circles(radii, armature, positions, prev_positions, swept) -> tuple[np.ndarray, np.ndarray]:
