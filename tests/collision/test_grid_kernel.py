@@ -103,3 +103,19 @@ def test_grid_kernel__pipeline_hits_identical_in_order():
             ref, got = (p.step(scene.armature, scene.layer, pos, ang, *args) for p in pipes)
             np.testing.assert_array_equal(got.hits, ref.hits)
             np.testing.assert_array_equal(got.candidates, ref.candidates)
+
+
+def test_grid_kernel__negative_and_untested_layer_ids():
+    """Objects in a layer no entry names (a negative id, or one past the table) take no part."""
+    rng = np.random.default_rng(3)
+    boxes = boxes_of(rng, 300)
+    layers = rng.integers(-2, 6, 300)
+    same(boxes, layers, SHMUP)
+    same(boxes, np.full(300, -1), SHMUP)  # nobody takes part: no layout
+
+
+def test_grid_kernel__non_finite_boxes_refused_as_numpy_does():
+    boxes = np.array([[0.0, 0.0, 1.0, 1.0], [0.0, 0.0, np.inf, 1.0]])
+    for kernel in (Kernel.NUMPY, Kernel.NUMBA):
+        with pytest.raises(ValueError, match="boxes must be finite"):
+            BinGrid(kernel=kernel).query(boxes, np.array([0, 1]), SHMUP)

@@ -15,23 +15,120 @@ numba is imported when :func:`load` is first called (by a pipeline or grid that 
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._kernel import jit
+from ._shared import _MEDIAN_SAMPLE as MEDIAN_SAMPLE
+from ._shared import AUTO_BIN_FACTOR
 
-__all__ = ["grid_pairs", "load"]
+__all__ = ["grid_query", "load"]
 
-#: (boxes, layer, entries, ox, oy, inv, cols, rows, direct_side, direct_pairs, ranges) -> pairs
-_SIGNATURE = "int64[:, :](float64[:, :], int64[:], int64[:, :], float64, float64, float64, int64, int64, int64, int64, int64[:, :])"
+#: (boxes, layer, entries, bin_size, field, max_cells, direct_side, direct_pairs, ranges, sel, info) -> pairs
+_SIGNATURE = (
+    "int64[:, :](float64[:, :], int64[:], int64[:, :], float64, float64[:], int64, int64, int64,"
+    " int64[:, :], int64[:], float64[:])"
+)
+
+#: Slots of the ``info`` output: the grid's layout, the number of objects taking part, and
+#: whether a box was not finite (then nothing else is filled).
+SIZE, OX, OY, COLS, ROWS, TAKING_PART, NOT_FINITE = range(7)
 
 
-def _grid_pairs_py(
-    boxes, layer, entries, ox, oy, inv, cols, rows, direct_side, direct_pairs, ranges
-):  # pragma: no cover - compiled by numba
-    """(m, 2) int64 candidate pairs; fills ``ranges`` (4, n) with the inclusive bin ranges
-    ``(col0, row0, col1, row1)`` of every box. ``boxes`` (n, 4), ``layer`` (n,), ``entries``
-    (E, 2): the layer table's entries, in order. Mirrors ``grid._GridFrame``."""
+def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_side, direct_pairs, ranges, sel, info):  # noqa: E501  # pragma: no cover - compiled by numba
+    """(m, 2) int64 candidate pairs of one frame, as ``Driver.query`` with ``BinGrid`` finds
+    them. ``boxes`` (n, 4), ``layer`` (n,), ``entries`` (E, 2): the layer table's entries in
+    order; ``bin_size`` <= 0 for :func:`auto_bin_size`; ``field`` (4,) or empty. Fills
+    ``ranges`` (4, n) with every box's inclusive bin range, ``sel`` (n,) with the objects
+    taking part (layer by layer, in the order the table first names them) and ``info``
+    (see the slot names). Mirrors ``BinGrid.layout_for``, ``auto_bin_size`` and
+    ``grid._GridFrame``, operation for operation."""
     n = boxes.shape[0]
+    info[NOT_FINITE] = 0.0
+    for i in range(n):
+        for c in range(4):
+            if not np.isfinite(boxes[i, c]):
+                info[NOT_FINITE] = 1.0
+                return np.empty((0, 2), dtype=np.int64)
+
+    # Each layer's members, ascending (np.flatnonzero(layer == k)).
+    nl = 0
+    for i in range(n):
+        nl = max(nl, layer[i] + 1)
+    for e in range(entries.shape[0]):
+        nl = max(nl, entries[e, 0] + 1, entries[e, 1] + 1)
+    lstart = np.zeros(nl + 1, dtype=np.int64)
+    for i in range(n):
+        if layer[i] >= 0:  # a negative id is in no table entry
+            lstart[layer[i] + 1] += 1
+    for k in range(nl):
+        lstart[k + 1] += lstart[k]
+    mem = np.empty(n, dtype=np.int64)
+    fill = lstart.copy()
+    for i in range(n):
+        if layer[i] >= 0:
+            mem[fill[layer[i]]] = i
+            fill[layer[i]] += 1
+
+    # The objects taking part, layer by layer in the table's order; the automatic bin size
+    # (the largest layer's upper median half extent over a strided sample) and the extent.
+    named = np.zeros(nl, dtype=np.bool_)
+    taking = 0
+    m_ext = 0.0
+    x0f = np.inf
+    y0f = np.inf
+    x1f = -np.inf
+    y1f = -np.inf
+    for e in range(entries.shape[0]):
+        for side in range(2):
+            k = entries[e, side]
+            if named[k]:
+                continue
+            named[k] = True
+            count = lstart[k + 1] - lstart[k]
+            if count == 0:
+                continue
+            for p in range(lstart[k], lstart[k + 1]):
+                i = mem[p]
+                sel[taking] = i
+                taking += 1
+                x0f = min(x0f, boxes[i, 0])
+                y0f = min(y0f, boxes[i, 1])
+                x1f = max(x1f, boxes[i, 2])
+                y1f = max(y1f, boxes[i, 3])
+            stride = max(1, count // MEDIAN_SAMPLE)
+            ext = np.empty((count + stride - 1) // stride)
+            for q in range(len(ext)):
+                b = boxes[mem[lstart[k] + q * stride]]
+                ext[q] = max(0.5 * b[2] - 0.5 * b[0], 0.5 * b[3] - 0.5 * b[1])
+            m_ext = max(m_ext, np.sort(ext)[len(ext) // 2])  # the upper median, as np.partition picks it
+    info[TAKING_PART] = taking
+    if taking == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    size = bin_size
+    if size <= 0.0:
+        size = AUTO_BIN_FACTOR * 2.0 * m_ext if m_ext < 1e300 else 1.0
+        size = size if size > 0 else 1.0
+    if len(field):
+        x0f, y0f, x1f, y1f = field[0], field[1], field[2], field[3]
+    hw = 0.5 * x1f - 0.5 * x0f
+    hh = 0.5 * y1f - 0.5 * y0f
+    size = max(size, max(hw, hh) / (0.5 * max_cells))
+    cols = max(1, np.int64(math.ceil(hw / (0.5 * size))))
+    rows = max(1, np.int64(math.ceil(hh / (0.5 * size))))
+    while cols * rows > max_cells:
+        size *= 2.0
+        cols = max(1, np.int64(math.ceil(hw / (0.5 * size))))
+        rows = max(1, np.int64(math.ceil(hh / (0.5 * size))))
+    info[SIZE] = size
+    info[OX] = x0f
+    info[OY] = y0f
+    info[COLS] = cols
+    info[ROWS] = rows
+    ox = x0f
+    oy = y0f
+    inv = 1.0 / size
     xhi = float(cols - 1)
     yhi = float(rows - 1)
     for i in range(n):
@@ -50,23 +147,6 @@ def _grid_pairs_py(
     x1 = ranges[2]
     y1 = ranges[3]
     nkeys = cols * rows
-
-    # Each layer's members, ascending (np.flatnonzero(layer == k)).
-    nl = 0
-    for i in range(n):
-        nl = max(nl, layer[i] + 1)
-    for e in range(entries.shape[0]):
-        nl = max(nl, entries[e, 0] + 1, entries[e, 1] + 1)
-    lstart = np.zeros(nl + 1, dtype=np.int64)
-    for i in range(n):
-        lstart[layer[i] + 1] += 1
-    for k in range(nl):
-        lstart[k + 1] += lstart[k]
-    mem = np.empty(n, dtype=np.int64)
-    fill = lstart.copy()
-    for i in range(n):
-        mem[fill[layer[i]]] = i
-        fill[layer[i]] += 1
 
     def expand(ids):
         """(obj position, bin key, object spans several bins, any does) per bin entry: every
@@ -187,11 +267,15 @@ def load():
     return jit(_grid_pairs_py, _SIGNATURE)
 
 
-def grid_pairs(boxes, layer, entries, origin, size, shape, direct_side, direct_pairs):
-    """``(pairs (m, 2) int64, ranges (4, n) int64)`` of one frame on the grid ``origin``,
-    ``size``, ``shape = (cols, rows)``; ``entries`` (E, 2) int64, the layer table's entries."""
-    ranges = np.empty((4, len(boxes)), dtype=np.int64)
-    pairs = load()(
-        boxes, layer, entries, origin[0], origin[1], 1.0 / size, shape[0], shape[1], direct_side, direct_pairs, ranges
-    )
-    return pairs, ranges
+def grid_query(boxes, layer, entries, bin_size, field, max_cells, direct_side, direct_pairs):
+    """``(pairs (m, 2) int64, ranges (4, n) int64, sel (k,) int64, info (7,) float64)`` of
+    one frame (see :func:`_grid_pairs_py`); ``bin_size`` None for the automatic size,
+    ``field`` None for the boxes' extent."""
+    n = len(boxes)
+    ranges = np.empty((4, n), dtype=np.int64)
+    sel = np.empty(n, dtype=np.int64)
+    info = np.zeros(7)
+    fld = np.empty(0) if field is None else np.asarray(field, dtype=np.float64)
+    size = 0.0 if bin_size is None else float(bin_size)
+    pairs = load()(boxes, layer, entries, size, fld, max_cells, direct_side, direct_pairs, ranges, sel, info)
+    return pairs, ranges, sel[: int(info[TAKING_PART])], info

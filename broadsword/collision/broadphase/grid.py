@@ -71,18 +71,23 @@ class BinGrid(Driver):
         """``(pairs (m, 2) int64, stats)``; see :mod:`broadsword.collision.broadphase.base`."""
         if self.kernel is not Kernel.NUMBA:
             return super().query(boxes, layers, table)
-        from . import _grid_kernel
+        from . import _grid_kernel as gk
 
-        boxes, layers, _, present = self._members(boxes, layers, table)
-        if not present:
-            return _EMPTY.copy(), BroadPhaseStats(self.name, 0, 0, None)
-        sel = np.concatenate(present) if len(present) > 1 else present[0]
-        size, origin, shape = self.layout_for(boxes, present, sel)
+        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
+        if len(boxes) != len(layers):
+            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
         entries = np.array(table.entries, dtype=np.int64).reshape(-1, 2)
-        pairs, ranges = _grid_kernel.grid_pairs(
-            boxes, layers, entries, origin, size, shape, _DIRECT_SIDE, _DIRECT_PAIRS
+        pairs, ranges, sel, info = gk.grid_query(
+            boxes, layers, entries, self.bin_size, self.field, self.max_cells, _DIRECT_SIDE, _DIRECT_PAIRS
         )
-        layout = GridLayout(origin, size, shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
+        if info[gk.NOT_FINITE]:
+            raise ValueError("boxes must be finite")
+        if not len(sel):
+            return _EMPTY.copy(), BroadPhaseStats(self.name, 0, 0, None)
+        shape = (int(info[gk.COLS]), int(info[gk.ROWS]))
+        origin = (float(info[gk.OX]), float(info[gk.OY]))
+        layout = GridLayout(origin, float(info[gk.SIZE]), shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
         return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), layout)
 
     def layout_for(self, boxes: np.ndarray, groups: list[np.ndarray], sel: np.ndarray) -> tuple[float, tuple, tuple]:
