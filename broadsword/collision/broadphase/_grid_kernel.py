@@ -115,12 +115,12 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
     hw = 0.5 * x1f - 0.5 * x0f
     hh = 0.5 * y1f - 0.5 * y0f
     size = max(size, max(hw, hh) / (0.5 * max_cells))
-    cols = max(1, np.int64(math.ceil(hw / (0.5 * size))))
-    rows = max(1, np.int64(math.ceil(hh / (0.5 * size))))
+    cols = max(1, math.ceil(hw / (0.5 * size)))
+    rows = max(1, math.ceil(hh / (0.5 * size)))
     while cols * rows > max_cells:
         size *= 2.0
-        cols = max(1, np.int64(math.ceil(hw / (0.5 * size))))
-        rows = max(1, np.int64(math.ceil(hh / (0.5 * size))))
+        cols = max(1, math.ceil(hw / (0.5 * size)))
+        rows = max(1, math.ceil(hh / (0.5 * size)))
     info[SIZE] = size
     info[OX] = x0f
     info[OY] = y0f
