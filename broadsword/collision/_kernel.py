@@ -1,8 +1,9 @@
 """Choosing and loading the optional compiled kernels (numba; ``pip install broadsword[fast]``).
 
-Three parts of the pipeline have a compiled twin: the exact narrow phase's float filter
-(:mod:`._narrow_kernel`), the bin grid's query (:mod:`.broadphase._grid_kernel`) and
-posing (:mod:`._pose_kernel`). Each gives the same answers, in the same order, as the
+Four parts of the pipeline have a compiled twin: posing and boxing
+(:mod:`._pose_kernel`), the bin grid's query (:mod:`.broadphase._grid_kernel`), the
+``aabb`` tier's box test (:mod:`._bounds_kernel`) and the exact narrow phase's float
+filter (:mod:`._narrow_kernel`). Each gives the same answers, in the same order, as the
 numpy code, which stays the reference the tests compare it with. :class:`Kernel` names
 the choice; :func:`check_kernel` resolves it (argument, ``BROADSWORD_KERNEL``, then numba
 when installed); :func:`jit` compiles a kernel.
@@ -126,9 +127,10 @@ def _cache_present(fn) -> bool:
 def warm_kernel() -> None:
     """Import numba and load every compiled kernel from its cache, compiling (with a
     message) what is not there, so that no frame waits for a compilation."""
-    from . import _narrow_kernel, _pose_kernel
+    from . import _bounds_kernel, _narrow_kernel, _pose_kernel
     from .broadphase import _grid_kernel
 
+    _bounds_kernel.load()
     _narrow_kernel.load()
     _grid_kernel.load()
     _pose_kernel.load()

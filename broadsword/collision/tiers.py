@@ -30,7 +30,7 @@ from enum import Enum, StrEnum
 
 import numpy as np
 
-from . import bounds, kdop
+from . import _bounds_kernel, bounds, kdop
 from ._kernel import Kernel
 from .frame import FrameObjects
 from .narrow import collide_pairs, paper_collide_padded
@@ -115,6 +115,12 @@ def _pixel(inp: TierInput, pairs: np.ndarray) -> np.ndarray:
     return inp.masks.collide(o.armature, o.positions, o.angles, pairs)
 
 
+def _aabb(inp: TierInput, pairs: np.ndarray) -> np.ndarray:
+    if inp.kernel is Kernel.NUMBA:
+        return _bounds_kernel.boxes_overlap(inp.boxes, pairs)
+    return bounds.boxes_overlap(inp.boxes, pairs)
+
+
 def _spec(tier, kind, vertices=False, keep=None):
     return tier, TierSpec(tier, kind, vertices, keep)
 
@@ -126,7 +132,7 @@ TIERS: Mapping[Tier, TierSpec] = dict(
         _spec(Tier.QUADTREE, TierKind.BROAD),
         _spec(Tier.LOOSE_QUADTREE, TierKind.BROAD),
         _spec(Tier.BRUTE, TierKind.BROAD),
-        _spec(Tier.AABB, TierKind.BOUND, True, lambda inp, pairs: bounds.boxes_overlap(inp.boxes, pairs)),
+        _spec(Tier.AABB, TierKind.BOUND, True, _aabb),
         _spec(Tier.CIRCLE, TierKind.BOUND, False, lambda inp, pairs: bounds.circles_overlap(inp.posed, pairs)),
         _spec(
             Tier.OBB,

@@ -212,3 +212,19 @@ def test_kernel__decides_sweeps_read_in_place(turning):
         assert np.array_equal(v[decided] == _narrow_kernel.HIT, ref[decided]), (k1, k2)
         decided_total += int(decided.sum())
     assert decided_total >= 0.95 * len(pairs) and len(pairs) > 200
+
+
+@needs_numba
+def test_bounds_kernel__boxes_overlap_equals_numpy():
+    """The compiled ``aabb`` test, pair by pair, on random, touching and huge boxes."""
+    from broadsword.collision import _bounds_kernel, bounds
+
+    rng = np.random.default_rng(2)
+    xy = rng.integers(0, 40, (500, 2)).astype(float)  # integer corners: many touch exactly
+    boxes = np.column_stack([xy, xy + rng.integers(0, 6, (500, 2))])
+    boxes[:20] *= 1e307
+    pairs = rng.integers(0, 500, (20_000, 2))
+    want = bounds.boxes_overlap(boxes, pairs)
+    assert 0 < want.sum() < len(want)
+    assert np.array_equal(_bounds_kernel.boxes_overlap(boxes, pairs), want)
+    assert np.array_equal(_bounds_kernel.boxes_overlap(boxes.T.copy().T, pairs), want)  # a (4, n) view
