@@ -1,7 +1,9 @@
 """The exact narrow phase's float filter compiled with numba (``pip install broadsword[fast]``).
 
-Per pair, the kernel decides exactly what :func:`narrow._block_body` decides when its float
-filter certifies every sign of the pair: the same per-pair bound (``tolerance.PAIR_EPS *
+Per pair, the kernel decides a hit as soon as it has certified a proper edge crossing (four
+signs certain and opposite: the polygons meet, whatever else is unknown), and otherwise
+decides exactly what :func:`narrow._block_body` decides when its float filter certifies
+every sign of the pair: the same per-pair bound (``tolerance.PAIR_EPS *
 D^2``, declined below ``UNDERFLOW_GUARD`` and on overflow), the same orientation
 expressions evaluated with the same float operations (no fused multiply-add: numba
 compiles without ``fastmath``), the same edge-crossing and crossing-number rules. A pair
@@ -167,6 +169,10 @@ def _filter_py(
                 s = np.int8(a > err) - np.int8(a < nerr)
                 sa[i, j] = s
                 zeros += v & (s == 0)
+        # Edges of Q one by one; a certified proper crossing (four certain, opposite signs)
+        # proves the polygons meet, so the pair is a hit whatever signs remain unknown:
+        # stop there. (Most candidate pairs that survive the boxes are hits.)
+        hit = False
         for j in range(k2):
             ex = x2[j + 1] - x2[j]
             ey = y2[j + 1] - y2[j]
@@ -178,24 +184,27 @@ def _filter_py(
                 s = np.int8(b > err) - np.int8(b < nerr)
                 sb[i, j] = s
                 zeros += v & (s == 0)
+            for i in range(k1):
+                hit |= vp[i] & v & (sa[i, j] * sa[i, j + 1] < 0) & (sb[i, j] * sb[i + 1, j] < 0)
+            if hit:
+                break
+        if hit:
+            out[p] = HIT
+            continue
         if zeros or not anyp or not anyq:
             out[p] = UNDECIDED
             continue
-        hit = False
+        # No crossing: one polygon holds the other, or they miss. Crossing number (half-open
+        # y rule), signs from the matrices as in the reference.
+        p0y = y1[0]
+        inside = False
+        for j in range(k2):
+            inside ^= ((y2[j] > p0y) != (y2[j + 1] > p0y)) & ((sb[0, j] > 0) == (y2[j + 1] > y2[j]))
+        q0y = y2[0]
+        inside_q = False
         for i in range(k1):
-            for j in range(k2):
-                hit |= vp[i] & vq[j] & (sa[i, j] * sa[i, j + 1] < 0) & (sb[i, j] * sb[i + 1, j] < 0)
-        if not hit:
-            # Crossing number (half-open y rule), signs from the matrices as in the reference.
-            p0y = y1[0]
-            inside = False
-            for j in range(k2):
-                inside ^= ((y2[j] > p0y) != (y2[j + 1] > p0y)) & ((sb[0, j] > 0) == (y2[j + 1] > y2[j]))
-            q0y = y2[0]
-            inside_q = False
-            for i in range(k1):
-                inside_q ^= ((y1[i] > q0y) != (y1[i + 1] > q0y)) & ((sa[i, 0] > 0) == (y1[i + 1] > y1[i]))
-            hit = inside | inside_q
+            inside_q ^= ((y1[i] > q0y) != (y1[i + 1] > q0y)) & ((sa[i, 0] > 0) == (y1[i + 1] > y1[i]))
+        hit = inside | inside_q
         out[p] = HIT if hit else MISS
 
 
