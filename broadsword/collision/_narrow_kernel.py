@@ -11,11 +11,13 @@ with any uncertain sign on a real edge, or with no real edge, is *undecided* and
 the numpy reference, which settles it with rational arithmetic. So every answer the kernel
 gives is one the exact reference gives.
 
-It reads the posed class arrays by column, so nothing is gathered or copied per pair, and
-it builds a swept polygon (:func:`posing._sweep`) on the fly from the sweep's shape and
-path, with the same operations and so the same vertices. A sweep that ``_sweep`` treats
-specially (thin across its path, a path longer than the doubles, a vertex past them, a
-non-finite sign) is left undecided: the reference builds it with numpy and decides.
+The filter reads the posed class arrays by column, so a class with no sweep is neither
+gathered nor copied. For a class with sweeps, a second kernel (:func:`_side_py`) gathers
+the pairs' columns and builds their swept polygons (:func:`posing._sweep`) with the same
+operations, so the same vertices; a sweep that ``_sweep`` treats specially (thin across
+its path, a path longer than the doubles, a vertex past them, a non-finite sign) is left
+undecided: the reference builds it with numpy and decides. (Building sweeps inside the
+filter, in a closure, cost a numba call per polygon: measured slower.)
 
 Every polygon of a side is read with its class's row count ``K`` (a sweep of class ``K``
 has ``2H = K`` vertices), repeated vertices included, as the reference reads them: loop
@@ -33,48 +35,53 @@ from ._kernel import jit
 from .posing import THIN
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
 
-__all__ = ["HIT", "MISS", "UNDECIDED", "filter_columns", "filter_pairs", "load"]
+__all__ = [
+    "HIT",
+    "MISS",
+    "UNDECIDED",
+    "filter_columns",
+    "filter_pairs",
+    "filter_trimmed",
+    "load",
+    "load_side",
+    "polygons",
+]
 
 #: Kernel verdicts, one int8 per pair.
 MISS, HIT, UNDECIDED = 0, 1, 2
 
-_SIDE = (
-    "float64[:, :], float64[:, :], float64[:, :], float64[:, :], float64[:], float64[:], boolean[:], int64, int64[:]"
+#: (vx1, vy1, cols1, vx2, vy2, cols2, ok, out)
+_SIGNATURE = "void(float64[:, :], float64[:, :], int64[:], float64[:, :], float64[:, :], int64[:], boolean[:], int8[:])"
+#: (vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count)
+_SIDE_SIGNATURE = (
+    "void(float64[:, :], float64[:, :], float64[:, :], float64[:, :], float64[:], float64[:], boolean[:], int64,"
+    " int64[:], float64[:, :], float64[:, :], int64[:])"
 )
-#: (side 1, side 2, out): a side is (vx, vy, hx, hy, dx, dy, far, split, cols).
-_SIGNATURE = f"void({_SIDE}, {_SIDE}, int8[:])"
 
 
-def _filter_py(
-    vx1, vy1, hx1, hy1, dx1, dy1, far1, split1, cols1, vx2, vy2, hx2, hy2, dx2, dy2, far2, split2, cols2, out
-):  # noqa: E501  # pragma: no cover - compiled by numba
-    """Verdicts (MISS / HIT / UNDECIDED) into ``out`` (P,) for the pairs ``(cols1[p], cols2[p])``.
-
-    A side: ``vx, vy`` (K, n) the class arrays (polygons padded with their last vertex);
-    columns ``>= split`` are sweeps, built from ``hx, hy`` (H, m) (each sweep's convex shape
-    at its current pose) and ``dx, dy`` (m,) (its path), ``far`` (m,) or empty: paths
-    stored in halves. Signs are computed without branches (random signs would mispredict).
-    """
-    n = len(out)
-    k1 = vx1.shape[0]  # edges per polygon: a class's rows (a sweep has 2H = K rows too)
-    k2 = vx2.shape[0]
-    sa = np.zeros((k1, k2 + 1), dtype=np.int8)
-    sb = np.zeros((k1 + 1, k2), dtype=np.int8)
-    vp = np.zeros(k1, dtype=np.bool_)
-    vq = np.zeros(k2, dtype=np.bool_)
-    x1 = np.empty(k1 + 1)
-    y1 = np.empty(k1 + 1)
-    x2 = np.empty(k2 + 1)
-    y2 = np.empty(k2 + 1)
-    back = np.zeros(max(hx1.shape[0], hx2.shape[0], 1), dtype=np.bool_)
-
-    def sweep(hx, hy, dx, dy, far, c, xs, ys):
-        """Sweep ``c``'s polygon (:func:`posing._sweep`) into ``xs, ys`` (2H + 1,), closed
-        (the first vertex again at the end); False leaves the pair to the reference (a
-        sweep that _sweep handles specially, or a non-finite value)."""
-        if len(far) and far[c]:
-            return False
-        h = hx.shape[0]
+def _side_py(vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count):  # pragma: no cover - compiled by numba
+    """The polygons of columns ``cols`` (P,) of one class into ``ox, oy`` (K, P): a copy of
+    the class arrays ``vx, vy`` (K, n) where ``col < split``, else the sweep of column
+    ``col - split`` built as :func:`posing._sweep` builds it, from its shape ``hx, hy``
+    (K/2, m) and path ``dx, dy`` (m,) (``far`` (m,) or empty: paths stored in halves), its
+    consecutive repeated vertices dropped and the rest padded with its last vertex (the same
+    polygon: the same points and non-zero edges). ``count[p]``: the vertices before the
+    padding (K for a copy), or -1 where the pair must go to the reference: a sweep
+    ``_sweep`` treats specially (thin across its path, a far path, a vertex past the
+    doubles) or a non-finite sign."""
+    rows = vx.shape[0]
+    h = hx.shape[0]
+    back = np.zeros(max(h, 1), dtype=np.bool_)
+    for p in range(len(cols)):
+        col = cols[p]
+        if col < split:
+            for i in range(rows):
+                ox[i, p] = vx[i, col]
+                oy[i, p] = vy[i, col]
+            count[p] = rows
+            continue
+        c = col - split
+        good = not (len(far) and far[c])
         d_x = dx[c]
         d_y = dy[c]
         e = math.frexp(max(abs(d_x), abs(d_y)))[1]  # posing._unit_scale: exact power-of-two scaling
@@ -86,53 +93,62 @@ def _filter_py(
             j = i + 1 if i + 1 < h else 0
             t = (hx[j, c] - hx[i, c]) * s_y - (hy[j, c] - hy[i, c]) * s_x
             u = abs(hx[i, c]) * (0.5 * abs(s_y)) + abs(hy[i, c]) * (0.5 * abs(s_x))
-            if not (np.isfinite(t) and np.isfinite(u)):
-                return False
+            good &= np.isfinite(t) & np.isfinite(u)
             back[i] = t > 0
             tmax = max(tmax, t)
             umax = max(umax, u)
-        if tmax <= (2.0 * THIN) * umax:  # thin across its path: _back_by_vertices
-            return False
-        ok = True
+        good &= tmax > (2.0 * THIN) * umax  # else thin across its path: _back_by_vertices
+        k = 0
         for i in range(h):
             b_in = 1.0 if back[i - 1 if i > 0 else h - 1] else 0.0  # numpy's d * back: d * 1.0 or d * 0.0
-            b_out = 1.0 if back[i] else 0.0
-            xs[2 * i] = hx[i, c] - d_x * b_in
-            ys[2 * i] = hy[i, c] - d_y * b_in
-            xs[2 * i + 1] = hx[i, c] - d_x * b_out
-            ys[2 * i + 1] = hy[i, c] - d_y * b_out
-        for i in range(2 * h):
-            ok &= np.isfinite(xs[i]) & np.isfinite(ys[i])  # past the doubles: _box_unbounded
-        xs[2 * h] = xs[0]
-        ys[2 * h] = ys[0]
-        return ok
+            for b in (b_in, 1.0 if back[i] else 0.0):
+                x = hx[i, c] - d_x * b
+                y = hy[i, c] - d_y * b
+                good &= np.isfinite(x) & np.isfinite(y)  # past the doubles: _box_unbounded
+                if k == 0 or x != ox[k - 1, p] or y != oy[k - 1, p]:
+                    ox[k, p] = x
+                    oy[k, p] = y
+                    k += 1
+        for i in range(k, rows):
+            ox[i, p] = ox[k - 1, p]
+            oy[i, p] = oy[k - 1, p]
+        count[p] = k if good else -1
 
+
+def _filter_py(vx1, vy1, cols1, vx2, vy2, cols2, ok, out):  # pragma: no cover - compiled by numba
+    """Verdicts (MISS / HIT / UNDECIDED) into ``out`` (P,) for the polygons of columns
+    ``(cols1[p], cols2[p])`` of ``vx1, vy1`` (K1, n1) and ``vx2, vy2`` (K2, n2), padded with
+    their last vertex; ``ok[p]`` False leaves pair ``p`` undecided. Signs are computed
+    without branches (random signs would mispredict)."""
+    n = len(out)
+    k1 = vx1.shape[0]
+    k2 = vx2.shape[0]
+    sa = np.zeros((k1, k2 + 1), dtype=np.int8)
+    sb = np.zeros((k1 + 1, k2), dtype=np.int8)
+    vp = np.zeros(k1, dtype=np.bool_)
+    vq = np.zeros(k2, dtype=np.bool_)
+    x1 = np.empty(k1 + 1)
+    y1 = np.empty(k1 + 1)
+    x2 = np.empty(k2 + 1)
+    y2 = np.empty(k2 + 1)
+    ex1 = np.empty(k1)
+    ey1 = np.empty(k1)
     for p in range(n):
-        # Each polygon closed (its first vertex again at the end). Plain columns are copied
-        # here, not in a closure: numba does not inline closures, and the call was a third
-        # of the time (measured).
-        c1 = cols1[p]
-        c2 = cols2[p]
-        ok = True
-        if c1 < split1:
-            for i in range(k1):
-                x1[i] = vx1[i, c1]
-                y1[i] = vy1[i, c1]
-            x1[k1] = x1[0]
-            y1[k1] = y1[0]
-        else:
-            ok &= sweep(hx1, hy1, dx1, dy1, far1, c1 - split1, x1, y1)
-        if c2 < split2:
-            for j in range(k2):
-                x2[j] = vx2[j, c2]
-                y2[j] = vy2[j, c2]
-            x2[k2] = x2[0]
-            y2[k2] = y2[0]
-        else:
-            ok &= sweep(hx2, hy2, dx2, dy2, far2, c2 - split2, x2, y2)
-        if not ok:  # left to the reference
+        if not ok[p]:  # left to the reference
             out[p] = UNDECIDED
             continue
+        c1 = cols1[p]
+        c2 = cols2[p]
+        for i in range(k1):  # each polygon closed: its first vertex again at the end
+            x1[i] = vx1[i, c1]
+            y1[i] = vy1[i, c1]
+        x1[k1] = x1[0]
+        y1[k1] = y1[0]
+        for j in range(k2):
+            x2[j] = vx2[j, c2]
+            y2[j] = vy2[j, c2]
+        x2[k2] = x2[0]
+        y2[k2] = y2[0]
         # Per-pair bound: the larger side of the joint box, squared (narrow._error_bounds).
         xmax = x1[0]
         xmin = xmax
@@ -159,21 +175,24 @@ def _filter_py(
         anyp = False
         anyq = False
         for i in range(k1):
-            ex = x1[i + 1] - x1[i]
-            ey = y1[i + 1] - y1[i]
-            v = (ex != 0) | (ey != 0)
-            vp[i] = v
-            anyp |= v
-            for j in range(k2 + 1):
-                a = ex * (y2[j] - y1[i]) - ey * (x2[j] - x1[i])
-                s = np.int8(a > err) - np.int8(a < nerr)
-                sa[i, j] = s
-                zeros += v & (s == 0)
-        # Edges of Q one by one; a certified proper crossing (four certain, opposite signs)
-        # proves the polygons meet, so the pair is a hit whatever signs remain unknown:
-        # stop there. (Most candidate pairs that survive the boxes are hits.)
+            ex1[i] = x1[i + 1] - x1[i]
+            ey1[i] = y1[i + 1] - y1[i]
+            vp[i] = (ex1[i] != 0) | (ey1[i] != 0)
+            anyp |= vp[i]
+        # Column by column: the signs of Q's vertex j + 1 against P's edges (sa), then of P's
+        # vertices against Q's edge j (sb), then the crossings of edge j. A certified proper
+        # crossing (four certain, opposite signs) proves the polygons meet, so the pair is
+        # a hit whatever signs remain unknown: stop there (most candidates are hits).
         hit = False
-        for j in range(k2):
+        for j in range(-1, k2):
+            q = j + 1
+            for i in range(k1):
+                a = ex1[i] * (y2[q] - y1[i]) - ey1[i] * (x2[q] - x1[i])
+                s = np.int8(a > err) - np.int8(a < nerr)
+                sa[i, q] = s
+                zeros += vp[i] & (s == 0)
+            if j < 0:
+                continue
             ex = x2[j + 1] - x2[j]
             ey = y2[j + 1] - y2[j]
             v = (ex != 0) | (ey != 0)
@@ -213,25 +232,63 @@ def load():
     return jit(_filter_py, _SIGNATURE)
 
 
-_NO_SWEEP = (np.empty((0, 0)), np.empty((0, 0)), np.empty(0), np.empty(0), np.empty(0, dtype=bool))
+def load_side():
+    """The compiled side builder (numba imported, the kernel loaded or compiled)."""
+    return jit(_side_py, _SIDE_SIGNATURE)
 
 
-def side(vx, vy, sweeps=None) -> tuple:
-    """A side of :func:`filter_columns` for class arrays ``vx, vy`` (K, n) whose columns
-    from ``sweeps.split`` on are the sweeps ``sweeps`` (a :class:`posing.Sweeps`, or None)."""
-    if sweeps is None:
-        return (vx, vy, *_NO_SWEEP, vx.shape[1])
-    far = np.zeros(0, dtype=bool) if sweeps.far is None else sweeps.far
+def polygons(vx, vy, cols: np.ndarray, sweeps=None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    """``(x, y, cols, count)`` to read the polygons of columns ``cols`` (int64) of a class:
+    its arrays as they are when nothing is swept (``count`` None), else (K, P) arrays with
+    the plain columns copied and the sweeps built (``sweeps``: a :class:`posing.Sweeps`,
+    whose shapes fill the class's rows: ``2H = K``) and ``count`` (P,) int64 (see
+    :func:`_side_py`; -1 where a pair must go to the reference)."""
+    if sweeps is None or not len(cols) or cols.max() < sweeps.split:  # no sweep among them
+        return vx, vy, cols, None
     if 2 * sweeps.hx.shape[0] != vx.shape[0]:
         raise ValueError(f"a sweep of {sweeps.hx.shape[0]} rows does not fill a class of {vx.shape[0]} rows")
-    return (vx, vy, sweeps.hx, sweeps.hy, sweeps.dx, sweeps.dy, far, sweeps.split)
+    far = np.zeros(0, dtype=bool) if sweeps.far is None else sweeps.far
+    ox, oy = np.empty((vx.shape[0], len(cols))), np.empty((vx.shape[0], len(cols)))
+    count = np.empty(len(cols), dtype=np.int64)
+    load_side()(vx, vy, sweeps.hx, sweeps.hy, sweeps.dx, sweeps.dy, far, sweeps.split, cols, ox, oy, count)
+    return ox, oy, np.arange(len(cols), dtype=np.int64), count
 
 
-def filter_columns(side1: tuple, cols1: np.ndarray, side2: tuple, cols2: np.ndarray) -> np.ndarray:
-    """(P,) int8 verdicts for the pairs ``(cols1[p], cols2[p])`` (int64) of two sides
-    (:func:`side`)."""
+def filter_columns(
+    vx1, vy1, cols1: np.ndarray, vx2, vy2, cols2: np.ndarray, ok: np.ndarray | None = None
+) -> np.ndarray:
+    """(P,) int8 verdicts for the pairs of columns ``(cols1[p], cols2[p])`` (int64) of two
+    sets of padded polygons (K, n) float64; ``ok`` (P,) bool: False leaves a pair undecided."""
     out = np.empty(len(cols1), dtype=np.int8)
-    load()(*side1, cols1, *side2, cols2, out)
+    load()(vx1, vy1, cols1, vx2, vy2, cols2, np.ones(len(cols1), dtype=bool) if ok is None else ok, out)
+    return out
+
+
+def filter_trimmed(x1, y1, c1, n1, x2, y2, c2, n2) -> np.ndarray:
+    """(P,) int8 verdicts for two sides from :func:`polygons`, each read only as far as its
+    polygons need: a sweep of a convex shape of ``H`` rows has at most ``H + 2`` distinct
+    vertices (one more per repeated hull vertex), so a side's polygons that fit in
+    ``K/2 + 2`` rows are read on those rows alone (for ``K = 8``, 6 rows: a quarter fewer
+    signs); count None: every row; -1: undecided."""
+    out = np.full(len(c1), UNDECIDED, dtype=np.int8)
+    ok = np.ones(len(c1), dtype=bool)
+    cases = []  # per side: (which pairs or None for all, rows to read)
+    for x, n in ((x1, n1), (x2, n2)):
+        k = x.shape[0]
+        if n is None:
+            cases.append([(None, k)])
+            continue
+        ok &= n >= 0
+        t = min(k, k // 2 + 2)
+        fits = n <= t
+        cases.append([(fits, t), (~fits, k)])
+    for m1, r1 in cases[0]:
+        for m2, r2 in cases[1]:
+            part = ok if m1 is None else ok & m1
+            part = part if m2 is None else part & m2
+            idx = np.flatnonzero(part)
+            if idx.size:
+                out[idx] = filter_columns(x1[:r1], y1[:r1], np.take(c1, idx), x2[:r2], y2[:r2], np.take(c2, idx))
     return out
 
 
@@ -239,4 +296,4 @@ def filter_pairs(px, py, qx, qy) -> np.ndarray:
     """(P,) int8 verdicts for padded polygons ``px, py`` (K1, P) and ``qx, qy`` (K2, P), pair
     by column."""
     cols = np.arange(px.shape[1], dtype=np.int64)
-    return filter_columns(side(px, py), cols, side(qx, qy), cols)
+    return filter_columns(px, py, cols, qx, qy, cols)

@@ -181,6 +181,12 @@ def test_check_kernel__numba_missing(monkeypatch):
         check_kernel(None)
 
 
+def runs(x, y):
+    """A polygon's vertices with consecutive repeats dropped."""
+    pts = list(zip(x.tolist(), y.tolist(), strict=True))
+    return [v for i, v in enumerate(pts) if i == 0 or v != pts[i - 1]]
+
+
 @needs_numba
 @pytest.mark.parametrize("turning", [False, True], ids=["straight", "turning"])
 def test_kernel__decides_sweeps_read_in_place(turning):
@@ -205,8 +211,18 @@ def test_kernel__decides_sweeps_read_in_place(turning):
     for k1, k2 in set(zip(ki.tolist(), kj.tolist(), strict=True)):
         sel = np.flatnonzero((ki == k1) & (kj == k2))
         sa, sb = posed.slot[pairs[sel, 0]], posed.slot[pairs[sel, 1]]
-        sides = [_narrow_kernel.side(posed.vx[k], posed.vy[k], posed.sweeps.get(k)) for k in (k1, k2)]
-        v = _narrow_kernel.filter_columns(sides[0], sa, sides[1], sb)
+        x1, y1, c1, n1 = _narrow_kernel.polygons(posed.vx[k1], posed.vy[k1], sa, posed.sweeps.get(k1))
+        x2, y2, c2, n2 = _narrow_kernel.polygons(posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k2))
+        for x, y, n, k, s in ((x1, y1, n1, k1, sa), (x2, y2, n2, k2, sb)):
+            if n is None:
+                continue
+            gx, gy = posed.gather(k, s)  # built by numpy
+            for p in np.flatnonzero(n >= 0)[:300]:  # the same polygon (repeats dropped), padded
+                assert runs(x[:, p], y[:, p]) == runs(gx[:, p], gy[:, p])
+                assert (x[n[p] :, p] == x[n[p] - 1, p]).all() and (y[n[p] :, p] == y[n[p] - 1, p]).all()
+            assert (n <= k // 2 + 2).mean() > 0.9  # most sweeps fit the trimmed rows
+            assert (np.asarray(s) >= posed.sweeps[k].split).any()
+        v = _narrow_kernel.filter_trimmed(x1, y1, c1, n1, x2, y2, c2, n2)
         ref = polygons_collide_padded(*posed.gather(k1, sa), *posed.gather(k2, sb))
         decided = v != _narrow_kernel.UNDECIDED
         assert np.array_equal(v[decided] == _narrow_kernel.HIT, ref[decided]), (k1, k2)
