@@ -172,6 +172,7 @@ def _run_play(args: argparse.Namespace) -> int:
     try:
         if args.list_levels:
             return _list_levels()
+        _load_kernels()
         replay = load_recording(args.replay) if args.replay else None
         if replay and (args.rotation or args.level or args.difficulty):
             print(
@@ -205,9 +206,26 @@ def _run_play(args: argparse.Namespace) -> int:
             print(json.dumps(summary))
             return 0
         return _play(level if args.level or replay else None, seed_, args, replay)
-    except DataError as exc:
+    except (DataError, KernelChoiceError) as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 2
+
+
+class KernelChoiceError(Exception):
+    """``BROADSWORD_KERNEL`` names no kernel, or numba while numba is missing."""
+
+
+def _load_kernels() -> None:
+    """Load the compiled collision kernels when numba is chosen, before any window opens:
+    a first launch compiles them here (about 15 s, said on stderr), not in a frame."""
+    from .collision import Kernel, check_kernel, warm_kernel
+
+    try:
+        kernel = check_kernel(None)
+    except (ValueError, ImportError) as exc:
+        raise KernelChoiceError(str(exc)) from None
+    if kernel is Kernel.NUMBA:
+        warm_kernel()
 
 
 def _list_levels() -> int:

@@ -29,6 +29,7 @@ from support.gamerun import autopilot_digests, scenarios
 from support.perturb import MATH_TRANSCENDENTALS, NUMPY_TRANSCENDENTALS, perturbed_transcendentals
 
 from broadsword.collision import ROTATION_MODES
+from broadsword.collision._kernel import ENV_VAR, numba_available
 from broadsword.data import list_levels, load_level, resolve_level
 
 #: Frames per scenario: the busiest wave arrives at frame 180 and the bullet count passes
@@ -65,6 +66,34 @@ def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off():
                 f"state_hash from frame {hashes} ({len(base)} vs {len(other)} checkpoints)"
             )
     assert not differ, "\n".join(differ)
+
+
+def _kernel_digests(kernel: str, jobs: list) -> dict:
+    """The autopilot digests of ``jobs`` in spawned workers whose pipelines use ``kernel``."""
+    ctx = multiprocessing.get_context("spawn")
+    init = (ENV_VAR, kernel)
+    with ProcessPoolExecutor(max_workers=2, mp_context=ctx, initializer=_setenv, initargs=init) as pool:
+        futures = {job: pool.submit(autopilot_digests, *job, SEED, FRAMES) for job in jobs}
+        return {job: f.result() for job, f in futures.items()}
+
+
+def _setenv(name: str, value: str) -> None:
+    import os
+
+    os.environ[name] = value
+
+
+@pytest.mark.skipif(not numba_available(), reason="numba not installed (extra 'fast')")
+def test_every_level_plays_the_same_game_with_or_without_the_compiled_kernels():
+    """numba is optional: a replay must play the same on a machine without it. Every
+    shipped level's busiest stretch, both rotation modes: the same state_hash and the same
+    bits at every checkpoint with the numpy pipeline and with the compiled one (which gives
+    the same pairs in the same order)."""
+    jobs = [(name, "peak", rotation) for name in list_levels() for rotation in ROTATION_MODES]
+    numpy_runs, numba_runs = _kernel_digests("numpy", jobs), _kernel_digests("numba", jobs)
+    differ = [job for job in jobs if numpy_runs[job] != numba_runs[job]]
+    assert all(len(numpy_runs[job]) >= 2 for job in jobs)
+    assert not differ, differ
 
 
 #: Modules that never feed game state: pygame drawing and sound, the editor's pointer

@@ -23,7 +23,7 @@ the game. Modules, one idea each:
 * ``workspace``   reused scratch buffers, and retain_heap() for applications
 """
 
-from ._kernel import Kernel, check_kernel
+from ._kernel import Kernel, check_kernel, warm_kernel
 from .armature import Armature, convex_hull, lut_max_displacement
 from .broadphase import (
     AUTO_BIN_FACTOR,
@@ -71,6 +71,7 @@ __all__ = [
     "TierKind",
     "TreeLayout",
     "check_kernel",
+    "warm_kernel",
     "check_tiers",
     "kdops",
     "kdops_overlap",
