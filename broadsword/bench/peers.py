@@ -9,7 +9,8 @@ library offers, behind one small interface (:class:`Peer`):
         peer.setup(scene)              # static per-armature data, once
         hits = peer.step(pos, ang, scene.layer)   # {(first-layer obj, second-layer obj), ...}
 
-``step`` returns a set of object-index pairs oriented like broadsword's hits: for table
+``step`` returns a set of object-index pairs (``step_pairs`` the same as an (m, 2) array,
+which the benchmark times) oriented like broadsword's hits: for table
 entry ``(a, b)`` the layer-``a`` object comes first (for an ``(a, a)`` entry, the smaller
 index). The layers and armatures are fixed by ``setup``; ``step`` gets the frame's poses.
 
@@ -31,6 +32,9 @@ import os
 import numpy as np
 
 from ..collision import orient
+
+#: No pairs, (0, 2) int64.
+_NO_PAIRS = np.empty((0, 2), dtype=np.int64)
 
 __all__ = ["PEERS", "Peer", "PygameMaskPeer", "PymunkPeer", "ShapelyPeer", "convex_pieces"]
 
@@ -135,7 +139,13 @@ class Peer:
         raise NotImplementedError
 
     def step(self, pos: np.ndarray, ang: np.ndarray, layer: np.ndarray) -> set[tuple[int, int]]:
-        """The frame's hit pairs for poses ``pos`` (n, 2) and ``ang`` (n,) degrees."""
+        """The frame's hit pairs for poses ``pos`` (n, 2) and ``ang`` (n,) degrees, as a set."""
+        return set(map(tuple, self.step_pairs(pos, ang, layer).tolist()))
+
+    def step_pairs(self, pos: np.ndarray, ang: np.ndarray, layer: np.ndarray) -> np.ndarray:
+        """The frame's hit pairs as (m, 2) int64 rows, oriented by the table, each once:
+        what the benchmark times (turning them into Python sets is bookkeeping, done after
+        the clock stops, as for every method)."""
         raise NotImplementedError
 
     # -- shared helpers -----------------------------------------------------------------
@@ -158,15 +168,15 @@ class Peer:
         if layer is not self.layer and not np.array_equal(layer, self.layer):
             raise ValueError(f"{self.name}: layers changed since setup(); call setup() again")
 
-    def _pairs(self, i: np.ndarray, j: np.ndarray) -> set[tuple[int, int]]:
-        """Orient object pairs by the table, drop self pairs, dedupe; a set of tuples."""
+    def _pairs(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """Orient object pairs by the table, drop self pairs, dedupe: (m, 2) int64."""
         if not len(i):
-            return set()
+            return _NO_PAIRS.copy()
         li, lj = self.layer[i], self.layer[j]
         swap = self._flip[li, lj] | ((li == lj) & (i > j))
         a, b = np.where(swap, j, i), np.where(swap, i, j)
         key = np.unique((a * self.n + b)[a != b])
-        return set(zip((key // self.n).tolist(), (key % self.n).tolist()))
+        return np.column_stack([key // self.n, key % self.n])
 
 
 class PymunkPeer(Peer):
@@ -255,7 +265,7 @@ class PymunkPeer(Peer):
     def _objects(self, ids: np.ndarray) -> np.ndarray:
         return self._id_obj[np.searchsorted(self._ids, ids)]
 
-    def step(self, pos, ang, layer) -> set[tuple[int, int]]:
+    def step_pairs(self, pos, ang, layer) -> np.ndarray:
         self._check_layer(layer)
         batch = self._pm.batch
         o = self._order
@@ -312,7 +322,7 @@ class ShapelyPeer(Peer):
         self._xy = np.empty((len(self._obj), 2))
         self._polygon = self._sh.GeometryType.POLYGON
 
-    def step(self, pos, ang, layer) -> set[tuple[int, int]]:
+    def step_pairs(self, pos, ang, layer) -> np.ndarray:
         self._check_layer(layer)
         sh = self._sh
         rad = np.radians(ang)
@@ -331,7 +341,7 @@ class ShapelyPeer(Peer):
             ii.append(A[q[0]])
             jj.append(B[q[1]])
         if not ii:
-            return set()
+            return _NO_PAIRS.copy()
         return self._pairs(np.concatenate(ii), np.concatenate(jj))
 
 
@@ -427,7 +437,7 @@ class PygameMaskPeer(Peer):
                 self._h[key], self._w[key] = sub.shape
         self._key0 = self.armature * 360
 
-    def step(self, pos, ang, layer) -> set[tuple[int, int]]:
+    def step_pairs(self, pos, ang, layer) -> np.ndarray:
         self._check_layer(layer)
         Rect = self._pg.Rect
         px = np.floor(pos + 0.5).astype(np.int64)
