@@ -41,7 +41,7 @@ __all__ = [
     "UNDECIDED",
     "filter_columns",
     "filter_pairs",
-    "filter_trimmed",
+    "rows_to_read",
     "load",
     "load_side",
     "polygons",
@@ -50,8 +50,10 @@ __all__ = [
 #: Kernel verdicts, one int8 per pair.
 MISS, HIT, UNDECIDED = 0, 1, 2
 
-#: (vx1, vy1, cols1, vx2, vy2, cols2, ok, out)
-_SIGNATURE = "void(float64[:, :], float64[:, :], int64[:], float64[:, :], float64[:, :], int64[:], boolean[:], int8[:])"
+#: (vx1, vy1, cols1, rows1, vx2, vy2, cols2, rows2, out)
+_SIGNATURE = (
+    "void(float64[:, :], float64[:, :], int64[:], int64[:], float64[:, :], float64[:, :], int64[:], int64[:], int8[:])"
+)
 #: (vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count)
 _SIDE_SIGNATURE = (
     "void(float64[:, :], float64[:, :], float64[:, :], float64[:, :], float64[:], float64[:], boolean[:], int64,"
@@ -115,26 +117,30 @@ def _side_py(vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count):  # pragma
         count[p] = k if good else -1
 
 
-def _filter_py(vx1, vy1, cols1, vx2, vy2, cols2, ok, out):  # pragma: no cover - compiled by numba
+def _filter_py(vx1, vy1, cols1, rows1, vx2, vy2, cols2, rows2, out):  # pragma: no cover - compiled by numba
     """Verdicts (MISS / HIT / UNDECIDED) into ``out`` (P,) for the polygons of columns
     ``(cols1[p], cols2[p])`` of ``vx1, vy1`` (K1, n1) and ``vx2, vy2`` (K2, n2), padded with
-    their last vertex; ``ok[p]`` False leaves pair ``p`` undecided. Signs are computed
-    without branches (random signs would mispredict)."""
+    their last vertex, read on their first ``rows1[p]``, ``rows2[p]`` rows (-1: leave the
+    pair undecided). Signs are computed without branches (random signs would mispredict);
+    the row counts vary little within a call (a class's K, or a sweep's K/2 + 2), so the
+    loops they bound stay predictable."""
     n = len(out)
-    k1 = vx1.shape[0]
-    k2 = vx2.shape[0]
-    sa = np.zeros((k1, k2 + 1), dtype=np.int8)
-    sb = np.zeros((k1 + 1, k2), dtype=np.int8)
-    vp = np.zeros(k1, dtype=np.bool_)
-    vq = np.zeros(k2, dtype=np.bool_)
-    x1 = np.empty(k1 + 1)
-    y1 = np.empty(k1 + 1)
-    x2 = np.empty(k2 + 1)
-    y2 = np.empty(k2 + 1)
-    ex1 = np.empty(k1)
-    ey1 = np.empty(k1)
+    m1 = vx1.shape[0]
+    m2 = vx2.shape[0]
+    sa = np.zeros((m1, m2 + 1), dtype=np.int8)
+    sb = np.zeros((m1 + 1, m2), dtype=np.int8)
+    vp = np.zeros(m1, dtype=np.bool_)
+    vq = np.zeros(m2, dtype=np.bool_)
+    x1 = np.empty(m1 + 1)
+    y1 = np.empty(m1 + 1)
+    x2 = np.empty(m2 + 1)
+    y2 = np.empty(m2 + 1)
+    ex1 = np.empty(m1)
+    ey1 = np.empty(m1)
     for p in range(n):
-        if not ok[p]:  # left to the reference
+        k1 = rows1[p]
+        k2 = rows2[p]
+        if k1 < 0 or k2 < 0:  # left to the reference
             out[p] = UNDECIDED
             continue
         c1 = cols1[p]
@@ -254,42 +260,29 @@ def polygons(vx, vy, cols: np.ndarray, sweeps=None) -> tuple[np.ndarray, np.ndar
     return ox, oy, np.arange(len(cols), dtype=np.int64), count
 
 
-def filter_columns(
-    vx1, vy1, cols1: np.ndarray, vx2, vy2, cols2: np.ndarray, ok: np.ndarray | None = None
-) -> np.ndarray:
+def filter_columns(vx1, vy1, cols1: np.ndarray, vx2, vy2, cols2: np.ndarray, rows1=None, rows2=None) -> np.ndarray:
     """(P,) int8 verdicts for the pairs of columns ``(cols1[p], cols2[p])`` (int64) of two
-    sets of padded polygons (K, n) float64; ``ok`` (P,) bool: False leaves a pair undecided."""
+    sets of padded polygons (K, n) float64, each read on its ``rows`` (P,) int64 first rows
+    (None: all K; -1 leaves a pair undecided)."""
     out = np.empty(len(cols1), dtype=np.int8)
-    load()(vx1, vy1, cols1, vx2, vy2, cols2, np.ones(len(cols1), dtype=bool) if ok is None else ok, out)
+    r1 = np.full(len(cols1), vx1.shape[0], dtype=np.int64) if rows1 is None else rows1
+    r2 = np.full(len(cols1), vx2.shape[0], dtype=np.int64) if rows2 is None else rows2
+    load()(vx1, vy1, cols1, r1, vx2, vy2, cols2, r2, out)
     return out
 
 
-def filter_trimmed(x1, y1, c1, n1, x2, y2, c2, n2) -> np.ndarray:
-    """(P,) int8 verdicts for two sides from :func:`polygons`, each read only as far as its
-    polygons need: a sweep of a convex shape of ``H`` rows has at most ``H + 2`` distinct
-    vertices (one more per repeated hull vertex), so a side's polygons that fit in
-    ``K/2 + 2`` rows are read on those rows alone (for ``K = 8``, 6 rows: a quarter fewer
-    signs); count None: every row; -1: undecided."""
-    out = np.full(len(c1), UNDECIDED, dtype=np.int8)
-    ok = np.ones(len(c1), dtype=bool)
-    cases = []  # per side: (which pairs or None for all, rows to read)
-    for x, n in ((x1, n1), (x2, n2)):
-        k = x.shape[0]
-        if n is None:
-            cases.append([(None, k)])
-            continue
-        ok &= n >= 0
-        t = min(k, k // 2 + 2)
-        fits = n <= t
-        cases.append([(fits, t), (~fits, k)])
-    for m1, r1 in cases[0]:
-        for m2, r2 in cases[1]:
-            part = ok if m1 is None else ok & m1
-            part = part if m2 is None else part & m2
-            idx = np.flatnonzero(part)
-            if idx.size:
-                out[idx] = filter_columns(x1[:r1], y1[:r1], np.take(c1, idx), x2[:r2], y2[:r2], np.take(c2, idx))
-    return out
+def rows_to_read(x: np.ndarray, count: np.ndarray | None) -> np.ndarray | None:
+    """Rows of each polygon of a side from :func:`polygons` the filter must read: ``K`` for
+    a copied class column, ``K/2 + 2`` for a sweep that fits (a sweep of a convex shape of
+    ``H`` rows has at most ``H + 2`` distinct vertices, one more per repeated hull vertex:
+    a quarter fewer signs for ``K = 8``), ``K`` for one that does not; -1 stays -1."""
+    if count is None:
+        return None
+    k = x.shape[0]
+    t = min(k, k // 2 + 2)
+    rows = np.where(count > t, k, t).astype(np.int64)
+    rows[count < 0] = -1
+    return rows
 
 
 def filter_pairs(px, py, qx, qy) -> np.ndarray:

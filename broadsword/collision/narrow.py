@@ -310,10 +310,8 @@ def _compiled_group(posed: Posed, k1: int, sa: np.ndarray, k2: int, sb: np.ndarr
     undecided are gathered and settled by the numpy reference."""
     x1, y1, c1, n1 = _narrow_kernel.polygons(posed.vx[k1], posed.vy[k1], sa, posed.sweeps.get(k1))
     x2, y2, c2, n2 = _narrow_kernel.polygons(posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k2))
-    if n1 is None and n2 is None:
-        verdict = _narrow_kernel.filter_columns(x1, y1, c1, x2, y2, c2)
-    else:
-        verdict = _narrow_kernel.filter_trimmed(x1, y1, c1, n1, x2, y2, c2, n2)
+    rows1, rows2 = _narrow_kernel.rows_to_read(x1, n1), _narrow_kernel.rows_to_read(x2, n2)
+    verdict = _narrow_kernel.filter_columns(x1, y1, c1, x2, y2, c2, rows1, rows2)
     out = verdict == _narrow_kernel.HIT
     rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
     if rest.size:

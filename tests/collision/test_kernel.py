@@ -222,7 +222,8 @@ def test_kernel__decides_sweeps_read_in_place(turning):
                 assert (x[n[p] :, p] == x[n[p] - 1, p]).all() and (y[n[p] :, p] == y[n[p] - 1, p]).all()
             assert (n <= k // 2 + 2).mean() > 0.9  # most sweeps fit the trimmed rows
             assert (np.asarray(s) >= posed.sweeps[k].split).any()
-        v = _narrow_kernel.filter_trimmed(x1, y1, c1, n1, x2, y2, c2, n2)
+        rows1, rows2 = _narrow_kernel.rows_to_read(x1, n1), _narrow_kernel.rows_to_read(x2, n2)
+        v = _narrow_kernel.filter_columns(x1, y1, c1, x2, y2, c2, rows1, rows2)
         ref = polygons_collide_padded(*posed.gather(k1, sa), *posed.gather(k2, sb))
         decided = v != _narrow_kernel.UNDECIDED
         assert np.array_equal(v[decided] == _narrow_kernel.HIT, ref[decided]), (k1, k2)
