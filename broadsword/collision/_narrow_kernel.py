@@ -74,6 +74,8 @@ def _side_py(vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count):  # pragma
     rows = vx.shape[0]
     h = hx.shape[0]
     back = np.zeros(max(h, 1), dtype=np.bool_)
+    word = np.zeros(1)  # a double and its bits, for the power-of-two scale below
+    bits = word.view(np.int64)
     for p in range(len(cols)):
         col = cols[p]
         if col < split:
@@ -86,9 +88,20 @@ def _side_py(vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count):  # pragma
         good = not (len(far) and far[c])
         d_x = dx[c]
         d_y = dy[c]
-        e = math.frexp(max(abs(d_x), abs(d_y)))[1]  # posing._unit_scale: exact power-of-two scaling
-        s_x = math.ldexp(d_x, -e)
-        s_y = math.ldexp(d_y, -e)
+        # posing._unit_scale: d times the power of two 2**-e that brings its larger component
+        # into [0.5, 1) (exact). For a normal larger component, e and 2**-e come from the
+        # exponent bits (libm's frexp and ldexp were a third of this loop); else from libm.
+        big = max(abs(d_x), abs(d_y))
+        if 2.0**-1000 < big < 2.0**1000:
+            word[0] = big
+            e = ((bits[0] >> 52) & 0x7FF) - 1022  # big = f 2**e, f in [0.5, 1)
+            bits[0] = (1023 - e) << 52  # 2**-e, a normal double
+            s_x = d_x * word[0]  # times a power of two: exactly ldexp's correctly rounded value
+            s_y = d_y * word[0]
+        else:
+            e = math.frexp(big)[1]
+            s_x = math.ldexp(d_x, -e)
+            s_y = math.ldexp(d_y, -e)
         tmax = -np.inf
         umax = -np.inf
         for i in range(h):

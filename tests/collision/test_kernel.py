@@ -245,3 +245,33 @@ def test_bounds_kernel__boxes_overlap_equals_numpy():
     assert 0 < want.sum() < len(want)
     assert np.array_equal(_bounds_kernel.boxes_overlap(boxes, pairs), want)
     assert np.array_equal(_bounds_kernel.boxes_overlap(boxes.T.copy().T, pairs), want)  # a (4, n) view
+
+
+@needs_numba
+@pytest.mark.parametrize("scale_exp", [-1074, -1040, -1001, -1000, -999, -300, 0, 300, 999, 1000, 1001, 1020])
+def test_side_builder__sweeps_equal_numpy_at_every_path_magnitude(scale_exp):
+    """The compiled builder's sweeps, repeats dropped, equal ``posing.Sweeps.build``'s for
+    paths from the smallest subnormal to near the largest double (both sides of the
+    exponent-bits shortcut at 2**+-1000); most are built (the rest go to the reference)."""
+    from broadsword.collision.posing import Sweeps
+    from broadsword.collision.workspace import Workspace
+
+    rng = np.random.default_rng(abs(scale_exp) + 1)
+    m = 300
+    ang = rng.uniform(0, 2 * np.pi, m)
+    w, h = rng.uniform(1, 6, m), rng.uniform(1, 12, m)
+    corners = np.array([(-1, -1), (1, -1), (1, 1), (-1, 1)], dtype=float)
+    hx = np.cos(ang) * corners[:, :1] * w - np.sin(ang) * corners[:, 1:] * h + rng.uniform(-500, 500, m)
+    hy = np.sin(ang) * corners[:, :1] * w + np.cos(ang) * corners[:, 1:] * h + rng.uniform(-500, 500, m)
+    d = rng.normal(0, 1, (2, m)) * 2.0**scale_exp
+    d[:, :10] = 0.0  # no path at all
+    d[0, 10:20] = 0.0  # along an axis
+    sweeps = Sweeps(0, hx, hy, d[0], d[1], Workspace())
+    cols = np.arange(m, dtype=np.int64)
+    vx = np.empty((8, m))
+    x, y, _, count = _narrow_kernel.polygons(vx, vx, cols, sweeps)
+    gx, gy = sweeps.build(cols)
+    built = np.flatnonzero(count >= 0)
+    assert len(built) > m // 2
+    for p in built:
+        assert runs(x[:, p], y[:, p]) == runs(gx[:, p], gy[:, p]), p
