@@ -319,7 +319,8 @@ def plots(directory: str, results: list[dict], sections: dict) -> list[str]:
         errors = m["false_positives"] + m["false_negatives"]
         ax.scatter(m["median_ms"], errors + 1, s=45, marker=markers[k % len(markers)], label=name)
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
-    ax.set_xscale("log"), ax.set_yscale("log")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
     ax.set_xlabel("median ms per frame"), ax.set_ylabel("false positives + negatives + 1 (vs exact)")
     ax.set_title(f"Time vs accuracy: {scale['enemies']} ships, {scale['bullets']} bullets")
     written.append(_save(fig, out / "time_vs_accuracy.png"))
@@ -332,7 +333,8 @@ def plots(directory: str, results: list[dict], sections: dict) -> list[str]:
             label = f"{method} (k = {fit['k']:.2f} for n >= 1000)" if fit else method
             if pts:
                 ax.plot(*zip(*pts), marker="o", label=label)
-        ax.set_xscale("log"), ax.set_yscale("log")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
         ax.set_xlabel("objects"), ax.set_ylabel("median ms per frame"), ax.legend(fontsize=8)
         ax.set_title("How cost grows (t = c n^k)")
         written.append(_save(fig, out / "scaling.png"))
