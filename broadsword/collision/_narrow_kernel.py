@@ -19,10 +19,12 @@ its path, a path longer than the doubles, a vertex past them, a non-finite sign)
 undecided: the reference builds it with numpy and decides. (Building sweeps inside the
 filter, in a closure, cost a numba call per polygon: measured slower.)
 
-Every polygon of a side is read with its class's row count ``K`` (a sweep of class ``K``
-has ``2H = K`` vertices), repeated vertices included, as the reference reads them: loop
-bounds fixed per call run faster than shorter, varying ones (dropping the repeats was
-measured 1.5-2x slower).
+A class's polygons are read on all ``K`` rows, padding included, as the reference reads
+them: dropping each polygon's repeats made the loop bounds vary pair to pair (ships of 5 to
+8 vertices) and was measured 1.5-2x slower. A built sweep is the exception: the builder
+drops its repeats, and one that fits in ``K/2 + 2`` rows (a convex shape of ``H = K/2``
+rows swept has at most ``H + 2`` distinct vertices; nearly all do) is read on those rows,
+a bound that hardly varies (:func:`rows_to_read`).
 """
 
 from __future__ import annotations

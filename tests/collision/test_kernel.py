@@ -189,10 +189,11 @@ def runs(x, y):
 
 @needs_numba
 @pytest.mark.parametrize("turning", [False, True], ids=["straight", "turning"])
-def test_kernel__decides_sweeps_read_in_place(turning):
-    """The filter reads the class arrays by column and builds each sweep on the fly: it
-    decides nearly every candidate pair of a swept frame (octagons too, when bullets turn),
-    and every pair it decides is decided as the reference decides the numpy-built sweep."""
+def test_kernel__decides_swept_pairs(turning):
+    """The filter reads the class arrays by column and the side builder builds the
+    candidates' sweeps (the numpy-built polygons, repeats dropped): the filter decides
+    nearly every candidate pair of a swept frame (octagons too, when bullets turn), and
+    every pair it decides is decided as the reference decides it."""
     from broadsword.collision import pose
     from broadsword.collision.scenarios import ReferenceScene
 

@@ -74,15 +74,22 @@ class Driver:
         return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), frame.layout())
 
     @staticmethod
+    def _arrays(boxes, layers) -> tuple[np.ndarray, np.ndarray]:
+        """``boxes`` as (n, 4) float64 and ``layers`` as (n,) int64; ``ValueError`` when
+        their lengths differ."""
+        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
+        if len(boxes) != len(layers):
+            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
+        return boxes, layers
+
+    @staticmethod
     def _members(boxes, layers, table: LayerTable):
         """The checked ``boxes`` (n, 4) float64 and ``layers`` (n,) int64, each tested layer's
         members ``{layer: (k,) int64}`` and the non-empty ones in the table's order.
 
         Raises ``ValueError`` on a length mismatch or a non-finite box."""
-        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
-        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
-        if len(boxes) != len(layers):
-            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
+        boxes, layers = Driver._arrays(boxes, layers)
         if not np.isfinite(boxes).all():
             raise ValueError("boxes must be finite")
         members = {}

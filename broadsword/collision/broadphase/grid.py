@@ -73,10 +73,7 @@ class BinGrid(Driver):
             return super().query(boxes, layers, table)
         from . import _grid_kernel as gk
 
-        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
-        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
-        if len(boxes) != len(layers):
-            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
+        boxes, layers = self._arrays(boxes, layers)
         entries = np.array(table.entries, dtype=np.int64).reshape(-1, 2)
         pairs, ranges, sel, info = gk.grid_query(
             boxes, layers, entries, self.bin_size, self.field, self.max_cells, _DIRECT_SIDE, _DIRECT_PAIRS
