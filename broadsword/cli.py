@@ -219,6 +219,7 @@ def _load_kernels() -> None:
     """Load the compiled collision kernels when numba is chosen, before any window opens:
     a first launch compiles them here (about 15 s, said on stderr), not in a frame."""
     from .collision import Kernel, check_kernel, warm_kernel
+    from .collision._kernel import NUMBA_MISSING, numba_problem
 
     try:
         kernel = check_kernel(None)
@@ -226,6 +227,8 @@ def _load_kernels() -> None:
         raise KernelChoiceError(str(exc)) from None
     if kernel is Kernel.NUMBA:
         warm_kernel()
+    elif (problem := numba_problem()) not in (None, NUMBA_MISSING):  # installed, but broken
+        print(f"broadsword: {problem}; collision runs on numpy (the same answers, slower)", file=sys.stderr)
 
 
 def _list_levels() -> int:

@@ -27,6 +27,8 @@ __all__ = [
     "jit",
     "kernel_from_env",
     "numba_available",
+    "numba_problem",
+    "NUMBA_MISSING",
     "warm_kernel",
 ]
 
@@ -42,12 +44,40 @@ class Kernel(Enum):
 
 
 def numba_available() -> bool:
-    """True when numba can be imported (without importing it twice)."""
-    if "numba" in sys.modules:
-        return True
-    import importlib.util
+    """True when numba imports. An installed numba that fails to (one older than the
+    installed numpy refuses it at import) counts as missing: a pipeline left to choose then
+    runs the numpy reference instead of failing (:func:`numba_problem` says why)."""
+    return numba_problem() is None
 
-    return importlib.util.find_spec("numba") is not None
+
+def numba_problem() -> str | None:
+    """Why numba cannot be used (not installed, or its import failed), or None. Imports it
+    (once per process) the first time it is asked."""
+    if "numba" in sys.modules:
+        return None
+    if not _Probe.done:
+        _Probe.done = True
+        import importlib.util
+
+        if importlib.util.find_spec("numba") is None:
+            _Probe.problem = NUMBA_MISSING
+        else:
+            try:
+                import numba  # noqa: F401
+            except Exception as exc:  # ImportError, or numba's own check of numpy's version
+                _Probe.problem = f"numba does not import here ({type(exc).__name__}: {exc})"
+    return _Probe.problem
+
+
+#: :func:`numba_problem` when numba is simply not installed.
+NUMBA_MISSING = "numba is not installed (pip install 'broadsword[fast]')"
+
+
+class _Probe:
+    """What the numba probe found in this process."""
+
+    done = False
+    problem: str | None = None
 
 
 def kernel_from_env() -> Kernel:
@@ -65,7 +95,7 @@ def kernel_from_env() -> Kernel:
         choices = ", ".join(k.value for k in Kernel)
         raise ValueError(f"environment variable {ENV_VAR}={raw!r}: expected one of {choices}") from None
     if kernel is Kernel.NUMBA and not numba_available():
-        raise ImportError(f"{ENV_VAR}=numba but numba is not installed (pip install 'broadsword[fast]')")
+        raise ImportError(f"{ENV_VAR}=numba but {numba_problem() or NUMBA_MISSING}")
     return kernel
 
 
@@ -83,7 +113,7 @@ def check_kernel(kernel: Kernel | str | None) -> Kernel:
         choices = ", ".join(k.value for k in Kernel)
         raise ValueError(f"kernel must be one of {choices}, got {kernel!r}") from None
     if k is Kernel.NUMBA and not numba_available():
-        raise ImportError("kernel='numba' but numba is not installed (pip install 'broadsword[fast]')")
+        raise ImportError(f"kernel='numba' but {numba_problem() or NUMBA_MISSING}")
     return k
 
 

@@ -276,3 +276,17 @@ def test_side_builder__sweeps_equal_numpy_at_every_path_magnitude(scale_exp):
     assert len(built) > m // 2
     for p in built:
         assert runs(x[:, p], y[:, p]) == runs(gx[:, p], gy[:, p]), p
+
+
+def test_check_kernel__a_numba_that_does_not_import_leaves_numpy(monkeypatch):
+    """An installed numba that fails to import (one older than numpy refuses it) is not
+    chosen automatically: pipelines run the numpy reference; forcing it says why."""
+    why = "numba does not import here (ImportError: Numba needs NumPy 2.3 or less)"
+    monkeypatch.setattr(_kernel, "numba_problem", lambda: why)
+    monkeypatch.delenv(_kernel.ENV_VAR, raising=False)
+    assert check_kernel(None) is Kernel.NUMPY
+    with pytest.raises(ImportError, match="Numba needs NumPy"):
+        check_kernel("numba")
+    from broadsword.collision import Armature
+
+    assert Pipeline([Armature.box(4, 4)]).kernel is Kernel.NUMPY
