@@ -127,17 +127,28 @@ class _Compiled:
 
 def jit(fn, signature: str):
     """``fn`` compiled by numba for ``signature`` (loaded from numba's on-disk cache when it
-    holds the kernel, else compiled, saying so once on stderr). Explicit signatures compile
-    at load time, never in a frame, and refuse arguments of another type or layout."""
+    holds the kernel, else compiled, saying so on stderr: once, then one line per kernel
+    with the seconds it took). Explicit signatures compile at load time, never in a frame,
+    and refuse arguments of another type or layout."""
     key = f"{fn.__module__}.{fn.__qualname__}"
     got = _Compiled.fns.get(key)
     if got is None:
+        import time
+
         import numba
 
-        if not _Compiled.told and not _cache_present(fn):
-            print("broadsword: compiling the numba collision kernels (once, then cached)...", file=sys.stderr)
+        compiling = not _cache_present(fn)
+        if compiling and not _Compiled.told:
+            print(
+                "broadsword: compiling the numba collision kernels (once, then cached; about 15 s)...",
+                file=sys.stderr,
+            )
             _Compiled.told = True
+        t0 = time.perf_counter()
         got = numba.njit(signature, cache=True, nogil=True, error_model="numpy")(fn)
+        if compiling:
+            where = fn.__module__.rsplit(".", 1)[-1]
+            print(f"broadsword:   {where}.{fn.__name__} {time.perf_counter() - t0:.1f} s", file=sys.stderr)
         _Compiled.fns[key] = got
     return got
 
