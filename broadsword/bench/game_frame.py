@@ -57,6 +57,7 @@ def run_game_frames(
     import pygame
 
     from ..data import check_level_sprites, load_level, resolve_level
+    from ..game.heap import settle
     from ..game.render import Renderer
     from ..game.sprites import SpriteBank
     from ..sim import FIELD, Pilot, World
@@ -78,6 +79,7 @@ def run_game_frames(
         if world.enemy_bullets.n > peak:
             peak, peak_step = world.enemy_bullets.n, steps
     renderer.draw(screen, world, 1.0)  # fills the rotation tables before timing
+    settle()  # as the game does when a stage starts (game/heap.py)
     clock = time.perf_counter
     rows, counts, own = [], [], []
     pilots = []

@@ -159,6 +159,6 @@ class CollisionStep:
         # sliver at a corner. Ships, items and the player are not swept: they move slowly,
         # and a jump (a respawn) must not touch what lies between the two places.
         swept = (layer == ids.enemy_bullet) | (layer == ids.player_bullet)
-        swept &= (pos != prev).any(axis=1)
+        swept &= (pos[:, 0] != prev[:, 0]) | (pos[:, 1] != prev[:, 1])  # not .any(axis=1): 8x slower on (n, 2)
         result = self.pipeline.run(FrameObjects(arm, layer, pos, angle, prev, angle, swept))
         return CollisionRecord(result, spans)

@@ -15,6 +15,7 @@ import pygame
 
 from ...sim import DT, Input, Pilot, World
 from ...sim.replay import Playback, Recorder
+from .. import heap
 from ..controls import Action, Controls
 
 #: Slow motion (F3) runs the world at this share of real time.
@@ -94,6 +95,7 @@ class Play:
         self.accumulator = 0.0
         self.slow_motion = False
         self.ended = False  # the stage is over (results, continue, game over or replay end on top)
+        heap.settle()  # the stage is loaded: no full garbage collection walks it in play
 
     @property
     def watched(self) -> bool:
