@@ -20,7 +20,15 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_narrow import BASE, M, R, exact_map, grid_pairs, pad, random_pairs, simple_grid_pairs, touching_pairs
 
-from broadsword.collision import Kernel, Pipeline, _kernel, _narrow_kernel, check_kernel, polygons_collide_padded
+from broadsword.collision import (
+    BinGrid,
+    Kernel,
+    Pipeline,
+    _kernel,
+    _narrow_kernel,
+    check_kernel,
+    polygons_collide_padded,
+)
 
 needs_numba = pytest.mark.skipif(not _kernel.numba_available(), reason="numba not installed (extra 'fast')")
 
@@ -287,6 +295,8 @@ def test_check_kernel__a_numba_that_does_not_import_leaves_numpy(monkeypatch):
     assert check_kernel(None) is Kernel.NUMPY
     with pytest.raises(ImportError, match="Numba needs NumPy"):
         check_kernel("numba")
+    with pytest.raises(ImportError, match="Numba needs NumPy"):
+        BinGrid(kernel="numba")
     from broadsword.collision import Armature
 
     assert Pipeline([Armature.box(4, 4)]).kernel is Kernel.NUMPY

@@ -8,7 +8,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .._indexing import pick, selector
-from .._kernel import Kernel
+from .._kernel import Kernel, check_kernel
 from ..layers import LayerTable
 from ._shared import _EMPTY, Driver, Frame, auto_bin_size, expand, join
 from .base import BroadPhaseStats, GridLayout
@@ -54,14 +54,14 @@ class BinGrid(Driver):
         bin_size: float | None = None,
         field: Sequence[float] | None = None,
         max_cells: int = 1 << 16,
-        kernel: Kernel = Kernel.NUMPY,
+        kernel: Kernel | str = Kernel.NUMPY,
     ):
         if bin_size is not None and not (np.isfinite(bin_size) and bin_size > 0):
             raise ValueError(f"bin_size must be a positive number or None, got {bin_size!r}")
         self.bin_size = bin_size
         self.field = None if field is None else tuple(float(v) for v in field)
         self.max_cells = int(max_cells)
-        self.kernel = Kernel(kernel)
+        self.kernel = check_kernel(kernel)  # a clear error when numba is asked for but missing
         if self.kernel is Kernel.NUMBA:
             from . import _grid_kernel
 
