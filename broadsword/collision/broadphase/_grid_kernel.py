@@ -1,14 +1,16 @@
 """The bin grid's query compiled with numba (``pip install broadsword[fast]``): the same pairs,
 in the same order, as the numpy :class:`~broadsword.collision.broadphase.BinGrid`.
 
-One call does what the numpy grid does in a few dozen: every box's bin range (``cell_ranges``:
-``(v - origin) / size``, clipped to the grid, truncated), each layer's members, and per table
+One call does what the numpy grid does in a few dozen: the frame's layout (each layer's
+members, the automatic bin size of ``auto_bin_size``, the extent and shape of
+``BinGrid.layout_for``), every box's bin range (``cell_ranges``:
+``(v - origin) / size``, clipped to the grid, truncated), and per table
 entry either the direct comparison of bin ranges (small entries: ``ranges_meet``) or the
 registration of both sides in the bins and the join of their keys, a pair kept only in the
 first bin its two boxes share. Order matters as much as the set: the game applies hits in
 the order the pipeline gives them, so a replay must not depend on whether numba is
 installed. Each loop below walks the pairs in the order the numpy code emits them; the tests
-(``tests/collision/test_kernel.py``) compare the two arrays, not sets.
+(``tests/collision/test_grid_kernel.py``) compare the two arrays, not sets.
 
 numba is imported when :func:`load` is first called (by a pipeline or grid that chose it).
 """
