@@ -1,7 +1,9 @@
 """Posing and boxing compiled with numba (``pip install broadsword[fast]``): the same
-:class:`~broadsword.collision.posing.Posed` and the same boxes, bit for bit, as
+:class:`~broadsword.collision.posing.Posed` (every vertex bit for bit) and the same boxes as
 :func:`~broadsword.collision.posing.pose_checked` followed by
-:func:`~broadsword.collision.bounds.aabbs`.
+:func:`~broadsword.collision.bounds.aabbs` -- the same values; where a box's extreme is a
+zero reached both as -0.0 and 0.0, its sign may differ (numpy's min and max do not say
+which of two equal values they return), which no comparison downstream can see.
 
 One call sorts the objects into their size classes (plain objects first, then swept ones,
 each ascending, as the numpy code orders them), poses every plain polygon with the numpy

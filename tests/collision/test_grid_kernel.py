@@ -119,3 +119,24 @@ def test_grid_kernel__non_finite_boxes_refused_as_numpy_does():
     for kernel in (Kernel.NUMPY, Kernel.NUMBA):
         with pytest.raises(ValueError, match="boxes must be finite"):
             BinGrid(kernel=kernel).query(boxes, np.array([0, 1]), SHMUP)
+
+
+def test_grid_kernel__a_layer_id_far_past_the_table_allocates_nothing():
+    """Objects in a layer no entry names take no part, whatever the id (the kernel once sized
+    its per-layer table by the largest id present: 10**12 failed to allocate)."""
+    boxes = np.array([[0.0, 0.0, 1.0, 1.0], [0.5, 0.5, 2.0, 2.0], [0.0, 0.0, 3.0, 3.0]])
+    same(boxes, np.array([0, 10**12, 2]), SHMUP)
+
+
+def test_grid_kernel__grids_past_the_dense_key_table_run_numpy():
+    """More cells allowed than the dense key table holds: the compiled grid hands the frame
+    to numpy (which searches), with the same answer."""
+    rng = np.random.default_rng(8)
+    boxes = boxes_of(rng, 200, smax=3.0)
+    layers = rng.integers(0, 4, 200)
+    same(boxes, layers, SHMUP, bin_size=2.0, max_cells=2**18)  # 500 x 500 cells
+    huge = dict(bin_size=1e-9, max_cells=2**62)  # cells past int64 products, had numba counted them
+    ref = BinGrid(**huge).find_pairs(np.zeros((3, 4)), np.array([0, 1, 3]), SHMUP)
+    got = BinGrid(**huge, kernel=Kernel.NUMBA).find_pairs(np.zeros((3, 4)), np.array([0, 1, 3]), SHMUP)
+    np.testing.assert_array_equal(got, ref)
+    assert len(ref)

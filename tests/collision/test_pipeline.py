@@ -265,3 +265,22 @@ def test_scene__shapes_and_layers():
     assert scene.layer.tolist().count(PLAYER_BULLET) == 10
     assert not scene.shapes.armatures[0].convex  # the player is concave
     assert all(not a.convex and 5 <= len(a) <= 8 for a in scene.shapes.armatures[1:9])
+
+
+@pytest.mark.parametrize("kernel", KERNELS)
+@pytest.mark.parametrize("offset", [0.0, 6 * 5e-324, 2e-323])
+def test_pipeline__subnormal_armatures_meet_in_the_bins(kernel, offset):
+    """Two armatures of subnormal size, touching or overlapping: the automatic bin size would
+    be subnormal, its inverse infinite and a box at the grid's origin a nan bin (the pair
+    was dropped, or numba read out of bounds); bins now have at least the smallest normal
+    side, and the answer is brute force's."""
+    tiny = Armature.box(4e-323, 4e-323)
+    table = LayerTable(["a"], [("a", "a")])
+    pos = np.array([[0.0, 0.0], [offset, 0.0]])
+    want = Pipeline([tiny], table, tiers=("brute", "armature"), rotation="exact", kernel="numpy")
+    expected = want.step(np.array([0, 0]), np.array([0, 0]), pos, np.zeros(2)).hits.tolist()
+    assert expected == [[0, 1]]
+    got = Pipeline([tiny], table, rotation="exact", kernel=kernel).step(
+        np.array([0, 0]), np.array([0, 0]), pos, np.zeros(2)
+    )
+    assert got.hits.tolist() == expected

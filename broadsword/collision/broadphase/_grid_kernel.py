@@ -23,7 +23,7 @@ import numpy as np
 
 from .._kernel import jit
 from ._shared import _MEDIAN_SAMPLE as MEDIAN_SAMPLE
-from ._shared import AUTO_BIN_FACTOR
+from ._shared import AUTO_BIN_FACTOR, MIN_BIN
 
 __all__ = ["grid_query", "load"]
 
@@ -55,21 +55,19 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
                 return np.empty((0, 2), dtype=np.int64)
 
     # Each layer's members, ascending (np.flatnonzero(layer == k)).
-    nl = 0
-    for i in range(n):
-        nl = max(nl, layer[i] + 1)
+    nl = 0  # layer ids the table names: 0 .. nl - 1; objects in any other layer take no part
     for e in range(entries.shape[0]):
         nl = max(nl, entries[e, 0] + 1, entries[e, 1] + 1)
     lstart = np.zeros(nl + 1, dtype=np.int64)
     for i in range(n):
-        if layer[i] >= 0:  # a negative id is in no table entry
+        if 0 <= layer[i] < nl:
             lstart[layer[i] + 1] += 1
     for k in range(nl):
         lstart[k + 1] += lstart[k]
     mem = np.empty(n, dtype=np.int64)
     fill = lstart.copy()
     for i in range(n):
-        if layer[i] >= 0:
+        if 0 <= layer[i] < nl:
             mem[fill[layer[i]]] = i
             fill[layer[i]] += 1
 
@@ -116,7 +114,7 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
         x0f, y0f, x1f, y1f = field[0], field[1], field[2], field[3]
     hw = 0.5 * x1f - 0.5 * x0f
     hh = 0.5 * y1f - 0.5 * y0f
-    size = max(size, max(hw, hh) / (0.5 * max_cells))
+    size = max(size, max(hw, hh) / (0.5 * max_cells), MIN_BIN)
     cols = max(1, math.ceil(hw / (0.5 * size)))
     rows = max(1, math.ceil(hh / (0.5 * size)))
     while cols * rows > max_cells:

@@ -26,6 +26,9 @@ _EXTENTS_AT_ONCE = 4096
 AUTO_BIN_FACTOR = 1.25
 #: Key spaces up to this size are joined with a counting sort instead of binary search.
 DENSE_KEYS = 1 << 17
+#: The smallest bin side: the smallest normal double, whose inverse is finite. Smaller bins
+#: (a frame of subnormal-sized boxes) made ``1 / size`` infinite and ``0 * inf`` a nan bin.
+MIN_BIN = 2.0**-1022
 
 
 class Frame:

@@ -10,7 +10,7 @@ import numpy as np
 from .._indexing import pick, selector
 from .._kernel import Kernel, check_kernel
 from ..layers import LayerTable
-from ._shared import _EMPTY, Driver, Frame, auto_bin_size, expand, join
+from ._shared import _EMPTY, DENSE_KEYS, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
 from .base import BroadPhaseStats, GridLayout
 
 __all__ = ["BinGrid"]
@@ -35,10 +35,11 @@ class BinGrid(Driver):
         field register in the bins along its border (clamping keeps every overlap).
     max_cells : int
         Upper bound on bins; a frame whose field would need more uses larger bins.
-    kernel : Kernel
+    kernel : Kernel or str
         ``Kernel.NUMBA`` runs each query as one compiled call (:mod:`._grid_kernel`: the
-        same pairs in the same order; numba must be installed); ``Kernel.NUMPY`` (the
-        default, and the reference) as numpy passes.
+        same pairs in the same order; numba must be installed; a grid of more than
+        ``DENSE_KEYS`` cells runs numpy); ``Kernel.NUMPY`` (the default, and the
+        reference) as numpy passes.
 
     Each object registers in every bin its box overlaps. For each table entry the side
     with fewer bin entries is indexed and the other looks its bins up; a pair found in a
@@ -60,6 +61,8 @@ class BinGrid(Driver):
             raise ValueError(f"bin_size must be a positive number or None, got {bin_size!r}")
         self.bin_size = bin_size
         self.field = None if field is None else tuple(float(v) for v in field)
+        if self.field is not None and (len(self.field) != 4 or not np.isfinite(self.field).all()):
+            raise ValueError(f"field must be four finite numbers (x0, y0, x1, y1) or None, got {field!r}")
         self.max_cells = int(max_cells)
         self.kernel = check_kernel(kernel)  # a clear error when numba is asked for but missing
         if self.kernel is Kernel.NUMBA:
@@ -69,7 +72,9 @@ class BinGrid(Driver):
 
     def query(self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable) -> tuple[np.ndarray, BroadPhaseStats]:
         """``(pairs (m, 2) int64, stats)``; see :mod:`broadsword.collision.broadphase.base`."""
-        if self.kernel is not Kernel.NUMBA:
+        if self.kernel is not Kernel.NUMBA or self.max_cells > DENSE_KEYS:
+            # The compiled join counts keys in a dense table: grids allowed more bins than
+            # DENSE_KEYS (never the default) run the numpy grid, which searches instead.
             return super().query(boxes, layers, table)
         from . import _grid_kernel as gk
 
@@ -100,7 +105,7 @@ class BinGrid(Driver):
             x1, y1 = float(part[:, 2].max()), float(part[:, 3].max())
         # Half-spans: finite even when x1 - x0 overflows (boxes near +-1e308).
         hw, hh = 0.5 * x1 - 0.5 * x0, 0.5 * y1 - 0.5 * y0
-        size = max(size, max(hw, hh) / (0.5 * self.max_cells))  # at most max_cells a side
+        size = max(size, max(hw, hh) / (0.5 * self.max_cells), MIN_BIN)  # at most max_cells a side
         cols = max(1, int(np.ceil(hw / (0.5 * size))))
         rows = max(1, int(np.ceil(hh / (0.5 * size))))
         while cols * rows > self.max_cells:
