@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Callable
 from enum import Enum
 from typing import Any
 
@@ -89,14 +90,9 @@ def kernel_from_env() -> Kernel:
     raw = os.environ.get(ENV_VAR, "").strip().lower()
     if not raw:
         return Kernel.NUMBA if numba_available() else Kernel.NUMPY
-    try:
-        kernel = Kernel(raw)
-    except ValueError:
-        choices = ", ".join(k.value for k in Kernel)
-        raise ValueError(f"environment variable {ENV_VAR}={raw!r}: expected one of {choices}") from None
-    if kernel is Kernel.NUMBA and not numba_available():
-        raise ImportError(f"{ENV_VAR}=numba but {numba_problem() or NUMBA_MISSING}")
-    return kernel
+    return _named(
+        raw, lambda choices: f"environment variable {ENV_VAR}={raw!r}: expected one of {choices}", f"{ENV_VAR}=numba"
+    )
 
 
 def check_kernel(kernel: Kernel | str | None) -> Kernel:
@@ -107,14 +103,19 @@ def check_kernel(kernel: Kernel | str | None) -> Kernel:
     """
     if kernel is None:
         return kernel_from_env()
+    return _named(kernel, lambda choices: f"kernel must be one of {choices}, got {kernel!r}", "kernel='numba'")
+
+
+def _named(value: Kernel | str, unknown: Callable[[str], str], asked: str) -> Kernel:
+    """``value`` as a :class:`Kernel`: ``ValueError(unknown(choices))`` on an unknown name,
+    ``ImportError`` starting ``asked`` when numba is named but unusable."""
     try:
-        k = Kernel(kernel)
+        kernel = Kernel(value)
     except ValueError:
-        choices = ", ".join(k.value for k in Kernel)
-        raise ValueError(f"kernel must be one of {choices}, got {kernel!r}") from None
-    if k is Kernel.NUMBA and not numba_available():
-        raise ImportError(f"kernel='numba' but {numba_problem() or NUMBA_MISSING}")
-    return k
+        raise ValueError(unknown(", ".join(k.value for k in Kernel))) from None
+    if kernel is Kernel.NUMBA and not numba_available():
+        raise ImportError(f"{asked} but {numba_problem() or NUMBA_MISSING}")
+    return kernel
 
 
 class _Compiled:

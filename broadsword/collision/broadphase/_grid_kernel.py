@@ -193,6 +193,12 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
     def first_shared(ga, gb, key):
         return key % cols == max(x0[ga], x0[gb]) and key // cols == max(y0[ga], y0[gb])
 
+    def doubled(pairs):
+        """``pairs`` (m, 2) copied into an array twice as long (the output grows)."""
+        grown = np.empty((2 * len(pairs), 2), dtype=np.int64)
+        grown[: len(pairs)] = pairs
+        return grown
+
     out = np.empty((max(16, n), 2), dtype=np.int64)
     m = 0
     for e in range(entries.shape[0]):
@@ -212,9 +218,7 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
                     i = order[r]
                     if o[q] < o[i] and first_shared(ia[o[q]], ia[o[i]], k[q]):
                         if m == len(out):
-                            grown = np.empty((2 * m, 2), dtype=np.int64)
-                            grown[:m] = out[:m]
-                            out = grown
+                            out = doubled(out)
                         out[m, 0] = ia[o[q]]
                         out[m, 1] = ia[o[i]]
                         m += 1
@@ -231,9 +235,7 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
                     gb = ib[t] if na <= nb else ib[s]
                     if x0[ga] <= x1[gb] and x0[gb] <= x1[ga] and y0[ga] <= y1[gb] and y0[gb] <= y1[ga]:
                         if m == len(out):
-                            grown = np.empty((2 * m, 2), dtype=np.int64)
-                            grown[:m] = out[:m]
-                            out = grown
+                            out = doubled(out)
                         out[m, 0] = ga
                         out[m, 1] = gb
                         m += 1
@@ -253,9 +255,7 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
                 if both_multi and ma[ea] and mb[eb] and not first_shared(ga, gb, ka[ea]):
                     continue
                 if m == len(out):
-                    grown = np.empty((2 * m, 2), dtype=np.int64)
-                    grown[:m] = out[:m]
-                    out = grown
+                    out = doubled(out)
                 out[m, 0] = ga
                 out[m, 1] = gb
                 m += 1
