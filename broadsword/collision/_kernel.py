@@ -174,6 +174,5 @@ def warm_kernel() -> None:
 
     _bounds_kernel.load()
     _narrow_kernel.load()
-    _narrow_kernel.load_side()
     _grid_kernel.load()
     _pose_kernel.load()

@@ -1,30 +1,32 @@
 """The exact narrow phase's float filter compiled with numba (``pip install broadsword[fast]``).
 
-Per pair, the kernel decides a hit as soon as it has certified a proper edge crossing (four
-signs certain and opposite: the polygons meet, whatever else is unknown), and otherwise
-decides exactly what :func:`narrow._block_body` decides when its float filter certifies
-every sign of the pair: the same per-pair bound (``tolerance.PAIR_EPS *
-D^2``, declined below ``UNDERFLOW_GUARD`` and on overflow), the same orientation
-expressions evaluated with the same float operations (no fused multiply-add: numba
-compiles without ``fastmath``), the same edge-crossing and crossing-number rules. A pair
-with any uncertain sign on a real edge, or with no real edge, is *undecided* and goes to
-the numpy reference, which settles it with rational arithmetic. So every answer the kernel
-gives is one the exact reference gives.
+Per pair, the kernel decides what :func:`narrow._block_body` decides when its float filter
+certifies every sign of the pair: the same per-pair bound (``tolerance.PAIR_EPS * D^2``,
+declined below ``UNDERFLOW_GUARD`` and on overflow), the same orientation expressions
+evaluated with the same float operations (no fused multiply-add: numba compiles without
+``fastmath``), the same edge-crossing and crossing-number rules; and a certified proper
+crossing (four certain, opposite signs) decides a hit whatever other signs are unknown. A
+pair with any other uncertain sign on a real edge, or with no real edge, is *undecided* and
+goes to the numpy reference, which settles it with rational arithmetic. So every answer the
+kernel gives is one the exact reference gives.
+
+Pairs go through in blocks of :data:`BLOCK` with the pair innermost in every loop, so the
+sign computations are vector instructions over pairs; every sign of every pair is
+computed, with no branch or early exit (the scalar kernel this replaced stopped at a
+pair's first certified crossing: 1.7-2x slower on the reference scene, whose candidates
+are mostly small bullets against larger ships).
 
 The filter reads the posed class arrays by column, so a class with no sweep is neither
-gathered nor copied. For a class with sweeps, a second kernel (:func:`_side_py`) gathers
-the pairs' columns and builds their swept polygons (:func:`posing._sweep`) with the same
-operations, so the same vertices; a sweep that ``_sweep`` treats specially (thin across
-its path, a path longer than the doubles, a vertex past them, a non-finite sign) is left
-undecided: the reference builds it with numpy and decides. (Building sweeps inside the
-filter, in a closure, cost a numba call per polygon: measured slower.)
+gathered nor copied. A swept column's polygon is built as the block is gathered, from its
+shape and path, with the operations of :func:`posing._sweep`, so the same vertices, its
+repeats dropped (a convex shape of ``H`` rows swept has at most ``H + 2`` distinct vertices,
+so a block of sweeps reads ``H + 2`` rows, not ``2H``); a sweep that ``_sweep`` treats
+specially (thin across its path, a path longer than the doubles, a vertex past them, a
+non-finite sign) is left undecided: the reference builds it with numpy and decides.
 
-A class's polygons are read on all ``K`` rows, padding included, as the reference reads
-them: dropping each polygon's repeats made the loop bounds vary pair to pair (ships of 5 to
-8 vertices) and was measured 1.5-2x slower. A built sweep is the exception: the builder
-drops its repeats, and one that fits in ``K/2 + 2`` rows (a convex shape of ``H = K/2``
-rows swept has at most ``H + 2`` distinct vertices; nearly all do) is read on those rows,
-a bound that hardly varies (:func:`rows_to_read`).
+A block reads each side on the largest row count among its polygons (a class's ``K``, or
+its sweeps' distinct vertices): the rows past a polygon's own repeat its last vertex, which
+adds only zero-length edges, skipped by the rules as the reference skips them.
 """
 
 from __future__ import annotations
@@ -37,215 +39,293 @@ from ._kernel import jit
 from .posing import THIN
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
 
-__all__ = [
-    "HIT",
-    "MISS",
-    "UNDECIDED",
-    "filter_columns",
-    "filter_pairs",
-    "rows_to_read",
-    "load",
-    "load_side",
-    "polygons",
-]
+__all__ = ["BLOCK", "HIT", "MISS", "UNDECIDED", "filter_columns", "filter_pairs", "load"]
 
 #: Kernel verdicts, one int8 per pair.
 MISS, HIT, UNDECIDED = 0, 1, 2
 
-#: (vx1, vy1, cols1, rows1, vx2, vy2, cols2, rows2, out)
-_SIGNATURE = (
-    "void(float64[:, :], float64[:, :], int64[:], int64[:], float64[:, :], float64[:, :], int64[:], int64[:], int8[:])"
+#: One side of the pairs: (vx, vy, cols, hx, hy, dx, dy, far, split)
+_SIDE = (
+    "float64[:, :], float64[:, :], int64[:], float64[:, :], float64[:, :], float64[:], float64[:], boolean[:], int64"
 )
-#: (vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count)
-_SIDE_SIGNATURE = (
-    "void(float64[:, :], float64[:, :], float64[:, :], float64[:, :], float64[:], float64[:], boolean[:], int64,"
-    " int64[:], float64[:, :], float64[:, :], int64[:])"
-)
+#: (side 1, side 2, out, seen_x, seen_y)
+_SIGNATURE = f"void({_SIDE}, {_SIDE}, int8[:], float64[:, :], float64[:, :])"
+
+#: Pairs per block of the filter: its scratch (a few (K+1, BLOCK) arrays of doubles) stays
+#: in a core's L1/L2 cache; 64 and 128 measured alike, 32 slower.
+BLOCK = 128
 
 
-def _side_py(vx, vy, hx, hy, dx, dy, far, split, cols, ox, oy, count):  # pragma: no cover - compiled by numba
-    """The polygons of columns ``cols`` (P,) of one class into ``ox, oy`` (K, P): a copy of
-    the class arrays ``vx, vy`` (K, n) where ``col < split``, else the sweep of column
-    ``col - split`` built as :func:`posing._sweep` builds it, from its shape ``hx, hy``
-    (K/2, m) and path ``dx, dy`` (m,) (``far`` (m,) or empty: paths stored in halves), its
-    consecutive repeated vertices dropped and the rest padded with its last vertex (the same
-    polygon: the same points and non-zero edges). ``count[p]``: the vertices before the
-    padding (K for a copy), or -1 where the pair must go to the reference: a sweep
-    ``_sweep`` treats specially (thin across its path, a far path, a vertex past the
-    doubles) or a non-finite sign."""
-    rows = vx.shape[0]
-    h = hx.shape[0]
-    back = np.zeros(max(h, 1), dtype=np.bool_)
-    word = np.zeros(1)  # a double and its bits, for the power-of-two scale below
-    bits = word.view(np.int64)
-    for p in range(len(cols)):
-        col = cols[p]
-        if col < split:
-            for i in range(rows):
-                ox[i, p] = vx[i, col]
-                oy[i, p] = vy[i, col]
-            count[p] = rows
-            continue
-        c = col - split
-        good = not (len(far) and far[c])
-        d_x = dx[c]
-        d_y = dy[c]
-        # posing._unit_scale: d times the power of two 2**-e that brings its larger component
-        # into [0.5, 1) (exact). For a normal larger component, e and 2**-e come from the
-        # exponent bits (libm's frexp and ldexp were a third of this loop); else from libm.
-        big = max(abs(d_x), abs(d_y))
-        if 2.0**-1000 < big < 2.0**1000:
-            word[0] = big
-            e = ((bits[0] >> 52) & 0x7FF) - 1022  # big = f 2**e, f in [0.5, 1)
-            bits[0] = (1023 - e) << 52  # 2**-e, a normal double
-            s_x = d_x * word[0]  # times a power of two: exactly ldexp's correctly rounded value
-            s_y = d_y * word[0]
-        else:
-            e = math.frexp(big)[1]
-            s_x = math.ldexp(d_x, -e)
-            s_y = math.ldexp(d_y, -e)
-        tmax = -np.inf
-        umax = -np.inf
-        for i in range(h):
-            j = i + 1 if i + 1 < h else 0
-            t = (hx[j, c] - hx[i, c]) * s_y - (hy[j, c] - hy[i, c]) * s_x
-            u = abs(hx[i, c]) * (0.5 * abs(s_y)) + abs(hy[i, c]) * (0.5 * abs(s_x))
-            good &= np.isfinite(t) & np.isfinite(u)
-            back[i] = t > 0
-            tmax = max(tmax, t)
-            umax = max(umax, u)
-        good &= tmax > (2.0 * THIN) * umax  # else thin across its path: _back_by_vertices
-        k = 0
-        for i in range(h):
-            b_in = 1.0 if back[i - 1 if i > 0 else h - 1] else 0.0  # numpy's d * back: d * 1.0 or d * 0.0
-            for b in (b_in, 1.0 if back[i] else 0.0):
-                x = hx[i, c] - d_x * b
-                y = hy[i, c] - d_y * b
-                good &= np.isfinite(x) & np.isfinite(y)  # past the doubles: _box_unbounded
-                if k == 0 or x != ox[k - 1, p] or y != oy[k - 1, p]:
-                    ox[k, p] = x
-                    oy[k, p] = y
-                    k += 1
-        for i in range(k, rows):
-            ox[i, p] = ox[k - 1, p]
-            oy[i, p] = oy[k - 1, p]
-        count[p] = k if good else -1
-
-
-def _filter_py(vx1, vy1, cols1, rows1, vx2, vy2, cols2, rows2, out):  # pragma: no cover - compiled by numba
+def _filter_py(  # pragma: no cover - compiled by numba
+    vx1, vy1, cols1, hx1, hy1, dx1, dy1, far1, split1,
+    vx2, vy2, cols2, hx2, hy2, dx2, dy2, far2, split2,
+    out, seen_x, seen_y,
+):  # fmt: skip
     """Verdicts (MISS / HIT / UNDECIDED) into ``out`` (P,) for the polygons of columns
-    ``(cols1[p], cols2[p])`` of ``vx1, vy1`` (K1, n1) and ``vx2, vy2`` (K2, n2), padded with
-    their last vertex, read on their first ``rows1[p]``, ``rows2[p]`` rows (-1: leave the
-    pair undecided). Signs are computed without branches (random signs would mispredict);
-    the row counts vary little within a call (a class's K, or a sweep's K/2 + 2), so the
-    loops they bound stay predictable."""
+    ``(cols1[p], cols2[p])`` of two classes.
+
+    A side: its padded class arrays ``vx, vy`` (K, n), read as they are for a column below
+    ``split``; a column ``c >= split`` is the sweep of ``c - split``, built from its shape
+    ``hx, hy`` (K/2, m) and path ``dx, dy`` (m,) (``far`` (m,) or empty: paths stored in
+    halves). A side without sweeps has ``split`` past its columns and empty shape arrays.
+    ``seen_x, seen_y`` (K2, P), or with no columns: where given, the side-2 polygons as the
+    filter read them, padded with their last vertex (nan for a refused sweep; for tests).
+    """
     n = len(out)
     m1 = vx1.shape[0]
     m2 = vx2.shape[0]
-    sa = np.zeros((m1, m2 + 1), dtype=np.int8)
-    sb = np.zeros((m1 + 1, m2), dtype=np.int8)
-    vp = np.zeros(m1, dtype=np.bool_)
-    vq = np.zeros(m2, dtype=np.bool_)
-    x1 = np.empty(m1 + 1)
-    y1 = np.empty(m1 + 1)
-    x2 = np.empty(m2 + 1)
-    y2 = np.empty(m2 + 1)
-    ex1 = np.empty(m1)
-    ey1 = np.empty(m1)
-    for p in range(n):
-        k1 = rows1[p]
-        k2 = rows2[p]
-        if k1 < 0 or k2 < 0:  # left to the reference
-            out[p] = UNDECIDED
-            continue
-        c1 = cols1[p]
-        c2 = cols2[p]
-        for i in range(k1):  # each polygon closed: its first vertex again at the end
-            x1[i] = vx1[i, c1]
-            y1[i] = vy1[i, c1]
-        x1[k1] = x1[0]
-        y1[k1] = y1[0]
-        for j in range(k2):
-            x2[j] = vx2[j, c2]
-            y2[j] = vy2[j, c2]
-        x2[k2] = x2[0]
-        y2[k2] = y2[0]
-        # Per-pair bound: the larger side of the joint box, squared (narrow._error_bounds).
-        xmax = x1[0]
-        xmin = xmax
-        ymax = y1[0]
-        ymin = ymax
-        for i in range(k1):
-            xmax = max(xmax, x1[i])
-            xmin = min(xmin, x1[i])
-            ymax = max(ymax, y1[i])
-            ymin = min(ymin, y1[i])
-        for j in range(k2):
-            xmax = max(xmax, x2[j])
-            xmin = min(xmin, x2[j])
-            ymax = max(ymax, y2[j])
-            ymin = min(ymin, y2[j])
-        d = max(xmax - xmin, ymax - ymin)
-        d = d * d
-        if not (d >= UNDERFLOW_GUARD) or d == np.inf:  # underflow risk, overflow, nan
-            out[p] = UNDECIDED
-            continue
-        err = PAIR_EPS * d
-        nerr = -err
-        zeros = 0  # real-edge entries the filter could not sign
-        anyp = False
-        anyq = False
-        for i in range(k1):
-            ex1[i] = x1[i + 1] - x1[i]
-            ey1[i] = y1[i + 1] - y1[i]
-            vp[i] = (ex1[i] != 0) | (ey1[i] != 0)
-            anyp |= vp[i]
-        # Column by column: the signs of Q's vertex j + 1 against P's edges (sa), then of P's
-        # vertices against Q's edge j (sb), then the crossings of edge j. A certified proper
-        # crossing (four certain, opposite signs) proves the polygons meet, so the pair is
-        # a hit whatever signs remain unknown: stop there (most candidates are hits).
-        hit = False
-        for j in range(-1, k2):
-            q = j + 1
-            for i in range(k1):
-                a = ex1[i] * (y2[q] - y1[i]) - ey1[i] * (x2[q] - x1[i])
-                s = np.int8(a > err) - np.int8(a < nerr)
-                sa[i, q] = s
-                zeros += vp[i] & (s == 0)
-            if j < 0:
+    w = BLOCK
+    x1 = np.empty((m1 + 1, w))  # the block's polygons, closed: vertex 0 again after the last
+    y1 = np.empty((m1 + 1, w))
+    x2 = np.empty((m2 + 1, w))
+    y2 = np.empty((m2 + 1, w))
+    rows = np.empty(w, dtype=np.int64)  # each lane's vertices (a sweep's repeats dropped)
+    refused = np.empty(w, dtype=np.bool_)  # a sweep left to the reference
+    # A side's sweeps, lanes side by side: shapes (H, w), paths, the paths scaled, which
+    # edges face back, the candidate vertices (2H, w) and where each lands.
+    h_max = max(hx1.shape[0], hx2.shape[0], 1)
+    swept = np.empty(w, dtype=np.bool_)
+    good = np.empty(w, dtype=np.bool_)
+    gx = np.empty((h_max, w))
+    gy = np.empty((h_max, w))
+    path_x = np.empty(w)
+    path_y = np.empty(w)
+    unit_x = np.empty(w)
+    unit_y = np.empty(w)
+    t_max = np.empty(w)
+    u_max = np.empty(w)
+    back = np.empty((h_max, w), dtype=np.bool_)
+    cand_x = np.empty((2 * h_max, w))
+    cand_y = np.empty((2 * h_max, w))
+    at = np.empty((2 * h_max, w), dtype=np.int64)
+    word = np.zeros(1)  # a double and its bits, for the power-of-two scale
+    bits = word.view(np.int64)
+    ex2 = np.empty((m2, w))  # Q's edges and which are real (non-zero)
+    ey2 = np.empty((m2, w))
+    vq = np.empty((m2, w), dtype=np.bool_)
+    ex = np.empty(w)  # P's edge i
+    ey = np.empty(w)
+    vp = np.empty(w, dtype=np.bool_)
+    sa_last = np.empty((m2 + 1, w), dtype=np.int8)  # signs of Q's vertices against P's edge i-1
+    sa_now = np.empty((m2 + 1, w), dtype=np.int8)  # ... and against P's edge i
+    sb_last = np.empty((m2, w), dtype=np.int8)  # signs of P_i-1 against Q's edges
+    sb_now = np.empty((m2, w), dtype=np.int8)  # ... and of P_i
+    lo_x = np.empty(w)
+    hi_x = np.empty(w)
+    lo_y = np.empty(w)
+    hi_y = np.empty(w)
+    err = np.empty(w)
+    nerr = np.empty(w)
+    bounded = np.empty(w, dtype=np.bool_)  # the bound holds (no underflow risk, no overflow)
+    unsure = np.empty(w, dtype=np.bool_)  # a sign on a real edge the filter could not certify
+    crossed = np.empty(w, dtype=np.bool_)  # a certified proper crossing
+    anyp = np.empty(w, dtype=np.bool_)
+    anyq = np.empty(w, dtype=np.bool_)
+    p_in_q = np.empty(w, dtype=np.bool_)  # crossing numbers (parities)
+    q_in_p = np.empty(w, dtype=np.bool_)
+
+    def gather(vx, vy, cols, hx, hy, dx, dy, far, split, x, y, start, nb):
+        """The block's polygons of one side into ``x, y`` (K+1, w), closed; their row count.
+
+        A plain column is copied. A swept one is built as :func:`posing._sweep` builds it,
+        with its operations, its consecutive repeated vertices dropped, lanes side by
+        side: its shape's vertex ``i`` gives ``v_i - d`` times each of ``back`` of its
+        edges in and out (1 or 0); a sweep ``_sweep`` treats specially (thin across its
+        path, a far path, a vertex past the doubles) or a non-finite sign is refused.
+        """
+        h = hx.shape[0]
+        any_sweep = False
+        for b in range(nb):
+            col = cols[start + b]
+            swept[b] = col >= split
+            if col < split:
+                rows[b] = vx.shape[0]
+                for i in range(vx.shape[0]):
+                    x[i, b] = vx[i, col]
+                    y[i, b] = vy[i, col]
                 continue
-            ex = x2[j + 1] - x2[j]
-            ey = y2[j + 1] - y2[j]
-            v = (ex != 0) | (ey != 0)
-            vq[j] = v
-            anyq |= v
-            for i in range(k1 + 1):
-                b = ey * (x2[j] - x1[i]) - ex * (y2[j] - y1[i])
-                s = np.int8(b > err) - np.int8(b < nerr)
-                sb[i, j] = s
-                zeros += v & (s == 0)
-            for i in range(k1):
-                hit |= vp[i] & v & (sa[i, j] * sa[i, j + 1] < 0) & (sb[i, j] * sb[i + 1, j] < 0)
-            if hit:
-                break
-        if hit:
-            out[p] = HIT
-            continue
-        if zeros or not anyp or not anyq:
-            out[p] = UNDECIDED
-            continue
-        # No crossing: one polygon holds the other, or they miss. Crossing number (half-open
-        # y rule), signs from the matrices as in the reference.
-        p0y = y1[0]
-        inside = False
+            any_sweep = True
+            c = col - split
+            for i in range(h):
+                gx[i, b] = hx[i, c]
+                gy[i, b] = hy[i, c]
+            d_x = dx[c]
+            d_y = dy[c]
+            path_x[b] = d_x
+            path_y[b] = d_y
+            good[b] = not (len(far) and far[c])
+            # posing._unit_scale: d times the power of two 2**-e that brings its larger
+            # component into [0.5, 1) (exact). For a normal larger component, e and 2**-e
+            # come from the exponent bits (libm's frexp and ldexp cost more); else from libm.
+            big = max(abs(d_x), abs(d_y))
+            if 2.0**-1000 < big < 2.0**1000:
+                word[0] = big
+                e = ((bits[0] >> 52) & 0x7FF) - 1022  # big = f 2**e, f in [0.5, 1)
+                bits[0] = (1023 - e) << 52  # 2**-e, a normal double
+                unit_x[b] = d_x * word[0]  # times a power of two: exactly ldexp's value
+                unit_y[b] = d_y * word[0]
+            else:
+                e = math.frexp(big)[1]
+                unit_x[b] = math.ldexp(d_x, -e)
+                unit_y[b] = math.ldexp(d_y, -e)
+        if any_sweep:
+            for b in range(nb):
+                t_max[b] = -np.inf
+                u_max[b] = -np.inf
+            for i in range(h):  # which edges face back along the path
+                j = i + 1 if i + 1 < h else 0
+                for b in range(nb):
+                    t = (gx[j, b] - gx[i, b]) * unit_y[b] - (gy[j, b] - gy[i, b]) * unit_x[b]
+                    u = abs(gx[i, b]) * (0.5 * abs(unit_y[b])) + abs(gy[i, b]) * (0.5 * abs(unit_x[b]))
+                    good[b] &= np.isfinite(t) & np.isfinite(u)
+                    back[i, b] = t > 0
+                    t_max[b] = max(t_max[b], t)
+                    u_max[b] = max(u_max[b], u)
+            for b in range(nb):
+                good[b] &= t_max[b] > (2.0 * THIN) * u_max[b]  # else thin across its path
+            for i in range(h):
+                before = i - 1 if i > 0 else h - 1
+                for b in range(nb):
+                    f_in = 1.0 if back[before, b] else 0.0  # numpy's d * back: d * 1.0 or d * 0.0
+                    f_out = 1.0 if back[i, b] else 0.0
+                    xa = gx[i, b] - path_x[b] * f_in
+                    ya = gy[i, b] - path_y[b] * f_in
+                    xb = gx[i, b] - path_x[b] * f_out
+                    yb = gy[i, b] - path_y[b] * f_out
+                    good[b] &= np.isfinite(xa) & np.isfinite(ya) & np.isfinite(xb) & np.isfinite(yb)
+                    cand_x[2 * i, b] = xa
+                    cand_y[2 * i, b] = ya
+                    cand_x[2 * i + 1, b] = xb
+                    cand_y[2 * i + 1, b] = yb
+            # Where each candidate lands once repeats are dropped: a candidate equal to the
+            # one before it equals the last one kept, so the count of changes so far.
+            for b in range(nb):
+                at[0, b] = 0
+            for r in range(1, 2 * h):
+                for b in range(nb):
+                    change = (cand_x[r, b] != cand_x[r - 1, b]) | (cand_y[r, b] != cand_y[r - 1, b])
+                    at[r, b] = at[r - 1, b] + change
+            for b in range(nb):
+                if not swept[b]:
+                    continue
+                for r in range(2 * h - 1, -1, -1):  # backwards: a run keeps its first vertex
+                    x[at[r, b], b] = cand_x[r, b]
+                    y[at[r, b], b] = cand_y[r, b]
+                rows[b] = at[2 * h - 1, b] + 1
+                if not good[b]:  # refused: any point will do, the verdict is the reference's
+                    refused[b] = True
+                    rows[b] = 1
+                    x[0, b] = 0.0
+                    y[0, b] = 0.0
+        k_all = 1
+        for b in range(nb):
+            k_all = max(k_all, rows[b])
+        for b in range(nb):
+            for i in range(rows[b], k_all):  # pad with the last vertex: the same polygon
+                x[i, b] = x[rows[b] - 1, b]
+                y[i, b] = y[rows[b] - 1, b]
+            x[k_all, b] = x[0, b]
+            y[k_all, b] = y[0, b]
+        return k_all
+
+    for start in range(0, n, w):
+        nb = min(w, n - start)
+        for b in range(nb):
+            refused[b] = False
+        k1 = gather(vx1, vy1, cols1, hx1, hy1, dx1, dy1, far1, split1, x1, y1, start, nb)
+        k2 = gather(vx2, vy2, cols2, hx2, hy2, dx2, dy2, far2, split2, x2, y2, start, nb)
+        if seen_x.shape[1]:
+            for b in range(nb):
+                for i in range(m2):
+                    seen_x[i, start + b] = np.nan if refused[b] else x2[min(i, k2 - 1), b]
+                    seen_y[i, start + b] = np.nan if refused[b] else y2[min(i, k2 - 1), b]
+        for b in range(nb):
+            lo_x[b] = x1[0, b]
+            hi_x[b] = x1[0, b]
+            lo_y[b] = y1[0, b]
+            hi_y[b] = y1[0, b]
+            unsure[b] = False
+            crossed[b] = False
+            anyp[b] = False
+            anyq[b] = False
+            p_in_q[b] = False
+            q_in_p[b] = False
+        # Per-pair bound: the larger side of the joint box, squared (narrow._error_bounds).
+        for i in range(1, k1):
+            for b in range(nb):
+                lo_x[b] = min(lo_x[b], x1[i, b])
+                hi_x[b] = max(hi_x[b], x1[i, b])
+                lo_y[b] = min(lo_y[b], y1[i, b])
+                hi_y[b] = max(hi_y[b], y1[i, b])
         for j in range(k2):
-            inside ^= ((y2[j] > p0y) != (y2[j + 1] > p0y)) & ((sb[0, j] > 0) == (y2[j + 1] > y2[j]))
-        q0y = y2[0]
-        inside_q = False
-        for i in range(k1):
-            inside_q ^= ((y1[i] > q0y) != (y1[i + 1] > q0y)) & ((sa[i, 0] > 0) == (y1[i + 1] > y1[i]))
-        hit = inside | inside_q
-        out[p] = HIT if hit else MISS
+            for b in range(nb):
+                lo_x[b] = min(lo_x[b], x2[j, b])
+                hi_x[b] = max(hi_x[b], x2[j, b])
+                lo_y[b] = min(lo_y[b], y2[j, b])
+                hi_y[b] = max(hi_y[b], y2[j, b])
+        for b in range(nb):
+            d = max(hi_x[b] - lo_x[b], hi_y[b] - lo_y[b])
+            d = d * d
+            err[b] = PAIR_EPS * d
+            nerr[b] = -err[b]
+            bounded[b] = (d >= UNDERFLOW_GUARD) & (d != np.inf)  # False on nan too
+        for j in range(k2):
+            for b in range(nb):
+                ex2[j, b] = x2[j + 1, b] - x2[j, b]
+                ey2[j, b] = y2[j + 1, b] - y2[j, b]
+                vq[j, b] = (ex2[j, b] != 0) | (ey2[j, b] != 0)
+                anyq[b] |= vq[j, b]
+        # Vertex by vertex of P: the signs of P_i against Q's edges (row i of the reference's
+        # B), then the crossings of P's edge i-1 with each edge of Q (they need rows i-1 and
+        # i of B and row i-1 of A), then the signs of Q's vertices against P's edge i (row i
+        # of A). P_0's row gives its crossing number in Q; column 0 of A, Q_0's in P.
+        for i in range(k1 + 1):
+            for j in range(k2):
+                for b in range(nb):
+                    v = ey2[j, b] * (x2[j, b] - x1[i, b]) - ex2[j, b] * (y2[j, b] - y1[i, b])
+                    s = np.int8(v > err[b]) - np.int8(v < nerr[b])
+                    sb_now[j, b] = s
+                    unsure[b] |= vq[j, b] & (s == 0)
+            if i == 0:
+                for j in range(k2):  # half-open y rule, as the reference
+                    for b in range(nb):
+                        py0 = y1[0, b]
+                        straddle = (y2[j, b] > py0) != (y2[j + 1, b] > py0)
+                        p_in_q[b] ^= straddle & ((sb_now[j, b] > 0) == (y2[j + 1, b] > y2[j, b]))
+            else:
+                for j in range(k2):
+                    for b in range(nb):
+                        cross_p = sa_last[j, b] * sa_last[j + 1, b] < 0
+                        cross_q = sb_last[j, b] * sb_now[j, b] < 0
+                        crossed[b] |= vp[b] & vq[j, b] & cross_p & cross_q
+            if i < k1:
+                for b in range(nb):
+                    ex[b] = x1[i + 1, b] - x1[i, b]
+                    ey[b] = y1[i + 1, b] - y1[i, b]
+                    vp[b] = (ex[b] != 0) | (ey[b] != 0)
+                    anyp[b] |= vp[b]
+                for q in range(k2 + 1):
+                    for b in range(nb):
+                        a = ex[b] * (y2[q, b] - y1[i, b]) - ey[b] * (x2[q, b] - x1[i, b])
+                        s = np.int8(a > err[b]) - np.int8(a < nerr[b])
+                        sa_now[q, b] = s
+                        unsure[b] |= vp[b] & (s == 0)
+                for b in range(nb):
+                    qy0 = y2[0, b]
+                    straddle = (y1[i, b] > qy0) != (y1[i + 1, b] > qy0)
+                    q_in_p[b] ^= straddle & ((sa_now[0, b] > 0) == (y1[i + 1, b] > y1[i, b]))
+            sa_last, sa_now = sa_now, sa_last
+            sb_last, sb_now = sb_now, sb_last
+        for b in range(nb):
+            p = start + b
+            if refused[b] or not bounded[b]:  # left to the reference
+                out[p] = UNDECIDED
+            elif crossed[b]:  # the polygons meet, whatever else is unknown
+                out[p] = HIT
+            elif unsure[b] or not anyp[b] or not anyq[b]:
+                out[p] = UNDECIDED
+            else:  # no crossing: one polygon holds the other (its vertex 0 inside), or they miss
+                out[p] = HIT if p_in_q[b] | q_in_p[b] else MISS
 
 
 def load():
@@ -253,51 +333,28 @@ def load():
     return jit(_filter_py, _SIGNATURE)
 
 
-def load_side():
-    """The compiled side builder (numba imported, the kernel loaded or compiled)."""
-    return jit(_side_py, _SIDE_SIGNATURE)
-
-
-def polygons(vx, vy, cols: np.ndarray, sweeps=None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-    """``(x, y, cols, count)`` to read the polygons of columns ``cols`` (int64) of a class:
-    its arrays as they are when nothing is swept (``count`` None), else (K, P) arrays with
-    the plain columns copied and the sweeps built (``sweeps``: a :class:`posing.Sweeps`,
-    whose shapes fill the class's rows: ``2H = K``) and ``count`` (P,) int64 (see
-    :func:`_side_py`; -1 where a pair must go to the reference)."""
-    if sweeps is None or not len(cols) or cols.max() < sweeps.split:  # no sweep among them
-        return vx, vy, cols, None
+def _side(vx, vy, cols: np.ndarray, sweeps) -> tuple:
+    """The filter's arguments for one side: ``sweeps`` a :class:`posing.Sweeps` whose shapes
+    fill the class's rows (``2H = K``), or None."""
+    if sweeps is None:
+        shape, path = np.zeros((0, 0)), np.zeros(0)
+        return vx, vy, cols, shape, shape, path, path, np.zeros(0, dtype=bool), np.iinfo(np.int64).max
     if 2 * sweeps.hx.shape[0] != vx.shape[0]:
         raise ValueError(f"a sweep of {sweeps.hx.shape[0]} rows does not fill a class of {vx.shape[0]} rows")
     far = np.zeros(0, dtype=bool) if sweeps.far is None else sweeps.far
-    ox, oy = np.empty((vx.shape[0], len(cols))), np.empty((vx.shape[0], len(cols)))
-    count = np.empty(len(cols), dtype=np.int64)
-    load_side()(vx, vy, sweeps.hx, sweeps.hy, sweeps.dx, sweeps.dy, far, sweeps.split, cols, ox, oy, count)
-    return ox, oy, np.arange(len(cols), dtype=np.int64), count
+    return vx, vy, cols, sweeps.hx, sweeps.hy, sweeps.dx, sweeps.dy, far, sweeps.split
 
 
-def filter_columns(vx1, vy1, cols1: np.ndarray, vx2, vy2, cols2: np.ndarray, rows1=None, rows2=None) -> np.ndarray:
+def filter_columns(vx1, vy1, cols1, vx2, vy2, cols2, sweeps1=None, sweeps2=None, seen=None) -> np.ndarray:
     """(P,) int8 verdicts for the pairs of columns ``(cols1[p], cols2[p])`` (int64) of two
-    sets of padded polygons (K, n) float64, each read on its ``rows`` (P,) int64 first rows
-    (None: all K; -1 leaves a pair undecided)."""
+    classes' padded polygons (K, n) float64, with their :class:`posing.Sweeps` (None: the
+    class has none). ``seen``: None, or ``(x, y)`` (K2, P) float64 arrays that receive the
+    side-2 polygons as the filter read them (sweeps built, repeats dropped, padded with
+    their last vertex; nan for a sweep left to the reference)."""
     out = np.empty(len(cols1), dtype=np.int8)
-    r1 = np.full(len(cols1), vx1.shape[0], dtype=np.int64) if rows1 is None else rows1
-    r2 = np.full(len(cols1), vx2.shape[0], dtype=np.int64) if rows2 is None else rows2
-    load()(vx1, vy1, cols1, r1, vx2, vy2, cols2, r2, out)
+    sx, sy = seen if seen is not None else (np.zeros((vx2.shape[0], 0)), np.zeros((vx2.shape[0], 0)))
+    load()(*_side(vx1, vy1, cols1, sweeps1), *_side(vx2, vy2, cols2, sweeps2), out, sx, sy)
     return out
-
-
-def rows_to_read(x: np.ndarray, count: np.ndarray | None) -> np.ndarray | None:
-    """Rows of each polygon of a side from :func:`polygons` the filter must read: ``K`` for
-    a copied class column, ``K/2 + 2`` for a sweep that fits (a sweep of a convex shape of
-    ``H`` rows has at most ``H + 2`` distinct vertices, one more per repeated hull vertex:
-    a quarter fewer signs for ``K = 8``), ``K`` for one that does not; -1 stays -1."""
-    if count is None:
-        return None
-    k = x.shape[0]
-    t = min(k, k // 2 + 2)
-    rows = np.where(count > t, k, t).astype(np.int64)
-    rows[count < 0] = -1
-    return rows
 
 
 def filter_pairs(px, py, qx, qy) -> np.ndarray:

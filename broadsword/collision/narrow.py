@@ -305,13 +305,11 @@ def collide_pairs(
 
 def _compiled_group(posed: Posed, k1: int, sa: np.ndarray, k2: int, sb: np.ndarray, ws: Workspace) -> np.ndarray:
     """One (class, class) group of pairs, columns ``sa`` of class ``k1`` against ``sb`` of
-    ``k2``: the compiled filter reads the class arrays in place (a side with sweeps is
-    gathered and its sweeps built by the compiled builder first); the pairs it leaves
-    undecided are gathered and settled by the numpy reference."""
-    x1, y1, c1, n1 = _narrow_kernel.polygons(posed.vx[k1], posed.vy[k1], sa, posed.sweeps.get(k1))
-    x2, y2, c2, n2 = _narrow_kernel.polygons(posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k2))
-    rows1, rows2 = _narrow_kernel.rows_to_read(x1, n1), _narrow_kernel.rows_to_read(x2, n2)
-    verdict = _narrow_kernel.filter_columns(x1, y1, c1, x2, y2, c2, rows1, rows2)
+    ``k2``: the compiled filter reads the class arrays in place and builds the sweeps it
+    reads; the pairs it leaves undecided are gathered and settled by the numpy reference."""
+    verdict = _narrow_kernel.filter_columns(
+        posed.vx[k1], posed.vy[k1], sa, posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k1), posed.sweeps.get(k2)
+    )
     out = verdict == _narrow_kernel.HIT
     rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
     if rest.size:

@@ -198,10 +198,11 @@ def runs(x, y):
 @needs_numba
 @pytest.mark.parametrize("turning", [False, True], ids=["straight", "turning"])
 def test_kernel__decides_swept_pairs(turning):
-    """The filter reads the class arrays by column and the side builder builds the
-    candidates' sweeps (the numpy-built polygons, repeats dropped): the filter decides
-    nearly every candidate pair of a swept frame (octagons too, when bullets turn), and
-    every pair it decides is decided as the reference decides it."""
+    """The filter reads the class arrays by column and builds the candidates' sweeps
+    itself: the polygons it reads are the numpy-built ones (repeats dropped), it decides
+    nearly every candidate pair of a swept frame (octagons too, when bullets turn), every
+    pair it decides is decided as the reference decides it, and swapping the sides (the
+    sweeps on side 1) changes no verdict."""
     from broadsword.collision import pose
     from broadsword.collision.scenarios import ReferenceScene
 
@@ -216,28 +217,30 @@ def test_kernel__decides_swept_pairs(turning):
     pairs = cand.hits
     assert posed.sweeps, "test bug: nothing swept lazily"
     ki, kj = posed.klass[pairs[:, 0]], posed.klass[pairs[:, 1]]
-    decided_total = 0
+    decided_total = checked = 0
     for k1, k2 in set(zip(ki.tolist(), kj.tolist(), strict=True)):
         sel = np.flatnonzero((ki == k1) & (kj == k2))
         sa, sb = posed.slot[pairs[sel, 0]], posed.slot[pairs[sel, 1]]
-        x1, y1, c1, n1 = _narrow_kernel.polygons(posed.vx[k1], posed.vy[k1], sa, posed.sweeps.get(k1))
-        x2, y2, c2, n2 = _narrow_kernel.polygons(posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k2))
-        for x, y, n, k, s in ((x1, y1, n1, k1, sa), (x2, y2, n2, k2, sb)):
-            if n is None:
-                continue
-            gx, gy = posed.gather(k, s)  # built by numpy
-            for p in np.flatnonzero(n >= 0)[:300]:  # the same polygon (repeats dropped), padded
-                assert runs(x[:, p], y[:, p]) == runs(gx[:, p], gy[:, p])
-                assert (x[n[p] :, p] == x[n[p] - 1, p]).all() and (y[n[p] :, p] == y[n[p] - 1, p]).all()
-            assert (n <= k // 2 + 2).mean() > 0.9  # most sweeps fit the trimmed rows
-            assert (np.asarray(s) >= posed.sweeps[k].split).any()
-        rows1, rows2 = _narrow_kernel.rows_to_read(x1, n1), _narrow_kernel.rows_to_read(x2, n2)
-        v = _narrow_kernel.filter_columns(x1, y1, c1, x2, y2, c2, rows1, rows2)
+        one = (posed.vx[k1], posed.vy[k1], sa)
+        two = (posed.vx[k2], posed.vy[k2], sb)
+        sw1, sw2 = posed.sweeps.get(k1), posed.sweeps.get(k2)
+        seen = np.empty((2, posed.vx[k2].shape[0], len(sel)))
+        v = _narrow_kernel.filter_columns(*one, *two, sw1, sw2, seen=(seen[0], seen[1]))
         ref = polygons_collide_padded(*posed.gather(k1, sa), *posed.gather(k2, sb))
         decided = v != _narrow_kernel.UNDECIDED
         assert np.array_equal(v[decided] == _narrow_kernel.HIT, ref[decided]), (k1, k2)
+        assert np.array_equal(_narrow_kernel.filter_columns(*two, *one, sw2, sw1), v), (k1, k2)
         decided_total += int(decided.sum())
-    assert decided_total >= 0.95 * len(pairs) and len(pairs) > 200
+        if sw2 is None:
+            continue
+        gx, gy = posed.gather(k2, sb)  # built by numpy
+        built = np.flatnonzero((sb >= sw2.split) & ~np.isnan(seen[0, 0]))
+        for p in built[:300]:  # the same polygon, repeats dropped
+            assert runs(seen[0, :, p], seen[1, :, p]) == runs(gx[:, p], gy[:, p])
+            checked += 1
+        distinct = [len(runs(seen[0, :, p], seen[1, :, p])) for p in built]
+        assert np.mean(np.array(distinct) <= k2 // 2 + 2) > 0.9  # a convex shape swept: H + 2
+    assert decided_total >= 0.95 * len(pairs) and len(pairs) > 200 and checked > 100
 
 
 @needs_numba
@@ -258,9 +261,9 @@ def test_bounds_kernel__boxes_overlap_equals_numpy():
 
 @needs_numba
 @pytest.mark.parametrize("scale_exp", [-1074, -1040, -1001, -1000, -999, -300, 0, 300, 999, 1000, 1001, 1020])
-def test_side_builder__sweeps_equal_numpy_at_every_path_magnitude(scale_exp):
-    """The compiled builder's sweeps, repeats dropped, equal ``posing.Sweeps.build``'s for
-    paths from the smallest subnormal to near the largest double (both sides of the
+def test_kernel__builds_sweeps_as_numpy_at_every_path_magnitude(scale_exp):
+    """The sweeps the compiled filter builds, repeats dropped, equal ``posing.Sweeps.build``'s
+    for paths from the smallest subnormal to near the largest double (both sides of the
     exponent-bits shortcut at 2**+-1000); most are built (the rest go to the reference)."""
     from broadsword.collision.posing import Sweeps
     from broadsword.collision.workspace import Workspace
@@ -277,10 +280,11 @@ def test_side_builder__sweeps_equal_numpy_at_every_path_magnitude(scale_exp):
     d[0, 10:20] = 0.0  # along an axis
     sweeps = Sweeps(0, hx, hy, d[0], d[1], Workspace())
     cols = np.arange(m, dtype=np.int64)
-    vx = np.empty((8, m))
-    x, y, _, count = _narrow_kernel.polygons(vx, vx, cols, sweeps)
+    vx = np.zeros((8, m))  # every column swept: the class arrays are not read
+    x, y = np.empty((8, m)), np.empty((8, m))
+    _narrow_kernel.filter_columns(vx, vx, cols, vx, vx, cols, sweeps, sweeps, seen=(x, y))
     gx, gy = sweeps.build(cols)
-    built = np.flatnonzero(count >= 0)
+    built = np.flatnonzero(~np.isnan(x[0]))
     assert len(built) > m // 2
     for p in built:
         assert runs(x[:, p], y[:, p]) == runs(gx[:, p], gy[:, p]), p
