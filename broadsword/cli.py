@@ -217,7 +217,7 @@ class KernelChoiceError(Exception):
 
 def _load_kernels() -> None:
     """Load the compiled collision kernels when numba is chosen, before any window opens:
-    a first launch compiles them here (about 15 s, said on stderr), not in a frame."""
+    a first launch compiles them here (about 20 s, said on stderr), not in a frame."""
     from .collision import Kernel, check_kernel, warm_kernel
     from .collision._kernel import NUMBA_MISSING, numba_problem
 

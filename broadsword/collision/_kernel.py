@@ -141,7 +141,7 @@ def jit(fn, signature: str):
         compiling = not _cache_present(fn)
         if compiling and not _Compiled.told:
             print(
-                "broadsword: compiling the numba collision kernels (once, then cached; about 15 s)...",
+                "broadsword: compiling the numba collision kernels (once, then cached; about 20 s)...",
                 file=sys.stderr,
             )
             _Compiled.told = True
@@ -155,11 +155,24 @@ def jit(fn, signature: str):
 
 
 def _cache_present(fn) -> bool:
-    """Whether numba's on-disk cache holds an index for ``fn`` (best effort)."""
+    """Whether numba's on-disk cache holds an index for ``fn`` (best effort): the directory
+    numba's own locators choose (``NUMBA_CACHE_DIR`` when set, else ``__pycache__`` beside
+    the source, else the user's cache), or ``__pycache__`` where numba's internals moved."""
     import inspect
 
     try:
-        where = os.path.join(os.path.dirname(inspect.getfile(fn)), "__pycache__")
+        source = inspect.getfile(fn)
+        where = os.path.join(os.path.dirname(source), "__pycache__")
+        try:
+            from numba.core.caching import CacheImpl
+
+            for locator in CacheImpl._locator_classes:
+                found = locator.from_function(fn, source)
+                if found is not None:
+                    where = found.get_cache_path()
+                    break
+        except (ImportError, AttributeError):  # numba's internals moved: the in-tree guess
+            pass
         stem = f"{fn.__module__.rsplit('.', 1)[-1]}.{fn.__qualname__}-"
         return any(f.startswith(stem) and f.endswith(".nbi") for f in os.listdir(where))
     except (OSError, TypeError):

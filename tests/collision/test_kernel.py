@@ -304,3 +304,20 @@ def test_check_kernel__a_numba_that_does_not_import_leaves_numpy(monkeypatch):
     from broadsword.collision import Armature
 
     assert Pipeline([Armature.box(4, 4)]).kernel is Kernel.NUMPY
+
+
+@needs_numba
+def test_jit__a_first_compile_says_so_and_a_cached_load_is_silent(tmp_path):
+    """A kernel not in numba's cache (here ``NUMBA_CACHE_DIR``, where numba's own locator
+    looks) is announced on stderr with its seconds; the next process loads it silently."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    load = "from broadsword.collision import _bounds_kernel; _bounds_kernel.load()"
+    runs = [subprocess.run([sys.executable, "-c", load], env=env, capture_output=True, text=True) for _ in range(2)]
+    assert [r.returncode for r in runs] == [0, 0], runs[0].stderr
+    assert "compiling the numba collision kernels" in runs[0].stderr
+    assert "_bounds_kernel._overlap_py" in runs[0].stderr
+    assert runs[1].stderr == ""
