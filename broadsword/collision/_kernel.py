@@ -166,7 +166,8 @@ def _cache_present(fn) -> bool:
         try:
             from numba.core.caching import CacheImpl
 
-            for locator in CacheImpl._locator_classes:
+            locators: list[Any] = list(CacheImpl._locator_classes)  # classes with from_function
+            for locator in locators:
                 found = locator.from_function(fn, source)
                 if found is not None:
                     where = found.get_cache_path()

@@ -321,3 +321,23 @@ def test_jit__a_first_compile_says_so_and_a_cached_load_is_silent(tmp_path):
     assert "compiling the numba collision kernels" in runs[0].stderr
     assert "_bounds_kernel._overlap_py" in runs[0].stderr
     assert runs[1].stderr == ""
+
+
+@needs_numba
+def test_kernel__seen_marks_only_the_second_sides_refused_sweeps():
+    """A refused sweep on side 1 leaves the pair undecided but not side 2's polygon unseen;
+    a refused sweep on side 2 is seen as nan."""
+    from broadsword.collision.posing import Sweeps
+    from broadsword.collision.workspace import Workspace
+
+    hx, hy = np.array([[0.0], [1.0], [1.0], [0.0]]), np.array([[0.0], [0.0], [1.0], [1.0]])
+    still = Sweeps(0, hx, hy, np.zeros(1), np.zeros(1), Workspace())  # no path: thin, refused
+    col, unused = np.zeros(1, dtype=np.int64), np.zeros((8, 1))
+    qx, qy = np.array([[5.0], [6.0], [6.0], [5.0]]), np.array([[5.0], [5.0], [6.0], [6.0]])
+    sx, sy = np.empty((4, 1)), np.empty((4, 1))
+    v = _narrow_kernel.filter_columns(unused, unused, col, qx, qy, col, still, None, seen=(sx, sy))
+    assert v[0] == _narrow_kernel.UNDECIDED
+    assert sx[:, 0].tolist() == [5.0, 6.0, 6.0, 5.0] and sy[:, 0].tolist() == [5.0, 5.0, 6.0, 6.0]
+    sx, sy = np.empty((8, 1)), np.empty((8, 1))
+    v = _narrow_kernel.filter_columns(qx, qy, col, unused, unused, col, None, still, seen=(sx, sy))
+    assert v[0] == _narrow_kernel.UNDECIDED and np.isnan(sx).all() and np.isnan(sy).all()
