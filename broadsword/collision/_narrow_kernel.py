@@ -39,7 +39,7 @@ from ._kernel import jit
 from .posing import THIN
 from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
 
-__all__ = ["BLOCK", "HIT", "MISS", "UNDECIDED", "filter_columns", "filter_pairs", "load"]
+__all__ = ["BLOCK", "HIT", "MISS", "UNDECIDED", "decide", "filter_columns", "filter_pairs", "load"]
 
 #: Kernel verdicts, one int8 per pair.
 MISS, HIT, UNDECIDED = 0, 1, 2
@@ -49,7 +49,7 @@ _SIDE = (
     "float64[:, :], float64[:, :], int64[:], float64[:, :], float64[:, :], float64[:], float64[:], boolean[:], int64"
 )
 #: (side 1, side 2, out, seen_x, seen_y)
-_SIGNATURE = f"void({_SIDE}, {_SIDE}, int8[:], float64[:, :], float64[:, :])"
+_SIGNATURE = f"int64({_SIDE}, {_SIDE}, int8[:], float64[:, :], float64[:, :])"
 
 #: Pairs per block of the filter: its scratch (a few (K+1, BLOCK) arrays of doubles) stays
 #: in a core's L1/L2 cache; 64 and 128 measured alike, 32 slower.
@@ -62,7 +62,7 @@ def _filter_py(  # pragma: no cover - compiled by numba
     out, seen_x, seen_y,
 ):  # fmt: skip
     """Verdicts (MISS / HIT / UNDECIDED) into ``out`` (P,) for the polygons of columns
-    ``(cols1[p], cols2[p])`` of two classes.
+    ``(cols1[p], cols2[p])`` of two classes; returns how many are UNDECIDED.
 
     A side: its padded class arrays ``vx, vy`` (K, n), read as they are for a column below
     ``split``; a column ``c >= split`` is the sweep of ``c - split``, built from its shape
@@ -73,6 +73,7 @@ def _filter_py(  # pragma: no cover - compiled by numba
     reference; for tests).
     """
     n = len(out)
+    undecided = 0
     m1 = vx1.shape[0]
     m2 = vx2.shape[0]
     w = BLOCK
@@ -338,6 +339,8 @@ def _filter_py(  # pragma: no cover - compiled by numba
                 out[p] = UNDECIDED
             else:  # no crossing: one polygon holds the other (its vertex 0 inside), or they miss
                 out[p] = HIT if p_in_q[b] | q_in_p[b] else MISS
+            undecided += out[p] == UNDECIDED
+    return undecided
 
 
 def load():
@@ -345,28 +348,39 @@ def load():
     return jit(_filter_py, _SIGNATURE)
 
 
+#: A side without sweeps: no shapes, no paths, every column below the split. (Empty arrays
+#: hold nothing, so sharing them is safe; made once, as they cost a few us a call.)
+_NO_SWEEPS = (np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0), np.zeros(0), np.zeros(0, dtype=bool), 2**63 - 1)
+#: ``seen`` not asked for.
+_UNSEEN = (np.zeros((0, 0)), np.zeros((0, 0)))
+
+
 def _side(vx, vy, cols: np.ndarray, sweeps) -> tuple:
     """The filter's arguments for one side: ``sweeps`` a :class:`posing.Sweeps` whose shapes
     fill the class's rows (``2H = K``), or None."""
     if sweeps is None:
-        shape, path = np.zeros((0, 0)), np.zeros(0)
-        return vx, vy, cols, shape, shape, path, path, np.zeros(0, dtype=bool), np.iinfo(np.int64).max
+        return (vx, vy, cols, *_NO_SWEEPS)
     if 2 * sweeps.hx.shape[0] != vx.shape[0]:
         raise ValueError(f"a sweep of {sweeps.hx.shape[0]} rows does not fill a class of {vx.shape[0]} rows")
     far = np.zeros(0, dtype=bool) if sweeps.far is None else sweeps.far
     return vx, vy, cols, sweeps.hx, sweeps.hy, sweeps.dx, sweeps.dy, far, sweeps.split
 
 
-def filter_columns(vx1, vy1, cols1, vx2, vy2, cols2, sweeps1=None, sweeps2=None, seen=None) -> np.ndarray:
-    """(P,) int8 verdicts for the pairs of columns ``(cols1[p], cols2[p])`` (int64) of two
-    classes' padded polygons (K, n) float64, with their :class:`posing.Sweeps` (None: the
-    class has none). ``seen``: None, or ``(x, y)`` (K2, P) float64 arrays that receive the
-    side-2 polygons as the filter read them (sweeps built, repeats dropped, padded with
-    their last vertex; nan for a sweep left to the reference)."""
+def decide(vx1, vy1, cols1, vx2, vy2, cols2, sweeps1=None, sweeps2=None, seen=None) -> tuple[np.ndarray, int]:
+    """``(verdicts, undecided)``: (P,) int8 verdicts for the pairs of columns ``(cols1[p],
+    cols2[p])`` (int64) of two classes' padded polygons (K, n) float64, with their
+    :class:`posing.Sweeps` (None: the class has none), and how many are UNDECIDED.
+    ``seen``: None, or ``(x, y)`` (K2, P) float64 arrays that receive the side-2 polygons as
+    the filter read them (sweeps built, repeats dropped, padded with their last vertex; nan
+    for a sweep left to the reference)."""
     out = np.empty(len(cols1), dtype=np.int8)
-    sx, sy = seen if seen is not None else (np.zeros((vx2.shape[0], 0)), np.zeros((vx2.shape[0], 0)))
-    load()(*_side(vx1, vy1, cols1, sweeps1), *_side(vx2, vy2, cols2, sweeps2), out, sx, sy)
-    return out
+    sides = (*_side(vx1, vy1, cols1, sweeps1), *_side(vx2, vy2, cols2, sweeps2))
+    return out, int(load()(*sides, out, *(seen or _UNSEEN)))
+
+
+def filter_columns(vx1, vy1, cols1, vx2, vy2, cols2, sweeps1=None, sweeps2=None, seen=None) -> np.ndarray:
+    """The verdicts of :func:`decide`."""
+    return decide(vx1, vy1, cols1, vx2, vy2, cols2, sweeps1, sweeps2, seen)[0]
 
 
 def filter_pairs(px, py, qx, qy) -> np.ndarray:

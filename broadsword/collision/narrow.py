@@ -290,9 +290,13 @@ def collide_pairs(
     ki, kj = posed.klass[i], posed.klass[j]
     group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
     ws = workspace or Workspace()
-    for g in np.flatnonzero(np.bincount(group)).tolist():  # a handful of groups (np.unique sorts: slower)
-        sel = np.flatnonzero(group == g)
-        a, b = np.take(i, sel), np.take(j, sel)
+    groups: list[tuple[slice | np.ndarray, np.ndarray, np.ndarray]] = [(slice(None), i, j)]
+    if not (group == group[0]).all():  # more than one group (one: small scenes, no selection to make)
+        groups = []
+        for g in np.flatnonzero(np.bincount(group)).tolist():  # a handful (np.unique sorts: slower)
+            chosen = np.flatnonzero(group == g)
+            groups.append((chosen, np.take(i, chosen), np.take(j, chosen)))
+    for sel, a, b in groups:
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
         if kernel is Kernel.NUMBA and narrow is polygons_collide_padded:
@@ -307,12 +311,12 @@ def _compiled_group(posed: Posed, k1: int, sa: np.ndarray, k2: int, sb: np.ndarr
     """One (class, class) group of pairs, columns ``sa`` of class ``k1`` against ``sb`` of
     ``k2``: the compiled filter reads the class arrays in place and builds the sweeps it
     reads; the pairs it leaves undecided are gathered and settled by the numpy reference."""
-    verdict = _narrow_kernel.filter_columns(
+    verdict, undecided = _narrow_kernel.decide(
         posed.vx[k1], posed.vy[k1], sa, posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k1), posed.sweeps.get(k2)
     )
     out = verdict == _narrow_kernel.HIT
-    rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
-    if rest.size:
+    if undecided:
+        rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
         ra, rb = np.take(sa, rest), np.take(sb, rest)
         out[rest] = polygons_collide_padded(*posed.gather(k1, ra), *posed.gather(k2, rb), ws)
     return out
