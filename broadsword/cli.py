@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 from . import __version__
 from .argtypes import lab_size, natural, seed
-from .data import DataError, list_levels
+from .data import DataError, list_levels, load_level, resolve_level
 from .data.difficulty import Difficulty
 from .data.recordings import load_recording, save_recording, save_stage_recordings
 
@@ -172,7 +172,6 @@ def _run_play(args: argparse.Namespace) -> int:
     try:
         if args.list_levels:
             return _list_levels()
-        _load_kernels()
         replay = load_recording(args.replay) if args.replay else None
         if replay and (args.rotation or args.level or args.difficulty):
             print(
@@ -182,6 +181,9 @@ def _run_play(args: argparse.Namespace) -> int:
             )
             return 2
         level = args.level or (replay.level if replay else list_levels()[0])
+        if args.level:  # a broken level is said at once, not after a first launch's compile
+            load_level(resolve_level(level))
+        _load_kernels()
         seed_ = replay.seed if replay and args.seed == 0 else args.seed
         if args.headless:
             os.environ.setdefault("SDL_VIDEODRIVER", "dummy")

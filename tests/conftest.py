@@ -13,6 +13,9 @@
   long test while the others wait.
 * Fixtures: ``armatures`` (the sprite bank, loaded once per process; see shipped.py
   for the helpers behind it).
+* Compiled kernels: with numba installed, the main process loads them (compiling into
+  numba's cache on a fresh clone, about 20 s, said on stderr) before any worker starts, so
+  no test pays for a compile or sees its message in the stderr it checks.
 """
 
 import os
@@ -77,6 +80,17 @@ _check_lists()
 
 def _paths(modules) -> dict[str, int]:
     return {os.path.join(_HERE, *m.split("/")): k for k, m in enumerate(modules)}
+
+
+def pytest_sessionstart(session):
+    """Load (or compile) the numba kernels once, in the main process, before the workers
+    start (pytest-xdist starts them after this hook)."""
+    if hasattr(session.config, "workerinput"):  # a worker: the main process did it
+        return
+    from broadsword.collision import _kernel
+
+    if _kernel.numba_available():
+        _kernel.warm_kernel()  # a compile says so on stderr, kernel by kernel
 
 
 def pytest_collection_modifyitems(config, items):

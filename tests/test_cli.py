@@ -87,6 +87,21 @@ def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
     assert len(err.strip().splitlines()) == 1 and str(bad) in err and "scene.tiers" in err and "sphere" in err
 
 
+def test_broken_level__said_before_the_kernels_load(tmp_path, capsys, monkeypatch):
+    """A broken ``--level`` is refused before the compiled kernels are loaded (a first
+    launch would otherwise compile them, about 20 s, before saying the level is broken);
+    the check comes before the window and the headless paths part."""
+    import broadsword.cli as cli
+
+    loaded = []
+    monkeypatch.setattr(cli, "_load_kernels", lambda: loaded.append(True))
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[scene]\ntiers = ["bins", "sphere"]\n')
+    code, out, err = run(["--headless", "--level", str(bad)], capsys)
+    assert code == 2 and out == "" and "scene.tiers" in err
+    assert loaded == []
+
+
 @pytest.mark.parametrize(
     "text, field",
     [
