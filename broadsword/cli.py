@@ -181,8 +181,8 @@ def _run_play(args: argparse.Namespace) -> int:
             )
             return 2
         level = args.level or (replay.level if replay else list_levels()[0])
-        if args.level:  # a broken level is said at once, not after a first launch's compile
-            load_level(resolve_level(level))
+        if args.level and args.headless:  # exit 2 at once, not after a first launch's compile
+            load_level(resolve_level(level))  # (a window opens on the title and shows it there)
         _load_kernels()
         seed_ = replay.seed if replay and args.seed == 0 else args.seed
         if args.headless:

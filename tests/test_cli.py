@@ -88,9 +88,9 @@ def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
 
 
 def test_broken_level__said_before_the_kernels_load(tmp_path, capsys, monkeypatch):
-    """A broken ``--level`` is refused before the compiled kernels are loaded (a first
-    launch would otherwise compile them, about 20 s, before saying the level is broken);
-    the check comes before the window and the headless paths part."""
+    """Headless, a broken ``--level`` is refused before the compiled kernels are loaded (a
+    first launch would otherwise compile them, about 20 s, before exiting 2). In a window
+    the game opens on the title and says it there (tests/game/test_app_robustness.py)."""
     import broadsword.cli as cli
 
     loaded = []
