@@ -73,3 +73,33 @@ def test_readme_reads_right_on_a_package_index():
     images = re.findall(r"!\[([^\]]*)\]\(([^)]+)\)", text)
     assert images and all(caption.strip() for caption, _ in images)
     assert all((ROOT / path).is_file() for _, path in images if not path.startswith("https://"))
+
+
+def _quick_start_commands() -> list[str]:
+    """The README quick start's shell commands (the lines of its ``sh`` blocks)."""
+    import re
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text[text.index("## Quick start") : text.index("\n## ", text.index("## Quick start") + 1)]
+    return [line for block in re.findall(r"```sh\n(.*?)```", section, re.S) for line in block.splitlines() if line]
+
+
+def test_quick_start_installs_into_a_virtual_environment():
+    """The README's two commands work where the system Python is externally managed (PEP 668:
+    Debian 12, Ubuntu 24.04): each makes a virtual environment and installs into it, never
+    with the system's pip; one plays, one runs the tests."""
+    commands = _quick_start_commands()
+    assert len(commands) == 2
+    for command in commands:
+        steps = command.split(" && ")
+        assert steps[0] == "python3 -m venv .venv"
+        assert all(not s.startswith(("python3 -m pip", "pip ")) for s in steps)
+        assert steps[1].startswith(".venv/bin/python -m pip install ")
+    assert commands[0].endswith("-m broadsword") and commands[1].endswith("-m pytest")
+
+
+def test_ci_runs_the_readme_test_command_verbatim():
+    """``.ci/run`` runs the quick start's test command as the README states it."""
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    test_command = _quick_start_commands()[1]
+    assert any(line.startswith(test_command) for line in ci.splitlines())
