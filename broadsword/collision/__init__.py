@@ -14,6 +14,7 @@ the game. Modules, one idea each:
 * ``broadphase``  the bin grid, quadtrees and brute force behind one protocol (a package,
   one module per method; ``base`` holds the protocol and its statistics)
 * ``narrow``      the exact narrow phase over many pairs at once
+* ``lasers``      lasers: polylines with a width, as pieces (convex quads) collided exactly
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
 * ``tiers``       every tier in one registry, and the one rule for their order
 * ``frame``       one frame's typed record: the objects in, the result out
@@ -40,6 +41,7 @@ from .broadphase import (
 )
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
+from .lasers import LASER_NODES_MAX, Laser, laser_touches, pieces_touching
 from .layers import LayerTable
 from .narrow import collide_pairs, paper_collide_padded, polygons_collide_padded
 from .pipeline import Pipeline
@@ -75,6 +77,10 @@ __all__ = [
     "check_tiers",
     "kdops",
     "kdops_overlap",
+    "LASER_NODES_MAX",
+    "Laser",
+    "laser_touches",
+    "pieces_touching",
     "LayerTable",
     "MaskCache",
     "paper_collide_padded",
