@@ -15,7 +15,8 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    levels against their sprites' own masks (how often an armature hit disagrees with
    what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
-   whole game frame's;
+   whole game frame's; lasers: the exact test against other engines' models (false hits and
+   misses, cost) on one corpus (:mod:`.lasers`);
 4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
    table's error, the paper test's numerical failures by family, hitbox fidelity.
 
@@ -435,6 +436,12 @@ def main(argv: list[str] | None = None) -> int:
     patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
     print(patterns_markdown(patterns, game[0] if game else None), flush=True)
 
+    from .lasers import markdown as lasers_markdown
+    from .lasers import run_laser_models
+
+    lasers = run_laser_models(args.quick, args.seed, _progress("lasers against the engines' models"))
+    print(lasers_markdown(lasers), flush=True)
+
     sections = {}
     for key, fn in (
         ("scaling", analysis.scaling),
@@ -464,6 +471,7 @@ def main(argv: list[str] | None = None) -> int:
             "bullet_drawing": drawing,
             "levels_vs_sprites": visual,
             "patterns": patterns,
+            "lasers": lasers,
             **sections,
         }
         with open(args.json, "w") as fh:

@@ -110,32 +110,38 @@ class Laser:
         """The laser's pieces, ``(x, y)`` each ``(4, 2 n - 3)`` float64: column ``j`` is
         piece ``j``'s four corners in order (segment pieces first, then joins). See the
         module docstring for the definition."""
-        return laser_pieces(self.nodes, self.widths)
+        x, y, _ = laser_pieces(self.nodes, self.widths)
+        return x, y
 
 
-def _normals(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Unit normals ``(ux, uy)``, ``(n - 1,)`` each, of the segments of the chain ``x``, ``y``
-    (``(n,)``), by the module docstring's rules (zero-length segments filled in)."""
+def _normals(x: np.ndarray, y: np.ndarray, seg_chain: np.ndarray, seg_first: np.ndarray, seg_last: np.ndarray):
+    """Unit normals ``(ux, uy)``, ``(s,)`` each, of ``s`` segments from ``(x[0], y[0])`` to
+    ``(x[1], y[1])`` (``x``, ``y``: (2, s)), by the module docstring's rules. A zero-length
+    segment takes its normal from its own laser: ``seg_chain`` (s,) is each segment's laser,
+    ``seg_first`` and ``seg_last`` (lasers,) each laser's first and last segment."""
     with np.errstate(over="ignore", invalid="ignore"):
-        dx, dy = np.diff(x), np.diff(y)
+        dx, dy = x[1] - x[0], y[1] - y[0]
         far = ~(np.isfinite(dx) & np.isfinite(dy))
-        if far.any():  # ends of opposite sign near the largest double: halve first (exact here)
-            dx[far] = 0.5 * x[1:][far] - 0.5 * x[:-1][far]
-            dy[far] = 0.5 * y[1:][far] - 0.5 * y[:-1][far]
+        if far.any():  # ends of opposite sign near the largest double: halve first
+            dx[far] = 0.5 * x[1][far] - 0.5 * x[0][far]
+            dy[far] = 0.5 * y[1][far] - 0.5 * y[0][far]
     _, e = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
     sx, sy = np.ldexp(dx, -e), np.ldexp(dy, -e)  # exact; the larger magnitude in [0.5, 1)
     length = np.sqrt(sx * sx + sy * sy)
     has = length > 0
-    if not has.any():
-        return np.zeros_like(dx), np.ones_like(dy)
-    ux, uy = np.zeros_like(dx), np.zeros_like(dy)
+    ux, uy = np.zeros_like(dx), np.ones_like(dy)  # (0, 1): a chain with no length at all
     ux[has], uy[has] = -sy[has] / length[has], sx[has] / length[has]
-    if not has.all():  # nearest segment with a length before, else after
-        idx = np.where(has, np.arange(len(has)), -1)
-        before = np.maximum.accumulate(idx)
-        after = np.minimum.accumulate(np.where(has, np.arange(len(has)), len(has))[::-1])[::-1]
-        src = np.where(before >= 0, before, after)
-        ux, uy = ux[src], uy[src]
+    if has.all():
+        return ux, uy
+    s = np.arange(len(has))
+    before = np.maximum.accumulate(np.where(has, s, -1))  # nearest segment with a length, at or before
+    after = np.minimum.accumulate(np.where(has, s, len(has))[::-1])[::-1]  # at or after
+    first, last = seg_first[seg_chain], seg_last[seg_chain]
+    ok_before = before >= first
+    ok_after = after <= last
+    src = np.where(ok_before, before, np.where(ok_after, after, s))
+    fill = ~has & (ok_before | ok_after)
+    ux[fill], uy[fill] = ux[src[fill]], uy[src[fill]]
     return ux, uy
 
 
@@ -151,36 +157,73 @@ def _box_unbounded(x: np.ndarray, y: np.ndarray) -> None:
     y[:, bad] = np.stack([y0, y0, y1, y1])
 
 
-def laser_pieces(nodes: np.ndarray, widths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The pieces of the laser through ``nodes`` ((n, 2) float64, finite, ``n >= 2``) with
-    full ``widths`` ((n,) float64, finite, ``>= 0``): ``(x, y)``, each ``(4, 2 n - 3)``,
-    column ``j`` piece ``j``'s corners (segment pieces ``0 .. n - 2``, then the joins at
-    nodes ``1 .. n - 2``). Arguments are not checked here: :meth:`Laser.of` does that."""
+def laser_pieces(
+    nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The pieces of many lasers at once.
+
+    Parameters
+    ----------
+    nodes : (N, 2) float64
+        Every laser's nodes, one laser after another (finite).
+    widths : (N,) float64
+        The full width at each node (finite, ``>= 0``).
+    starts : (L,) int, optional
+        Where each laser's nodes begin in ``nodes`` (increasing, the first 0, each laser at
+        least 2 nodes); ``None``: one laser.
+
+    Returns
+    -------
+    x, y : (4, P) float64
+        Column ``j`` is piece ``j``'s corners: for each laser in turn, its ``n - 1`` segment
+        pieces, then its ``n - 2`` joins (``P`` is ``2 N - 3 L``).
+    owner : (P,) int64
+        The laser each piece belongs to.
+
+    Arguments are not checked here (:meth:`Laser.of` checks one laser's); the bits of a
+    laser's pieces do not depend on the lasers around it.
+    """
+    n_all = len(nodes)
+    starts = np.zeros(1, dtype=np.int64) if starts is None else np.asarray(starts, dtype=np.int64)
+    ends = np.append(starts[1:], n_all)  # one past each laser's last node
+    counts = ends - starts
+    lasers = len(starts)
     x, y = nodes[:, 0], nodes[:, 1]
-    h = 0.5 * widths  # exact (a width is at most the largest double; half of it is too)
-    ux, uy = _normals(x, y)
-    n = len(x)
-    px = np.empty((4, 2 * n - 3))
-    py = np.empty((4, 2 * n - 3))
+    h = 0.5 * widths  # exact (half of a double is a double, barring subnormals: rounded once)
+    # segments: every node but each laser's last starts one
+    seg_start = np.delete(np.arange(n_all), ends - 1)
+    seg_chain = np.repeat(np.arange(lasers), counts - 1)
+    seg_first = starts - np.arange(lasers)  # segment index of each laser's first segment
+    seg_last = seg_first + counts - 2
+    a, b = seg_start, seg_start + 1
+    ux, uy = _normals(np.stack([x[a], x[b]]), np.stack([y[a], y[b]]), seg_chain, seg_first, seg_last)
+    # joins: interior nodes, between a laser's consecutive segments s-1 and s
+    join_seg = np.setdiff1d(np.arange(len(seg_start)), seg_first)  # a join's second segment
+    join_node = seg_start[join_seg]
+    join_chain = seg_chain[join_seg]
+    segs, joins = len(seg_start), len(join_seg)
+    px, py = np.empty((4, segs + joins)), np.empty((4, segs + joins))
     with np.errstate(over="ignore", invalid="ignore"):
         # segment pieces: p_i + h_i u_i, p_i+1 + h_i+1 u_i, p_i+1 - h_i+1 u_i, p_i - h_i u_i
-        a_x, a_y = h[:-1] * ux, h[:-1] * uy
-        b_x, b_y = h[1:] * ux, h[1:] * uy
-        s = slice(0, n - 1)
-        px[0, s], py[0, s] = x[:-1] + a_x, y[:-1] + a_y
-        px[1, s], py[1, s] = x[1:] + b_x, y[1:] + b_y
-        px[2, s], py[2, s] = x[1:] - b_x, y[1:] - b_y
-        px[3, s], py[3, s] = x[:-1] - a_x, y[:-1] - a_y
+        ax, ay, bx, by = h[a] * ux, h[a] * uy, h[b] * ux, h[b] * uy
+        px[0, :segs], py[0, :segs] = x[a] + ax, y[a] + ay
+        px[1, :segs], py[1, :segs] = x[b] + bx, y[b] + by
+        px[2, :segs], py[2, :segs] = x[b] - bx, y[b] - by
+        px[3, :segs], py[3, :segs] = x[a] - ax, y[a] - ay
         # joins at p_i (0 < i < n-1): p + h u_i-1, p + h u_i, p - h u_i-1, p - h u_i
-        j = slice(n - 1, 2 * n - 3)
-        xi, yi, hi = x[1:-1], y[1:-1], h[1:-1]
-        vx0, vy0, vx1, vy1 = hi * ux[:-1], hi * uy[:-1], hi * ux[1:], hi * uy[1:]
+        xi, yi, hi = x[join_node], y[join_node], h[join_node]
+        prev, cur = join_seg - 1, join_seg
+        vx0, vy0, vx1, vy1 = hi * ux[prev], hi * uy[prev], hi * ux[cur], hi * uy[cur]
+        j = slice(segs, segs + joins)
         px[0, j], py[0, j] = xi + vx0, yi + vy0
         px[1, j], py[1, j] = xi + vx1, yi + vy1
         px[2, j], py[2, j] = xi - vx0, yi - vy0
         px[3, j], py[3, j] = xi - vx1, yi - vy1
     _box_unbounded(px, py)
-    return px, py
+    owner = np.concatenate([seg_chain, join_chain])
+    # each laser's pieces together: its segments, then its joins
+    order = np.argsort(owner, kind="stable")
+    return px[:, order], py[:, order], owner[order]
 
 
 def pieces_touching(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> np.ndarray:

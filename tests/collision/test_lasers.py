@@ -10,7 +10,7 @@ import pytest
 from kernels import KERNELS
 
 from broadsword.collision import Kernel
-from broadsword.collision.lasers import LASER_NODES_MAX, Laser, laser_touches, pieces_touching
+from broadsword.collision.lasers import LASER_NODES_MAX, Laser, laser_pieces, laser_touches, pieces_touching
 
 M = float(np.finfo(np.float64).max)
 
@@ -205,3 +205,25 @@ def test_laser__arrays_are_read_only_copies():
     laser = Laser.of(nodes, 1)
     nodes[0, 0] = 99
     assert laser.nodes[0, 0] == 0 and not laser.nodes.flags.writeable and not laser.widths.flags.writeable
+
+
+def test_laser_pieces__many_lasers_at_once_equal_each_alone():
+    """The batched form gives every laser the same bits as alone, zero-length segments
+    included (a normal is never borrowed from a neighbouring laser)."""
+    rng = random.Random(11)
+    lasers = [
+        Laser.of([(0, 0), (0, 0)], 2),  # no length at all: (0, 1)
+        Laser.of([(5, 5), (5, 5), (5, 9)], [1, 2, 3]),  # borrows from after (and the laser before must not)
+        Laser.of([(1, 1), (4, 1), (4, 1)], 2),  # borrows from before
+    ]
+    for _ in range(20):
+        n = rng.randint(2, 8)
+        nodes = [(float(rng.randint(-5, 5)), float(rng.randint(-5, 5))) for _ in range(n)]
+        lasers.append(Laser.of(nodes, [rng.uniform(0, 4) for _ in range(n)]))
+    starts = np.cumsum([0] + [laser.n for laser in lasers[:-1]])
+    x, y, owner = laser_pieces(
+        np.concatenate([la.nodes for la in lasers]), np.concatenate([la.widths for la in lasers]), starts
+    )
+    for i, laser in enumerate(lasers):
+        ax, ay = laser.pieces()
+        assert np.array_equal(x[:, owner == i], ax) and np.array_equal(y[:, owner == i], ay), i
