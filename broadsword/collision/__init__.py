@@ -41,7 +41,15 @@ from .broadphase import (
 )
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
-from .lasers import LASER_NODES_MAX, Laser, laser_touches, pieces_touching
+from .lasers import (
+    LASER_NODES_MAX,
+    Laser,
+    laser_pieces,
+    laser_touches,
+    laser_touches_swept,
+    pieces_touching,
+    swept_polygon,
+)
 from .layers import LayerTable
 from .narrow import collide_pairs, paper_collide_padded, polygons_collide_padded
 from .pipeline import Pipeline
@@ -79,8 +87,11 @@ __all__ = [
     "kdops_overlap",
     "LASER_NODES_MAX",
     "Laser",
+    "laser_pieces",
     "laser_touches",
+    "laser_touches_swept",
     "pieces_touching",
+    "swept_polygon",
     "LayerTable",
     "MaskCache",
     "paper_collide_padded",

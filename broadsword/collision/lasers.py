@@ -50,9 +50,20 @@ import numpy as np
 
 from . import arguments
 from ._kernel import Kernel
+from .armature import convex_hull
 from .narrow import polygons_collide_padded
+from .posing import _box_unbounded as _box_unbounded_rows
+from .posing import _sweep
 
-__all__ = ["LASER_NODES_MAX", "Laser", "laser_pieces", "laser_touches", "pieces_touching"]
+__all__ = [
+    "LASER_NODES_MAX",
+    "Laser",
+    "laser_pieces",
+    "laser_touches",
+    "laser_touches_swept",
+    "pieces_touching",
+    "swept_polygon",
+]
 
 #: The most nodes a laser may have (a curvy laser of 256 nodes is well inside it).
 LASER_NODES_MAX = 4096
@@ -244,3 +255,30 @@ def laser_touches(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> bool:
     """``laser`` and ``polygon`` share at least one point: some piece of the laser touches the
     polygon (:func:`pieces_touching`). Exact for every finite input."""
     return bool(pieces_touching(laser, polygon, kernel).any())
+
+
+def swept_polygon(polygon, path) -> np.ndarray:
+    """The region ``polygon`` covers on its way here: its convex hull, at its current pose,
+    swept back along ``path`` (its position now minus its position last frame), as the
+    pipeline sweeps fast movers (``posing._sweep``: the Minkowski sum of the hull and the
+    segment from 0 to ``-path``). Returns ``(2 h, 2)`` float64 (repeated vertices where an
+    edge faces along the path); a vertex past the doubles makes it its clamped bounding box.
+
+    ``polygon``: ``(k, 2)`` reals, ``k >= 3``, not all collinear; ``path``: two reals."""
+    q = np.asarray(arguments.polygon(polygon, "polygon"), dtype=np.float64)
+    dx, dy = arguments.point(path, "path")
+    hull = convex_hull(q)
+    if len(hull) < 3:
+        raise ValueError("polygon must not have all its vertices on one line")
+    x, y = _sweep(hull[:, :1].copy(), hull[:, 1:].copy(), np.array([dx]), np.array([dy]))
+    if len(x) % 4:  # the clamping helper works on a multiple of four rows
+        x, y = np.concatenate([x, x[-2:]]), np.concatenate([y, y[-2:]])
+    _box_unbounded_rows(x, y)
+    return np.stack([x[:, 0], y[:, 0]], axis=1)
+
+
+def laser_touches_swept(laser: Laser, polygon, path, kernel: Kernel = Kernel.NUMPY) -> bool:
+    """``laser`` touches the region ``polygon`` swept through this frame (:func:`swept_polygon`):
+    a player that crossed the laser between two frames is hit. Exact for every finite input,
+    as :func:`laser_touches` is on the swept polygon."""
+    return laser_touches(laser, swept_polygon(polygon, path), kernel)

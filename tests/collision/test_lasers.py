@@ -10,7 +10,15 @@ import pytest
 from kernels import KERNELS
 
 from broadsword.collision import Kernel
-from broadsword.collision.lasers import LASER_NODES_MAX, Laser, laser_pieces, laser_touches, pieces_touching
+from broadsword.collision.lasers import (
+    LASER_NODES_MAX,
+    Laser,
+    laser_pieces,
+    laser_touches,
+    laser_touches_swept,
+    pieces_touching,
+    swept_polygon,
+)
 
 M = float(np.finfo(np.float64).max)
 
@@ -227,3 +235,37 @@ def test_laser_pieces__many_lasers_at_once_equal_each_alone():
     for i, laser in enumerate(lasers):
         ax, ay = laser.pieces()
         assert np.array_equal(x[:, owner == i], ax) and np.array_equal(y[:, owner == i], ay), i
+
+
+# ---------------------------------------------------------------------- swept
+def test_laser_touches_swept__a_player_crossing_a_laser_between_frames_is_hit():
+    laser = Laser.of([(0, 0), (100, 0)], 1)
+    now = [(40, -12), (44, -12), (44, -8), (40, -8)]  # beside the laser (it spans y -0.5..0.5)
+    assert not laser_touches(laser, now)
+    assert laser_touches_swept(laser, now, (0, -20))  # it came from below: it crossed
+    assert not laser_touches_swept(laser, now, (0, 20))  # it came from further away
+    assert not laser_touches_swept(laser, now, (30, 0))  # it moved along the laser
+    # last frame it stood at y -4.5..-0.5, its top on the laser's edge (y = -0.5): touching counts
+    assert laser_touches_swept(laser, now, (0, -7.5))
+    assert not laser_touches_swept(laser, now, (0, math.nextafter(-7.5, 0)))
+
+
+@pytest.mark.parametrize("scale", [1.0, 2.0**-1000, 1e300])
+def test_laser_touches_swept__equals_the_oracle_on_the_swept_polygon(scale):
+    rng = random.Random(int(math.log2(scale)) & 0xFFFF)
+    for _ in range(15):
+        nodes, widths, poly = _random_case(rng, scale, 0.0)
+        laser = Laser.of(nodes, widths)
+        path = (rng.randint(-20, 20) * scale, rng.randint(-20, 20) * scale)
+        swept = [tuple(v) for v in swept_polygon(poly, path).tolist()]
+        assert laser_touches_swept(laser, poly, path) == any(oracle_pieces(laser, swept))
+
+
+def test_swept_polygon__holds_both_poses_and_stays_finite_at_the_extremes():
+    sq = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    s = swept_polygon(sq, (5, 0))
+    assert s[:, 0].min() == -5 and s[:, 0].max() == 1
+    far = swept_polygon([(M * 0.9, 0), (M, 0), (M, 1)], (M, 0))  # the previous pose is past the doubles
+    assert np.isfinite(far).all()
+    with pytest.raises(ValueError, match="path"):
+        swept_polygon(sq, (float("nan"), 0))
