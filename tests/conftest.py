@@ -87,10 +87,10 @@ def pytest_sessionstart(session):
     start (pytest-xdist starts them after this hook)."""
     if hasattr(session.config, "workerinput"):  # a worker: the main process did it
         return
-    from broadsword.collision import _kernel
+    from broadsword.collision import _kernel, warm_kernel
 
     if _kernel.numba_available():
-        _kernel.warm_kernel()  # a compile says so on stderr, kernel by kernel
+        warm_kernel()  # a compile says so on stderr, kernel by kernel
 
 
 def pytest_collection_modifyitems(config, items):

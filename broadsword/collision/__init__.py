@@ -24,7 +24,8 @@ the game. Modules, one idea each:
 * ``workspace``   reused scratch buffers, and retain_heap() for applications
 """
 
-from ._kernel import Kernel, check_kernel, warm_kernel
+from ._kernel import Kernel, check_kernel
+from ._warm import warm_kernel
 from .armature import Armature, convex_hull, lut_max_displacement
 from .broadphase import (
     AUTO_BIN_FACTOR,

@@ -6,7 +6,8 @@ Four parts of the pipeline have a compiled twin: posing and boxing
 filter (:mod:`._narrow_kernel`). Each gives the same answers, in the same order, as the
 numpy code, which stays the reference the tests compare it with. :class:`Kernel` names
 the choice; :func:`check_kernel` resolves it (argument, ``BROADSWORD_KERNEL``, then numba
-when installed); :func:`jit` compiles a kernel.
+when installed); :func:`jit` compiles a kernel (the kernel modules import it;
+:func:`._warm.warm_kernel`, which imports them, loads them all: no import loop).
 
 numba is imported on first use, never at ``import broadsword.collision``; kernels have
 explicit signatures, so they compile when loaded (a pipeline loads them when it is made,
@@ -30,7 +31,6 @@ __all__ = [
     "numba_available",
     "numba_problem",
     "NUMBA_MISSING",
-    "warm_kernel",
 ]
 
 #: Environment variable forcing the narrow-phase kernel (values of :class:`Kernel`).
@@ -178,15 +178,3 @@ def _cache_present(fn) -> bool:
         return any(f.startswith(stem) and f.endswith(".nbi") for f in os.listdir(where))
     except (OSError, TypeError):
         return False
-
-
-def warm_kernel() -> None:
-    """Import numba and load every compiled kernel from its cache, compiling (with a
-    message) what is not there, so that no frame waits for a compilation."""
-    from . import _bounds_kernel, _narrow_kernel, _pose_kernel
-    from .broadphase import _grid_kernel
-
-    _bounds_kernel.load()
-    _narrow_kernel.load()
-    _grid_kernel.load()
-    _pose_kernel.load()

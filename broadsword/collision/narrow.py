@@ -16,9 +16,11 @@ orientations, not ``4 K1 K2``. From the exact signs of ``A`` and ``B``:
   crossing-number rule, whose edge tests are again signs from ``B[0, :]`` and ``A[:, 0]``.
 
 Exactness: signs come from a per-pair static float filter (``tolerance.PAIR_EPS``); the
-entries it cannot decide -- within rounding of collinear, products that overflow or
-underflow -- are recomputed with rational arithmetic, entry by entry. Random scenes have
-almost none; the answer is exact either way. Zero-length edges (padding, sweep corners)
+entries it cannot decide go to the per-entry filter of :func:`predicates.orient` (each
+orientation's own products bound its error: it certifies what the pair bound, grown with
+the square of a long sweep's box, cannot), and what that declines too -- within rounding
+of collinear, products that overflow or underflow -- is recomputed with rational
+arithmetic, entry by entry. Random scenes have almost none; the answer is exact either way. Zero-length edges (padding, sweep corners)
 are recognised exactly (their edge vector is ``(0, 0)``) and skipped: their point is an
 endpoint of a neighbouring real edge. A polygon with no real edge (every vertex rounded to
 one point) goes to the scalar predicate.
@@ -35,7 +37,7 @@ from . import _narrow_kernel
 from ._kernel import Kernel
 from .posing import Posed
 from .predicates import _orient_exact, _polygons_collide
-from .tolerance import PAIR_EPS, UNDERFLOW_GUARD
+from .tolerance import ORIENT_EPS, PAIR_EPS, UNDERFLOW_GUARD
 from .workspace import Workspace
 
 __all__ = ["collide_pairs", "paper_collide_padded", "polygons_collide_padded"]
@@ -52,15 +54,53 @@ def _wrap(a: np.ndarray) -> np.ndarray:
 def _exact_signs(sign, uncertain, ax, ay, bx, by, cx, cy):
     """Overwrite ``sign`` where ``uncertain`` with the exact orientation of (a, b, c).
 
-    The coordinate arrays broadcast to ``sign``'s shape; only the few uncertain entries are
-    gathered and evaluated with rational arithmetic.
+    The coordinate arrays broadcast to ``sign``'s shape; only the uncertain entries are
+    gathered. Each is first given the per-entry filter of :func:`predicates.orient`
+    (:func:`_entry_signs`), which the per-pair bound is not: that bound grows with the
+    square of the pair's joint box, so a long sweep against a small armature (a bullet at
+    the 1e9 px/frame speed limit) leaves nearly every sign of the small end to it, while
+    each entry's own products certify them. What that filter cannot decide either (within
+    rounding of collinear, overflow, underflow) is evaluated with rational arithmetic.
     """
     where = np.nonzero(uncertain)
     if not where[0].size:
         return
     shape = sign.shape
-    coords = [np.broadcast_to(v, shape)[where].tolist() for v in (ax, ay, bx, by, cx, cy)]
-    sign[where] = [_orient_exact(*args) for args in zip(*coords)]
+    coords = [np.broadcast_to(v, shape)[where] for v in (ax, ay, bx, by, cx, cy)]
+    got = _entry_signs(*coords)
+    rest = np.flatnonzero(got == _UNSURE)
+    if rest.size:
+        exact = [c[rest].tolist() for c in coords]
+        got[rest] = [_orient_exact(*args) for args in zip(*exact)]
+    sign[where] = got
+
+
+#: :func:`_entry_signs` for an entry its filter cannot certify.
+_UNSURE = 2
+
+
+def _entry_signs(ax, ay, bx, by, cx, cy) -> np.ndarray:
+    """(m,) int8 signs of ``orient(a, b, c)`` for the points (m,), or :data:`_UNSURE`.
+
+    Shewchuk's filter entry by entry, as :func:`predicates.orient` evaluates it (the same
+    expression, bound ``ORIENT_EPS * (|l| + |r|)`` and underflow guard; tolerance.py has
+    the proof): a certified sign is the exact sign. Overflow makes ``|l| + |r|`` inf or nan,
+    and the comparisons then decline.
+    """
+    with np.errstate(invalid="ignore", over="ignore"):
+        left = (bx - ax) * (cy - ay)
+        right = (by - ay) * (cx - ax)
+        det = left - right
+        mag = np.abs(left)
+        mag += np.abs(right)
+        err = ORIENT_EPS * mag
+        ok = mag >= UNDERFLOW_GUARD
+        pos = ok & (det > err)
+        neg = ok & (det < -err)
+    out = np.full(len(det), _UNSURE, dtype=np.int8)
+    out[pos] = 1
+    out[neg] = -1
+    return out
 
 
 def _error_bounds(px, py, qx, qy) -> np.ndarray:

@@ -21,7 +21,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import _pose_kernel, arguments, bounds
-from ._kernel import Kernel, check_kernel, warm_kernel
+from ._kernel import Kernel, check_kernel
+from ._warm import warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats

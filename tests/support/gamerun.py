@@ -68,8 +68,7 @@ def autopilot_digests(
     The optional numba kernel is loaded first when the pipeline will use it: importing
     numba inspects numpy's ufuncs, which the perturbation replaces by Python functions
     (the kernel itself calls no transcendental)."""
-    from broadsword.collision import Kernel, check_kernel
-    from broadsword.collision._kernel import warm_kernel
+    from broadsword.collision import Kernel, check_kernel, warm_kernel
 
     if check_kernel(None) is Kernel.NUMBA:
         warm_kernel()
