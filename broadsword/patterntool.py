@@ -1,8 +1,9 @@
 """``broadsword pattern check FILE...`` and ``broadsword pattern view FILE``.
 
     broadsword pattern check assets/patterns/*.xml [--frames N] [--rank R] [--params A,B,...]
-        validate each file and report bullets fired, peak live bullets and duration;
-        exit 1 naming each bad file
+        validate each file and report bullets fired, peak live bullets and duration, after
+        a line for each leniency the file relies on (``FILE: warning: ...``); exit 1 naming
+        each bad file, or a file whose top actions read parameters ``--params`` does not give
     broadsword pattern view FILE [--rank R] [--seed S] [--params A,B,...]
         a window with the pattern firing from an emitter, the target at the mouse
         (broadsword.game.patternview has the keys)
@@ -65,7 +66,7 @@ def check(files: list[str], frames: int, rank: float, params: tuple[float, ...] 
     """Load and run each file; print one line for each (errors to ``err``). Returns 1 if any
     file failed to load, else 0."""
     from .patterns import bulletml
-    from .patterns.bulletml.check import summarize
+    from .patterns.bulletml.check import missing_params, summarize
 
     out = out or sys.stdout
     err = err or sys.stderr
@@ -77,12 +78,22 @@ def check(files: list[str], frames: int, rank: float, params: tuple[float, ...] 
             print(f"broadsword: {exc}", file=err)
             bad += 1
             continue
+        for warning in pattern.warnings:
+            print(f"{name}: warning: {warning}", file=out)
+        missing = missing_params(pattern, params)
+        if missing:
+            print(f"broadsword: {name}: {missing}", file=err)
+            bad += 1
+            continue
         r = summarize(pattern, frames=frames, rank=rank, params=params)
         duration = (
             f"{r.duration} frames" if r.duration is not None else f"endless (still firing after {r.frames} frames)"
         )
         extra = f", {r.refused} refused past the live-bullet cap" if r.refused else ""
-        print(f"{name}: ok: {r.fired} bullets fired, peak {r.peak} live, duration {duration}{extra}", file=out)
+        warned = (
+            f" ({len(pattern.warnings)} warning{'s' if len(pattern.warnings) != 1 else ''})" if pattern.warnings else ""
+        )
+        print(f"{name}: ok{warned}: {r.fired} bullets fired, peak {r.peak} live, duration {duration}{extra}", file=out)
     if bad:
         print(f"broadsword: {bad} of {len(files)} pattern file(s) failed", file=err)
     return 1 if bad else 0

@@ -17,6 +17,7 @@ from ..collision import FrameResult, LayerTable, Pipeline
 from ..collision.debugdraw import posed_polygons
 from ..data import data_dir, load_armatures
 from ..patterns import bulletml
+from ..patterns.bulletml.check import missing_params
 from ..sim.bullets import EnemyBullets
 from ..sim.kinds import frame_sets
 from .drawing import PygameDraw
@@ -43,6 +44,9 @@ class PatternView:
     def __init__(self, path: str, rank: float = 0.5, seed: int = 0, params: tuple[float, ...] = ()):
         self.path, self.seed, self.params = path, seed, tuple(params)
         self.pattern = bulletml.load(path)  # ValueError naming the file, element and problem
+        missing = missing_params(self.pattern, self.params)
+        if missing:  # run without them every $n reads 0: bullets by the thousand at speed 0
+            raise ValueError(f"{path}: {missing}")
         arms = load_armatures(data_dir("assets") / "sprites")
         shapes = [frame_sets(arms["player"])[0]["hit"]] + [frame_sets(arms[b])[0]["hit"] for b in BULLETS]
         self.table = LayerTable(["player", "enemy_bullet"], [("player", "enemy_bullet")])
@@ -174,6 +178,8 @@ def view(
     except ValueError as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 1
+    for warning in viewer.pattern.warnings:
+        print(f"{path}: warning: {warning}", file=sys.stderr)
     pygame.init()
     try:
         screen = pygame.display.set_mode(PatternView.size)

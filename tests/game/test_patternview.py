@@ -79,6 +79,15 @@ def test_view__window_runs_and_saves_a_frame(tmp_path):
 
 def test_view__a_bad_file_is_named_and_exits_1(tmp_path, capsys):
     bad = tmp_path / "bad.xml"
-    bad.write_text("<bulletml/>")
+    bad.write_text('<bulletml><action label="top"><wait>1+</wait></action></bulletml>')
     assert main(["pattern", "view", str(bad)]) == 1
-    assert f"broadsword: {bad}: bulletml (line 1): no top action" in capsys.readouterr().err
+    assert f"broadsword: {bad}: bulletml/action/wait (line 1): expression '1+'" in capsys.readouterr().err
+
+
+def test_view__a_file_that_needs_parameters_is_refused_without_them(capsys):
+    ring = str(PATTERNS / "ring.xml")
+    assert main(["pattern", "view", ring]) == 1  # not a window of bullets at speed 0
+    assert f"broadsword: {ring}: the top actions read $1..$5 (none given)" in capsys.readouterr().err
+    assert main(["pattern", "view", ring, "--params", "2,3", "--frames", "1"]) == 1
+    assert "(only 2 given)" in capsys.readouterr().err
+    assert main(["pattern", "view", ring, "--params", "2.5,12,10,30,0", "--frames", "2"]) == 0

@@ -37,3 +37,44 @@ def test_check__params_and_usage_errors(tmp_path, capsys):
     assert main(["pattern", "check", str(f), "--rank", "1.5"]) == 2
     assert main(["pattern", "check", str(f), "--params", "x"]) == 2
     assert main(["pattern", "check"]) == 2
+
+
+def test_check__warns_of_each_leniency_and_says_ok_with_the_count(tmp_path, capsys):
+    f = tmp_path / "lenient.xml"
+    f.write_text(
+        '<bulletml><action label="top"><accel label="a"><horizontal></horizontal><term>2</term></accel>'
+        "<fire><bullet/></fire></action></bulletml>"
+    )
+    assert main(["pattern", "check", str(f)]) == 0
+    out = capsys.readouterr().out
+    assert f"{f}: warning: bulletml/action/accel (line 1): unknown attribute 'label' on <accel> ignored" in out
+    assert f"{f}: warning: bulletml/action/accel/horizontal (line 1): empty <horizontal> read as 0" in out
+    assert f"{f}: ok (2 warnings): 1 bullets fired" in out
+    none = tmp_path / "none.xml"
+    none.write_text('<bulletml><action label="main"><fire><bullet/></fire></action></bulletml>')
+    assert main(["pattern", "check", str(none)]) == 0
+    out = capsys.readouterr().out
+    assert "no top action" in out and f"{none}: ok (1 warning): 0 bullets fired" in out
+
+
+def test_check__a_file_that_needs_parameters_is_not_ok_without_them(tmp_path, capsys):
+    f = tmp_path / "p.xml"
+    f.write_text(
+        '<bulletml><action label="top"><repeat><times>100000</times><action><fire><speed>$1</speed><bullet/></fire>'
+        "<wait>$2</wait></action></repeat></action></bulletml>"
+    )
+    assert main(["pattern", "check", str(f), "--params", "1"]) == 1
+    err = capsys.readouterr().err
+    assert f"broadsword: {f}: the top actions read $1..$2 (only 1 given): pass them with --params" in err
+    assert main(["pattern", "check", str(f), "--params", "1,5", "--frames", "20"]) == 0
+    assert "ok: 4 bullets fired" in capsys.readouterr().out
+
+
+def test_check__warns_of_a_reference_that_passes_too_few_parameters(tmp_path, capsys):
+    f = tmp_path / "ref.xml"
+    f.write_text(
+        '<bulletml><action label="top"><actionRef label="a"><param>1</param></actionRef></action>'
+        '<action label="a"><wait>$1 + $3</wait></action></bulletml>'
+    )
+    assert main(["pattern", "check", str(f)]) == 0
+    assert "reads $3 but a <actionRef> to it passes 1 parameter (the rest read 0)" in capsys.readouterr().out

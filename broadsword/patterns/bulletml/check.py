@@ -58,3 +58,15 @@ def summarize(
             settled = eng.frame
             break
     return Report(eng.frame, eng.fired, peak, duration, settled, eng.refused)
+
+
+def missing_params(pattern: Pattern, params: tuple[float, ...]) -> str:
+    """What is wrong when the top actions read more ``$n`` than ``params`` gives ("" if
+    nothing): run without them, every ``$n`` would read 0 (speed 0, no wait...)."""
+    need = pattern.top_params
+    if need <= len(params):
+        return ""
+    given = f"only {len(params)} given" if params else "none given"
+    return (
+        f"the top actions read $1..${need} ({given}): pass them with --params, e.g. --params {','.join(['1'] * need)}"
+    )

@@ -6,9 +6,12 @@ One frame (:meth:`Engine.step`), at frame number ``now`` (0 for the first):
    (:meth:`Engine.fire`);
 2. every bullet alive before this frame: its ongoing changes (all at once, vectorised),
    then, for the bullets whose runner is due, their commands (in the order they were fired);
-   then it moves one frame; bullets fired during this frame appear at their firer's position
-   (before the firer moves) and neither move nor run until the next frame; bullets that
-   vanished are removed (they did not move) (:meth:`Engine.advance`).
+   a bullet fired by a bullet in this part runs its commands in this part too, after them
+   (libBulletML's manager updates the bullets it creates in the same loop), so a chain of
+   bullets that fire at once unfolds in one frame; then the bullets alive before the frame
+   move one frame. Bullets fired during this frame appear at their firer's position (before
+   the firer moves) and do not move until the next frame (nor run, if an emitter fired
+   them); bullets that vanished are removed (they did not move) (:meth:`Engine.advance`).
 
 The game calls the two parts separately (``advance`` with the other movement, ``fire`` with
 the other spawning, after collision); bullets then keep the same timing relative to their
@@ -66,6 +69,7 @@ class Engine:
         # per store (emitters, bullets): the row to serve first next time, after a part that
         # ran out of commands (rows are served in order from it, then from row 0)
         self._resume = {"emitters": 0, "bullets": 0}
+        self._bullet_part = False  # True while advance() runs: new bullets run in the same part
 
     @property
     def refused(self) -> int:
@@ -131,7 +135,7 @@ class Engine:
                 direction,
                 speed,
                 runner,
-                self.frame + 1 if runner else NEVER,
+                NEVER if runner is None else self.frame if self._bullet_part else self.frame + 1,
                 int(movers.tag[row]),
             )
             is not None
@@ -159,13 +163,15 @@ class Engine:
         the move; then vanished bullets go."""
         b = self.bullets
         m = b.n if m is None else m
-        self._run(b, m, self.frame)
+        self._bullet_part = True
+        try:
+            self._run(b, m, self.frame)
+        finally:
+            self._bullet_part = False
         b.settle()
         b.move(m)
-        if m and b.dead[:m].any():
-            keep = np.ones(b.n, dtype=bool)
-            keep[:m] = ~b.dead[:m]
-            b.keep(keep)
+        if b.n and b.dead.any():
+            b.keep(~b.dead)
 
     def end_frame(self) -> None:
         self.peak = max(self.peak, self.bullets.n)
@@ -180,11 +186,18 @@ class Engine:
             due = np.concatenate([due[due >= first], due[due < first]])
         self._resume[which] = 0
         self.budget = self.max_steps
-        for row in due.tolist():
-            if self.budget <= 0:
-                self._resume[which] = row
+        start = movers.n  # rows added from here on were fired in this part
+        while len(due):
+            for row in due.tolist():
+                if self.budget <= 0:
+                    self._resume[which] = row
+                    break
+                movers.wake[row] = movers.runner[row].run(self, movers, row, now)
+            if self.budget <= 0 or not self._bullet_part:
                 break
-            movers.wake[row] = movers.runner[row].run(self, movers, row, now)
+            # the bullets fired by bullets in this part run in it too, in the order fired
+            due = start + np.flatnonzero(movers.wake[start:] <= now)
+            start = movers.n
         self.busiest = max(self.busiest, self.max_steps - self.budget)
         if self.budget <= 0:
             self.deferred += 1

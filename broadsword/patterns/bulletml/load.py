@@ -5,6 +5,11 @@ many, which ``type`` values); every number is compiled by :mod:`.expr`; every re
 name a labelled element of its kind; chains of references may neither loop nor run deeper
 than ``MAX_REF_CHAIN`` hops (or ``MAX_RUN_DEPTH`` nested actions). A bad file raises
 ``ValueError("FILE: ELEMENT-PATH (line N): what is wrong")``.
+
+Where libBulletML is lenient the loader is too, and says so in ``Pattern.warnings`` (one line
+per kind of leniency and element, with how often): an attribute BulletML does not define is
+ignored, an empty expression reads 0, a file with no top action loads and fires nothing; a
+reference that passes fewer parameters than its target reads is warned of too.
 """
 
 from __future__ import annotations
@@ -58,9 +63,22 @@ class _Builder:
     def __init__(self, name: str):
         self.name = name
         self.labels: dict[str, dict[str, Element]] = {"actions": {}, "bullets": {}, "fires": {}}
+        # leniencies: what (one kind, one element tag) -> [times, where first]
+        self.notes: dict[str, list] = {}
 
     def fail(self, el: Element, what: str) -> NoReturn:
         raise ValueError(f"{self.name}: {el.where()}: {what}")
+
+    def warn(self, el: Element, what: str) -> None:
+        """Note a leniency (counted once per distinct ``what``, located at its first place)."""
+        note = self.notes.setdefault(what, [0, el.where()])
+        note[0] += 1
+
+    def warnings(self) -> tuple[str, ...]:
+        return tuple(
+            f"{where}: {what}" + (f" ({times} times)" if times > 1 else "")
+            for what, (times, where) in self.notes.items()
+        )
 
     # -- shape checks -------------------------------------------------------------------
     def check(
@@ -73,7 +91,10 @@ class _Builder:
     ) -> None:
         for key in el.attrs:
             if key not in attrs and not key.startswith("xmlns"):
-                self.fail(el, f"unknown attribute {key[:30]!r} (allowed: {', '.join(attrs) or 'none'})")
+                # libBulletML ignores attributes it does not know; so do we, with a warning
+                self.warn(
+                    el, f"unknown attribute {key[:30]!r} on <{el.tag}> ignored (allowed: {', '.join(attrs) or 'none'})"
+                )
         for key in required:
             if not el.attrs.get(key, "").strip():
                 self.fail(el, f"<{el.tag}> needs a {key} attribute")
@@ -100,6 +121,9 @@ class _Builder:
 
     def expr(self, el: Element) -> Expr:
         self.check(el, ("type",) if el.tag in ("direction", "speed", "horizontal", "vertical") else (), text=True)
+        if not el.text.strip():  # libBulletML reads an empty expression as 0
+            self.warn(el, f"empty <{el.tag}> read as 0")
+            return compile_expression("0")
         try:
             return compile_expression(el.text)
         except ValueError as exc:
@@ -250,11 +274,24 @@ class _Builder:
                     built[table][label] = {"actions": self.action, "bullets": self.bullet, "fires": self.fire}[table](
                         el
                     )
-        if not top:
-            self.fail(root, "no top action (an <action> labelled 'top', or 'top1', 'top2', ...)")
+        if not top:  # libBulletML loads it, and it fires nothing
+            self.warn(
+                root, "no top action (an <action> labelled 'top', or 'top1', 'top2', ...): the file fires nothing"
+            )
         pattern = Pattern(self.name, orientation, tuple(top), built["actions"], built["bullets"], built["fires"])
         _RefCheck(self, pattern).run(root)
-        return pattern
+        params = _ParamCheck(self, pattern)
+        top_params = max((params.scope(t) for t in top), default=0)  # top actions are labelled
+        return Pattern(
+            self.name,
+            orientation,
+            tuple(top),
+            built["actions"],
+            built["bullets"],
+            built["fires"],
+            self.warnings(),
+            top_params,
+        )
 
 
 class _RefCheck:
@@ -311,6 +348,70 @@ class _RefCheck:
                 continue
             hops, nest = max(hops, h), max(nest, n)
         return hops, nest
+
+
+class _ParamCheck:
+    """Which ``$n`` each scope reads. A scope is a top action (given the emitter's
+    parameters) or the target of a reference (given the reference's ``<param>``s); an inline
+    ``<bullet>`` and nested actions share their scope, and a reference's target is a scope of
+    its own, so a label's needs never depend on what it references (no recursion).
+    ``needs[(table, label)]`` is the highest ``$n`` a labelled element reads; a reference
+    passing fewer parameters than its target reads is warned of."""
+
+    _TABLES = {ActionRef: "actions", FireRef: "fires", BulletRef: "bullets"}
+
+    def __init__(self, builder: _Builder, pattern: Pattern):
+        self.b, self.p = builder, pattern
+        refs: list = []
+        self.needs = {
+            (table, label): self.scope(node, refs)
+            for table in ("actions", "bullets", "fires")
+            for label, node in getattr(pattern, table).items()
+        }
+        for ref in refs:
+            table = self._TABLES[type(ref)]
+            need, given = self.needs[(table, ref.label)], len(ref.params)
+            if need > given:
+                name = type(ref).__name__
+                self.b.warn(
+                    self.b.labels[table][ref.label],
+                    f"reads ${need} but a <{name[0].lower()}{name[1:]}> to it passes {given} "
+                    f"parameter{'s' if given != 1 else ''} (the rest read 0)",
+                )
+
+    def scope(self, node, refs: list | None = None) -> int:
+        """Highest ``$n`` read by ``node`` (an Action, Bullet, Fire or command) in its own
+        scope; the references met are appended to ``refs``."""
+        most = 0
+        todo = [node]
+        while todo:
+            n = todo.pop()
+            kind = type(n)
+            if kind in self._TABLES:
+                most = max([most] + [e.max_param for e in n.params])
+                if refs is not None:
+                    refs.append(n)
+            elif kind is Action:
+                todo.extend(n.commands)
+            elif kind is Bullet or kind is Fire:
+                for part in (n.direction, n.speed):
+                    if part is not None:
+                        most = max(most, part.expr.max_param)
+                todo.extend(n.actions if kind is Bullet else (n.bullet,))
+            elif kind is ChangeDirection or kind is ChangeSpeed:
+                part = n.direction if kind is ChangeDirection else n.speed
+                most = max(most, part.expr.max_param, n.term.max_param)
+            elif kind is Accel:
+                for part in (n.horizontal, n.vertical):
+                    if part is not None:
+                        most = max(most, part.expr.max_param)
+                most = max(most, n.term.max_param)
+            elif kind is Wait:
+                most = max(most, n.frames.max_param)
+            elif kind is Repeat:
+                most = max(most, n.times.max_param)
+                todo.append(n.body)
+        return most
 
 
 def load(path: str | os.PathLike) -> Pattern:

@@ -139,8 +139,11 @@ Command = Action | ActionRef | Fire | FireRef | ChangeDirection | ChangeSpeed | 
 @dataclass(frozen=True)
 class Pattern:
     """A loaded BulletML file. ``top`` are the actions labelled ``top``, ``top1``, ``top2``...
-    (every label starting with "top", in file order), which run together; the tables map
-    labels to every labelled action, bullet and fire in the file."""
+    (every label starting with "top", in file order), which run together (none: the file
+    fires nothing); the tables map labels to every labelled action, bullet and fire in the
+    file. ``warnings`` are the leniencies the loader allowed (docs/PATTERNS.md, "Leniencies"),
+    one line each, never printed by the loader. ``top_params`` is the highest ``$n`` the top
+    actions read from the parameters they are given (0: they need none)."""
 
     name: str
     orientation: Orientation
@@ -148,3 +151,5 @@ class Pattern:
     actions: dict[str, Action]
     bullets: dict[str, Bullet]
     fires: dict[str, Fire]
+    warnings: tuple[str, ...] = ()
+    top_params: int = 0

@@ -10,6 +10,7 @@ depth and element count are capped while parsing, before any tree grows past the
 from __future__ import annotations
 
 import os
+import stat
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
@@ -53,7 +54,10 @@ def read_elements(path: str | os.PathLike, data: bytes | None = None) -> Element
     name = os.fspath(path)
     if data is None:
         try:
-            size = os.path.getsize(name)
+            st = os.stat(name)
+            if not stat.S_ISREG(st.st_mode):  # a FIFO or device would block or never end
+                raise ValueError(f"{name}: not a regular file")
+            size = st.st_size
             if size > MAX_FILE_BYTES:
                 raise ValueError(f"{name}: file is {size} bytes (at most {MAX_FILE_BYTES})")
             with open(name, "rb") as fh:
