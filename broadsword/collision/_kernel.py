@@ -120,10 +120,12 @@ def _named(value: Kernel | str, unknown: Callable[[str], str], asked: str) -> Ke
 
 class _Compiled:
     """The compiled kernels of this process, by qualified name (built on first use, not at
-    import), and whether the compile message was shown."""
+    import), whether the compile message was shown, and whether the "compiled in memory"
+    one was (once per process, not once per kernel)."""
 
     fns: dict[str, Any] = {}  # noqa: RUF012 - one registry per process, by design
     told = False
+    told_in_memory = False
 
 
 def jit(fn, signature: str):
@@ -146,7 +148,7 @@ def jit(fn, signature: str):
             )
             _Compiled.told = True
         t0 = time.perf_counter()
-        got = numba.njit(signature, cache=True, nogil=True, error_model="numpy")(fn)
+        got = _compile(numba, fn, signature)
         if compiling:
             where = fn.__module__.rsplit(".", 1)[-1]
             print(f"broadsword:   {where}.{fn.__name__} {time.perf_counter() - t0:.1f} s", file=sys.stderr)
@@ -154,27 +156,111 @@ def jit(fn, signature: str):
     return got
 
 
-def _cache_present(fn) -> bool:
-    """Whether numba's on-disk cache holds an index for ``fn`` (best effort): the directory
-    numba's own locators choose (``NUMBA_CACHE_DIR`` when set, else ``__pycache__`` beside
-    the source, else the user's cache), or ``__pycache__`` where numba's internals moved."""
+def _compile(numba: Any, fn, signature: str):
+    """``fn`` compiled for ``signature`` with numba's on-disk cache, and whatever that cache
+    does, still compiled: a cache entry that fails to load (a damaged, emptied or swapped
+    file: ``UnpicklingError``, ``EOFError``, ``TypeError``, ``UnicodeDecodeError``,
+    ``IsADirectoryError``...) is discarded and the kernel compiled again, and with no
+    writable cache location at all (numba's "no locator available", or a cache that cannot
+    be discarded) the kernel is compiled in memory, every launch. Each case says so in one
+    line on stderr. A compile error of the kernel itself (numba's own errors) propagates."""
+    from numba.core.errors import NumbaError
+
+    def build(cache: bool):
+        return numba.njit(signature, cache=cache, nogil=True, error_model="numpy")(fn)
+
+    name = f"{fn.__module__.rsplit('.', 1)[-1]}.{fn.__qualname__}"
+    try:
+        return build(True)
+    except NumbaError:
+        raise
+    except RuntimeError as exc:
+        if "no locator" not in str(exc):
+            raise
+        if not _Compiled.told_in_memory:
+            print(
+                "broadsword: no writable cache location for the numba kernels: compiling them in memory "
+                "(every launch compiles; NUMBA_CACHE_DIR names a writable one)",
+                file=sys.stderr,
+            )
+            _Compiled.told_in_memory = True
+        return build(False)
+    except Exception as exc:  # the cache entry failed to load
+        why = " ".join(f"{type(exc).__name__}: {exc}".split())[:160]
+        where = _cache_dir(fn)
+        removed = _discard_cache(fn, where)
+        print(
+            f"broadsword: the numba cache of {name} is damaged ({why}); "
+            f"discarded {removed} file(s) in {where}, compiling it again",
+            file=sys.stderr,
+        )
+    try:
+        return build(True)
+    except NumbaError:
+        raise
+    except Exception as exc:  # still failing (a cache that cannot be discarded): in memory
+        why = " ".join(f"{type(exc).__name__}: {exc}".split())[:160]
+        print(f"broadsword: the numba cache still fails ({why}): {name} compiled in memory", file=sys.stderr)
+        return build(False)
+
+
+def _cache_dir(fn) -> str | None:
+    """The directory numba's own locators choose for ``fn``'s cache (``NUMBA_CACHE_DIR``
+    when set, else ``__pycache__`` beside the source, else the user's cache), or
+    ``__pycache__`` beside the source where numba's internals moved; None if unknown."""
     import inspect
 
     try:
         source = inspect.getfile(fn)
-        where = os.path.join(os.path.dirname(source), "__pycache__")
-        try:
-            from numba.core.caching import CacheImpl
+    except TypeError:
+        return None
+    where = os.path.join(os.path.dirname(source), "__pycache__")
+    try:
+        from numba.core.caching import CacheImpl
 
-            locators: list[Any] = list(CacheImpl._locator_classes)  # classes with from_function
-            for locator in locators:
-                found = locator.from_function(fn, source)
-                if found is not None:
-                    where = found.get_cache_path()
-                    break
-        except (ImportError, AttributeError):  # numba's internals moved: the in-tree guess
+        locators: list[Any] = list(CacheImpl._locator_classes)  # classes with from_function
+        for locator in locators:
+            found = locator.from_function(fn, source)
+            if found is not None:
+                return str(found.get_cache_path())
+    except (ImportError, AttributeError, OSError):  # numba's internals moved: the in-tree guess
+        pass
+    return where
+
+
+def _cache_entries(fn, where: str | None) -> list[str]:
+    """The names in ``where`` that belong to ``fn``'s cache: its index (``.nbi``), its
+    compiled code (``.nbc``) and numba's temporaries of either."""
+    if where is None:
+        return []
+    stem = f"{fn.__module__.rsplit('.', 1)[-1]}.{fn.__qualname__}-"
+    try:
+        names = os.listdir(where)
+    except OSError:
+        return []
+    return [n for n in names if n.startswith(stem) and (".nbi" in n or ".nbc" in n)]
+
+
+def _discard_cache(fn, where: str | None) -> int:
+    """Remove ``fn``'s cache entries (files, or directories standing in their place) from
+    ``where``; returns how many went. Best effort: what cannot be removed stays."""
+    import shutil
+
+    removed = 0
+    for name in _cache_entries(fn, where):
+        path = os.path.join(where or "", name)
+        try:
+            if os.path.isdir(path) and not os.path.islink(path):
+                shutil.rmtree(path)
+            else:
+                os.unlink(path)
+            removed += 1
+        except OSError:
             pass
-        stem = f"{fn.__module__.rsplit('.', 1)[-1]}.{fn.__qualname__}-"
-        return any(f.startswith(stem) and f.endswith(".nbi") for f in os.listdir(where))
-    except (OSError, TypeError):
-        return False
+    return removed
+
+
+def _cache_present(fn) -> bool:
+    """Whether numba's on-disk cache holds an index for ``fn`` (best effort)."""
+    return any(n.endswith(".nbi") for n in _cache_entries(fn, _cache_dir(fn)))
+
