@@ -12,6 +12,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
+from .. import arguments
 from .._indexing import selector
 from ..layers import LayerTable
 from .base import BroadPhaseStats, GridLayout, TreeLayout
@@ -77,13 +78,13 @@ class Driver:
         return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), frame.layout())
 
     @staticmethod
-    def _arrays(boxes, layers) -> tuple[np.ndarray, np.ndarray]:
-        """``boxes`` as (n, 4) float64 and ``layers`` as (n,) int64; ``ValueError`` when
-        their lengths differ."""
-        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
-        layers = np.asarray(layers, dtype=np.int64).reshape(-1)
-        if len(boxes) != len(layers):
-            raise ValueError(f"{len(boxes)} boxes but {len(layers)} layer ids")
+    def _arrays(boxes, layers, table) -> tuple[np.ndarray, np.ndarray]:
+        """``boxes`` as (n, 4) float64 and ``layers`` as (n,) int64, checked by
+        :mod:`..arguments`' rules (exact shapes, real finite boxes, integer ids; read-only
+        arrays copied); ``ValueError`` or ``ArgumentTypeError`` naming the argument."""
+        arguments.instance(table, "table", LayerTable, "a LayerTable")
+        boxes = arguments.real_array(boxes, "boxes", (None, 4), "box")
+        layers = arguments.ids(layers, "layers", len(boxes))
         return boxes, layers
 
     @staticmethod
@@ -91,10 +92,9 @@ class Driver:
         """The checked ``boxes`` (n, 4) float64 and ``layers`` (n,) int64, each tested layer's
         members ``{layer: (k,) int64}`` and the non-empty ones in the table's order.
 
-        Raises ``ValueError`` on a length mismatch or a non-finite box."""
-        boxes, layers = Driver._arrays(boxes, layers)
-        if not np.isfinite(boxes).all():
-            raise ValueError("boxes must be finite")
+        Raises ``ValueError`` (or ``ArgumentTypeError``) naming the argument: a wrong
+        shape or length, a non-finite box, an id that is not an integer."""
+        boxes, layers = Driver._arrays(boxes, layers, table)
         members = {}
         for a, b in table.entries:
             for k in (a, b):
