@@ -11,13 +11,14 @@ from .. import arguments
 from .._indexing import pick, selector
 from .._kernel import Kernel, check_kernel
 from ..layers import LayerTable
-from ._shared import _EMPTY, DENSE_KEYS, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
+from ._shared import _EMPTY, DENSE_KEYS, DIRECT_SIDE, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
 from .base import BroadPhaseStats, GridLayout
 
 __all__ = ["BinGrid"]
 
-#: A table entry with at most this many objects on one side skips the bins (see _GridFrame.ranges_meet).
-_DIRECT_SIDE = 8
+#: A table entry with at most this many objects on one side skips the bins (see
+#: _GridFrame.ranges_meet); such a layer does not choose the automatic bin size either.
+_DIRECT_SIDE = DIRECT_SIDE
 #: ... and so does one with at most this many object pairs (small scenes: comparing every
 #: pair's bin ranges is a handful of numpy calls, registering in bins a few dozen).
 _DIRECT_PAIRS = 1 << 14
@@ -30,7 +31,8 @@ class BinGrid(Driver):
     ----------
     bin_size : float or None
         Side of a square bin. ``None`` (the default) picks :func:`auto_bin_size` from the
-        boxes every frame: bins larger, but not much larger, than the objects.
+        boxes every frame: bins larger, but not much larger, than the objects of the
+        crowded layers (a layer of a few objects -- a bomb, a boss -- does not coarsen them).
     field : (x0, y0, x1, y1) or None
         The area the grid covers. ``None`` covers the boxes of the frame. Boxes outside the
         field register in the bins along its border (clamping keeps every overlap).
