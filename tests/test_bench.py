@@ -48,8 +48,11 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
     assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
     assert len(doc["levels_vs_sprites"]) >= 3
-    for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity"):
+    for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity", "outliers"):
         assert key in doc, key
+    before, after = doc["outliers"]["table"]  # the bomb no longer coarsens the grid
+    assert after["bin_px"] < before["bin_px"] / 8 and after["bins_pairs_out"] < before["bins_pairs_out"] / 3
+    assert after["hits"] == before["hits"] > 0
     text = capsys.readouterr().out
     assert (
         "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text

@@ -18,7 +18,9 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    whole game frame's; lasers: the exact test against other engines' models (false hits and
    misses, cost) on one corpus (:mod:`.lasers`);
 4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
-   table's error, the paper test's numerical failures by family, hitbox fidelity.
+   table's error, the paper test's numerical failures by family, hitbox fidelity, and the
+   bin grid with one object many times larger than the rest (the bomb), before and after
+   issue 24's rule (:mod:`.outliers`).
 
     python -m broadsword.bench                   # everything
     python -m broadsword.bench --quick           # every section, briefly (CI runs this)
@@ -38,7 +40,7 @@ import numpy as np
 
 from ..collision import Pipeline, retain_heap
 from ..collision.scenarios import ReferenceScene
-from . import analysis
+from . import analysis, outliers
 from .peers import PEERS
 from .truth import level_visual_truth, pixel_truth
 
@@ -449,6 +451,7 @@ def main(argv: list[str] | None = None) -> int:
         ("rotation_table", analysis.rotation_table),
         ("stability", analysis.stability),
         ("fidelity", analysis.fidelity),
+        ("outliers", outliers.outlier_grid),
     ):
         if key == "fidelity" and args.no_game:
             continue  # reads the sprites with pygame

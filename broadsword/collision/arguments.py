@@ -33,7 +33,25 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["ArgumentTypeError", "Frame", "flags", "frame", "ids", "point", "points", "polygon", "real_array", "reals"]
+__all__ = [
+    "ArgumentTypeError",
+    "Frame",
+    "bounds4",
+    "flag",
+    "flags",
+    "frame",
+    "ids",
+    "instance",
+    "names",
+    "point",
+    "points",
+    "polygon",
+    "positive",
+    "real_array",
+    "reals",
+    "usable",
+    "whole",
+]
 
 _KINDS = {
     "b": "booleans",
@@ -96,9 +114,9 @@ def real_array(value, name: str, shape: tuple[int | None, ...], item: str = "obj
     kind = a.dtype.kind
     if kind == "O":  # mixed Python numbers numpy could not type (ints beyond int64, ...)
         flat = a.reshape(-1).tolist()
-        bad = next((v for v in flat if not _is_real(v)), None)
-        if bad is not None:
-            raise ArgumentTypeError(f"{name} must hold real numbers, got {type(bad).__name__} {bad!r}")
+        bad = [v for v in flat if not _is_real(v)][:1]  # a list: the bad value may be None
+        if bad:
+            raise ArgumentTypeError(f"{name} must hold real numbers, got {type(bad[0]).__name__} {bad[0]!r}")
         a = np.array([_exact_double(v, name) for v in flat], dtype=np.float64).reshape(a.shape)
     elif kind not in "iuf" and a.size:
         raise ArgumentTypeError(f"{name} must hold real numbers, got {_KINDS.get(kind, str(a.dtype))}")
@@ -114,7 +132,7 @@ def real_array(value, name: str, shape: tuple[int | None, ...], item: str = "obj
     if not ok.all():
         row = int(np.argwhere(~ok)[0][0])
         raise ValueError(f"{name}: {item} {row} is not finite: {out[row].tolist()}")
-    return out
+    return usable(out)
 
 
 def _exact_double(v, name: str) -> float:
@@ -128,7 +146,10 @@ def _exact_double(v, name: str) -> float:
         if f != i:
             raise ValueError(f"{name}: {i} is not a double (it would round); pass float({i}) to round it")
         return f
-    return float(v)
+    f = float(v)
+    if f != v:  # a Fraction or another exact real that is not a double
+        raise ValueError(f"{name}: {v!r} is not a double (it would round); pass float() of it to round it")
+    return f
 
 
 def reals(value, name: str, n: int | None = None) -> np.ndarray:
@@ -154,7 +175,7 @@ def ids(value, name: str, n: int | None, limit: int | None = None, what: str = "
             odd = flat[~np.isfinite(flat) | (flat != np.round(flat))]
             got = f"{a.dtype} values such as {odd[0].item()!r}" if odd.size else f"{a.dtype} values (pass integers)"
         raise ArgumentTypeError(f"{name} must hold integer indices, got {got}")
-    a = _shaped(a, name, (n,)).astype(np.int64, copy=False)
+    a = usable(_shaped(a, name, (n,)).astype(np.int64, copy=False))
     if limit is not None:
         in_range(a, name, limit, what)
     return a
@@ -172,7 +193,15 @@ def flags(value, name: str, n: int | None) -> np.ndarray:
     a = _array(value, name)
     if a.dtype.kind != "b" and a.size:
         raise ArgumentTypeError(f"{name} must hold booleans, got {_KINDS.get(a.dtype.kind, str(a.dtype))}")
-    return _shaped(a, name, (n,)).astype(bool, copy=False)
+    return usable(_shaped(a, name, (n,)).astype(bool, copy=False))
+
+
+def usable(a: np.ndarray) -> np.ndarray:
+    """``a``, or a copy of it when the compiled kernels could not take it as it is: read-only
+    (a memory map, ``np.frombuffer``, a view its owner froze) or unaligned. numba refuses
+    such arrays ("No matching definition ... readonly array"); the copy has the same values,
+    so both backends give the same answers."""
+    return a if a.flags.writeable and a.flags.aligned else a.copy()
 
 
 class Frame(NamedTuple):
@@ -247,3 +276,73 @@ def polygon(vs, name: str) -> list[tuple[float, float]]:
     if len(out) < 3:
         raise ValueError(f"{name} needs at least 3 vertices, got {len(out)}")
     return out
+
+
+# ------------------------------------------------------- configuration (constructors)
+def _described(v) -> str:
+    """``v`` for a message: its type and a short repr."""
+    r = repr(v)
+    return f"{type(v).__name__} {r if len(r) <= 60 else r[:57] + '...'}"
+
+
+def instance(value, name: str, kind: type, what: str):
+    """``value`` if it is a ``kind``; else an :class:`ArgumentTypeError` saying ``name`` must
+    be ``what``."""
+    if not isinstance(value, kind):
+        raise ArgumentTypeError(f"{name} must be {what}, got {_described(value)}")
+    return value
+
+
+def flag(value, name: str) -> bool:
+    """A Python or numpy ``bool``; ``1``, ``"yes"`` and ``None`` are refused."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ArgumentTypeError(f"{name} must be True or False, got {_described(value)}")
+    return bool(value)
+
+
+def positive(value, name: str) -> float:
+    """A real number (not ``bool``, not a string), finite and above zero, as a double."""
+    if not _is_real(value):
+        raise ArgumentTypeError(f"{name} must be a positive real number, got {_described(value)}")
+    f = float(value)
+    if not (math.isfinite(f) and f > 0):
+        raise ValueError(f"{name} must be a positive, finite number, got {value!r}")
+    return f
+
+
+def whole(value, name: str, least: int) -> int:
+    """An integer (Python or numpy, not ``bool``) of at least ``least``."""
+    if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
+        raise ArgumentTypeError(f"{name} must be an integer, got {_described(value)}")
+    if value < least:
+        raise ValueError(f"{name} must be at least {least}, got {value}")
+    return int(value)
+
+
+def bounds4(value, name: str) -> tuple[float, float, float, float]:
+    """``(x0, y0, x1, y1)``: four real, finite numbers with ``x0 <= x1`` and ``y0 <= y1``."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise ArgumentTypeError(f"{name} must be four numbers (x0, y0, x1, y1), got {_described(value)}")
+    items = list(value)
+    if len(items) != 4:
+        raise ValueError(f"{name} must be four numbers (x0, y0, x1, y1), got {len(items)}: {value!r}")
+    bad = [v for v in items if not _is_real(v)][:1]  # a list: the bad value may be None
+    if bad:
+        raise ArgumentTypeError(f"{name} must hold real numbers, got {_described(bad[0])}")
+    x0, y0, x1, y1 = (float(v) for v in items)
+    if not all(math.isfinite(v) for v in (x0, y0, x1, y1)):
+        raise ValueError(f"{name} must be four finite numbers, got {value!r}")
+    if x0 > x1 or y0 > y1:
+        raise ValueError(f"{name} must have x0 <= x1 and y0 <= y1 (x0, y0, x1, y1), got {value!r}")
+    return x0, y0, x1, y1
+
+
+def names(value, name: str, what: str) -> list[str]:
+    """A sequence (not a lone string) of strings: ``what`` names one ("tier names")."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise ArgumentTypeError(f"{name} must be a sequence of {what}, got {_described(value)}")
+    items = list(value)
+    bad = [v for v in items if not isinstance(v, str)][:1]  # a list: the bad value may be None
+    if bad:
+        raise ArgumentTypeError(f"{name} must hold {what} (strings), got {_described(bad[0])}")
+    return items

@@ -35,6 +35,7 @@ import numpy as np
 
 from . import _narrow_kernel
 from ._kernel import Kernel
+from .arguments import usable
 from .posing import Posed
 from .predicates import _orient_exact, _polygons_collide
 from .tolerance import ORIENT_EPS, PAIR_EPS, UNDERFLOW_GUARD
@@ -256,7 +257,8 @@ def polygons_collide_padded(
         Equal, pair by pair, to :func:`broadsword.collision.polygons_collide` on the
         unpadded polygons, for every finite input.
     """
-    px, py, qx, qy = (np.asarray(a, dtype=np.float64) for a in (px, py, qx, qy))
+    # Read-only arrays copied: the compiled filter takes writeable ones only.
+    px, py, qx, qy = (usable(np.asarray(a, dtype=np.float64)) for a in (px, py, qx, qy))
     ws = workspace or Workspace()
     if kernel is Kernel.NUMBA:
         verdict = _narrow_kernel.filter_pairs(px, py, qx, qy)

@@ -74,6 +74,14 @@ class Pipeline:
         same order; pairs the compiled filter cannot decide go to the numpy reference and
         its rational fallback.
 
+    Raises
+    ------
+    ValueError, ArgumentTypeError (a TypeError and a ValueError)
+        Naming the argument: vertex lists instead of ``Armature`` objects, a tuple instead of
+        a ``LayerTable``, a ``bin_size`` that is not a positive real number, a ``field`` that
+        is not four finite reals with ``x0 <= x1`` and ``y0 <= y1``, a ``keep_tier_pairs``
+        that is not a bool, an unknown tier, rotation or kernel.
+
     Attributes
     ----------
     tiers : tuple of Tier
@@ -94,12 +102,23 @@ class Pipeline:
         kernel: Kernel | str | None = None,
     ):
         self.armatures = armatures if isinstance(armatures, ArmatureSet) else ArmatureSet(armatures)
-        self.layers = layers or LayerTable.shmup()
+        if layers is not None:
+            arguments.instance(layers, "layers", LayerTable, "a LayerTable (or None for LayerTable.shmup())")
+        self.layers = LayerTable.shmup() if layers is None else layers
+        if not isinstance(rotation, str):
+            raise arguments.ArgumentTypeError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
         if rotation not in ROTATION_MODES:
             raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
-        self.tiers = check_tiers(tiers)
+        try:
+            self.tiers = check_tiers(arguments.names(tiers, "tiers", "tier names"))
+        except arguments.ArgumentTypeError:
+            raise
+        except ValueError as exc:
+            raise ValueError(f"tiers: {exc}") from None
         self.rotation = rotation
-        self.keep_tier_pairs = keep_tier_pairs
+        self.keep_tier_pairs = arguments.flag(keep_tier_pairs, "keep_tier_pairs")
+        if kernel is not None and not isinstance(kernel, (Kernel, str)):
+            raise arguments.ArgumentTypeError(f"kernel must be 'numpy', 'numba', a Kernel or None, got {kernel!r}")
         self.kernel = check_kernel(kernel)
         if self.kernel is Kernel.NUMBA:
             warm_kernel()  # load (or compile, saying so) now, not in the first frame
@@ -141,7 +160,9 @@ class Pipeline:
         ValueError, ArgumentTypeError
             Naming the argument: a wrong shape or length (nothing is broadcast or reshaped),
             a non-finite or non-real value, an id that is not an integer or is out of range
-            (:mod:`broadsword.collision.arguments` has the rules).
+            (:mod:`broadsword.collision.arguments` has the rules). Read-only arrays (memory
+            maps, ``np.frombuffer``, frozen views) are accepted, with the same answers on
+            both kernels (copied where a compiled kernel needs a writeable array).
         """
         return self.run(FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept))
 
@@ -161,6 +182,7 @@ class Pipeline:
 
     def run(self, objects: FrameObjects) -> FrameResult:
         """Run every tier on ``objects`` (one frame, after all movement); see :meth:`step`."""
+        arguments.instance(objects, "objects", FrameObjects, "a FrameObjects (or call step() with arrays)")
         layer = objects.layer
         arguments.in_range(
             objects.armature, "armature", len(self.armatures), f"the pipeline has {len(self.armatures)} armatures"

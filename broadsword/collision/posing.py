@@ -114,9 +114,16 @@ class ArmatureSet:
     """
 
     def __init__(self, armatures: Sequence[Armature]):
-        if not armatures:
-            raise ValueError("an ArmatureSet needs at least one armature")
+        given: object = armatures  # callers may pass anything: checked here, at the boundary
+        if isinstance(given, (str, bytes)) or not hasattr(given, "__iter__"):
+            raise arguments.ArgumentTypeError(
+                f"armatures must be a sequence of Armature objects, got {type(given).__name__} {given!r:.60}"
+            )
         self.armatures = tuple(armatures)
+        for i, a in enumerate(self.armatures):
+            arguments.instance(a, f"armatures[{i}]", Armature, "an Armature (make one with Armature(vertices))")
+        if not self.armatures:
+            raise ValueError("armatures: an ArmatureSet needs at least one armature")
         counts = np.array([len(a) for a in self.armatures])
         hulls = np.array([len(a.hull) for a in self.armatures])
         kmax = int(_size_class(counts.max()))

@@ -526,7 +526,7 @@ def test_bin_grid__bad_bin_size_raises(bad):
 
 @pytest.mark.parametrize("field", [(0.0, 0.0, np.inf, 1.0), (0.0, np.nan, 1.0, 1.0), (0.0, 0.0, 1.0)])
 def test_bin_grid__bad_field_raises(field):
-    with pytest.raises(ValueError, match="field must be four finite numbers"):
+    with pytest.raises(ValueError, match="^field must be four (finite )?numbers"):
         BinGrid(field=field)
 
 

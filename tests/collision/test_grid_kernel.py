@@ -117,7 +117,7 @@ def test_grid_kernel__negative_and_untested_layer_ids():
 def test_grid_kernel__non_finite_boxes_refused_as_numpy_does():
     boxes = np.array([[0.0, 0.0, 1.0, 1.0], [0.0, 0.0, np.inf, 1.0]])
     for kernel in (Kernel.NUMPY, Kernel.NUMBA):
-        with pytest.raises(ValueError, match="boxes must be finite"):
+        with pytest.raises(ValueError, match="^boxes: box 1 is not finite"):
             BinGrid(kernel=kernel).query(boxes, np.array([0, 1]), SHMUP)
 
 

@@ -21,7 +21,7 @@ loop per object or pair.
 """
 
 from ..layers import LayerTable
-from ._shared import AUTO_BIN_FACTOR, auto_bin_size
+from ._shared import AUTO_BIN_FACTOR, DIRECT_SIDE, auto_bin_size
 from .base import BroadPhase, BroadPhaseStats, GridLayout, TreeLayout
 from .brute import BruteForce
 from .grid import BinGrid
@@ -34,6 +34,7 @@ BROAD_PHASES = {cls.name: cls for cls in (BinGrid, QuadTree, LooseQuadTree, Brut
 __all__ = [
     "AUTO_BIN_FACTOR",
     "BROAD_PHASES",
+    "DIRECT_SIDE",
     "BinGrid",
     "BroadPhase",
     "BroadPhaseStats",

@@ -72,10 +72,13 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
             fill[layer[i]] += 1
 
     # The objects taking part, layer by layer in the table's order; the automatic bin size
-    # (the largest layer's upper median half extent over a strided sample) and the extent.
+    # (the largest crowded layer's upper median half extent over a strided sample; every
+    # layer's when none is crowded) and the extent.
     named = np.zeros(nl, dtype=np.bool_)
     taking = 0
-    m_ext = 0.0
+    m_ext = 0.0  # the largest median of the crowded layers (more than direct_side objects)
+    m_few = 0.0  # ... of the others, used when no layer is crowded
+    crowded = False
     x0f = np.inf
     y0f = np.inf
     x1f = -np.inf
@@ -102,7 +105,14 @@ def _grid_pairs_py(boxes, layer, entries, bin_size, field, max_cells, direct_sid
             for q in range(len(ext)):
                 b = boxes[mem[lstart[k] + q * stride]]
                 ext[q] = max(0.5 * b[2] - 0.5 * b[0], 0.5 * b[3] - 0.5 * b[1])
-            m_ext = max(m_ext, np.sort(ext)[len(ext) // 2])  # the upper median, as np.partition picks it
+            med = np.sort(ext)[len(ext) // 2]  # the upper median, as np.partition picks it
+            if count > direct_side:
+                crowded = True
+                m_ext = max(m_ext, med)
+            else:
+                m_few = max(m_few, med)
+    if not crowded:
+        m_ext = m_few
     info[TAKING_PART] = taking
     if taking == 0:
         return np.empty((0, 2), dtype=np.int64)

@@ -7,16 +7,18 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from .. import arguments
 from .._indexing import pick, selector
 from .._kernel import Kernel, check_kernel
 from ..layers import LayerTable
-from ._shared import _EMPTY, DENSE_KEYS, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
+from ._shared import _EMPTY, DENSE_KEYS, DIRECT_SIDE, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
 from .base import BroadPhaseStats, GridLayout
 
 __all__ = ["BinGrid"]
 
-#: A table entry with at most this many objects on one side skips the bins (see _GridFrame.ranges_meet).
-_DIRECT_SIDE = 8
+#: A table entry with at most this many objects on one side skips the bins (see
+#: _GridFrame.ranges_meet); such a layer does not choose the automatic bin size either.
+_DIRECT_SIDE = DIRECT_SIDE
 #: ... and so does one with at most this many object pairs (small scenes: comparing every
 #: pair's bin ranges is a handful of numpy calls, registering in bins a few dozen).
 _DIRECT_PAIRS = 1 << 14
@@ -29,7 +31,8 @@ class BinGrid(Driver):
     ----------
     bin_size : float or None
         Side of a square bin. ``None`` (the default) picks :func:`auto_bin_size` from the
-        boxes every frame: bins larger, but not much larger, than the objects.
+        boxes every frame: bins larger, but not much larger, than the objects of the
+        crowded layers (a layer of a few objects -- a bomb, a boss -- does not coarsen them).
     field : (x0, y0, x1, y1) or None
         The area the grid covers. ``None`` covers the boxes of the frame. Boxes outside the
         field register in the bins along its border (clamping keeps every overlap).
@@ -57,13 +60,9 @@ class BinGrid(Driver):
         max_cells: int = 1 << 16,
         kernel: Kernel | str = Kernel.NUMPY,
     ):
-        if bin_size is not None and not (np.isfinite(bin_size) and bin_size > 0):
-            raise ValueError(f"bin_size must be a positive number or None, got {bin_size!r}")
-        self.bin_size = bin_size
-        self.field = None if field is None else tuple(float(v) for v in field)
-        if self.field is not None and (len(self.field) != 4 or not np.isfinite(self.field).all()):
-            raise ValueError(f"field must be four finite numbers (x0, y0, x1, y1) or None, got {field!r}")
-        self.max_cells = int(max_cells)
+        self.bin_size = None if bin_size is None else arguments.positive(bin_size, "bin_size")
+        self.field = None if field is None else arguments.bounds4(field, "field")
+        self.max_cells = arguments.whole(max_cells, "max_cells", 1)
         self.kernel = check_kernel(kernel)  # a clear error when numba is asked for but missing
         if self.kernel is Kernel.NUMBA:
             from . import _grid_kernel
@@ -78,7 +77,7 @@ class BinGrid(Driver):
             return super().query(boxes, layers, table)
         from . import _grid_kernel as gk
 
-        boxes, layers = self._arrays(boxes, layers)
+        boxes, layers = self._arrays(boxes, layers, table)
         entries = np.array(table.entries, dtype=np.int64).reshape(-1, 2)
         pairs, ranges, sel, info = gk.grid_query(
             boxes, layers, entries, self.bin_size, self.field, self.max_cells, _DIRECT_SIDE, _DIRECT_PAIRS
