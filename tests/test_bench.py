@@ -3,6 +3,7 @@
 import json
 
 from broadsword.bench.__main__ import main
+from broadsword.bench.pattern_limits import CORPUS
 
 
 def test_bench__quick_run_writes_every_section(tmp_path, capsys):
@@ -47,6 +48,9 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     pat = doc["patterns"]
     assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
     assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
+    lim = doc["pattern_limits"]  # the limit corpus: every file, the engine and the whole game step
+    assert [r["pattern"] for r in lim["rows"]] == list(CORPUS) and lim["worst_game_step_ms"] > 0
+    assert lim["worst_pattern"] in CORPUS
     assert len(doc["levels_vs_sprites"]) >= 3
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity", "outliers"):
         assert key in doc, key
@@ -55,7 +59,10 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     assert after["hits"] == before["hits"] > 0
     text = capsys.readouterr().out
     assert (
-        "| default (bins+aabb+armature, lut) |" in text and "Whole game frame" in text and "BulletML patterns" in text
+        "| default (bins+aabb+armature, lut) |" in text
+        and "Whole game frame" in text
+        and "BulletML patterns" in text
+        and "BulletML limit corpus" in text
     )
     assert (
         "Drawing 2,000 bullets" in text

@@ -15,8 +15,10 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    levels against their sprites' own masks (how often an armature hit disagrees with
    what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
-   whole game frame's; lasers: the exact test against other engines' models (false hits and
-   misses, cost) on one corpus (:mod:`.lasers`);
+   whole game frame's; then the limit corpus (broadsword/bench/pattern_limits.py), the
+   engine's and the whole game step's mean and worst ms per file, and the worst over it;
+   lasers: the exact test against other engines' models (false hits and misses, cost) on
+   one corpus (:mod:`.lasers`);
 4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
    table's error, the paper test's numerical failures by family, hitbox fidelity, and the
    bin grid with one object many times larger than the rest (the bomb), before and after
@@ -437,6 +439,11 @@ def main(argv: list[str] | None = None) -> int:
     print("  BulletML patterns ...", file=sys.stderr, flush=True)
     patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
     print(patterns_markdown(patterns, game[0] if game else None), flush=True)
+    from .patterns import limits_markdown, run_limit_corpus
+
+    print("  BulletML limit corpus ...", file=sys.stderr, flush=True)
+    pattern_limits = run_limit_corpus(frames=20 if args.quick else 120, game_frames=20 if args.quick else 120)
+    print(limits_markdown(pattern_limits), flush=True)
 
     from .lasers import markdown as lasers_markdown
     from .lasers import run_laser_models
@@ -474,6 +481,7 @@ def main(argv: list[str] | None = None) -> int:
             "bullet_drawing": drawing,
             "levels_vs_sprites": visual,
             "patterns": patterns,
+            "pattern_limits": pattern_limits,
             "lasers": lasers,
             **sections,
         }

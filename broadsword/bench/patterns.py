@@ -90,3 +90,105 @@ def markdown(result: dict, game: dict | None) -> str:
             f"{result['machine_runs_median']:.0f} | {frame} |",
         ]
     )
+
+
+def run_limit_corpus(frames: int = 120, game_frames: int = 120) -> dict:
+    """Every file of :data:`.pattern_limits.CORPUS`, two ways: the pattern engine alone
+    (``trace``'s engine with the game's live-bullet cap, bullets culled off a 480 x 640 field
+    as ``pattern check`` does) for ``frames`` frames, and the whole game step (one ship holding
+    at the top of stage 1's field firing the pattern, the player idle) for ``game_frames``
+    frames. Reports, per file and over the corpus, the mean and worst ms, wall clock and the
+    process's CPU time (the host is shared: CPU time is what the step costs when the cores
+    are free)."""
+    import dataclasses
+
+    from ..data import data_dir, load_armatures, load_level, resolve_level
+    from ..data.levels import FireKind, FireSpec, PathKind, PathSpec, WaveSpec
+    from ..sim import IDLE, World
+    from ..sim.world import ENEMY_BULLETS_LIMIT
+    from .pattern_limits import CORPUS
+
+    arms = load_armatures(data_dir("assets") / "sprites")
+    picket = load_level(resolve_level("1-picket"))
+    rows: list[dict] = []
+    for name, xml in CORPUS.items():
+        pattern = bulletml.loads(xml, name)
+        eng = bulletml.Engine(max_bullets=ENEMY_BULLETS_LIMIT)
+        eng.target = np.array([240.0, 560.0])
+        eng.add_emitter(pattern, (240.0, 120.0))
+        walls, cpus = [], []
+        for _ in range(frames):
+            w0, c0 = time.perf_counter(), time.process_time()
+            eng.step()
+            b = eng.bullets
+            p = b.pos
+            b.keep((p[:, 0] > -24) & (p[:, 0] < 504) & (p[:, 1] > -24) & (p[:, 1] < 664))
+            walls.append((time.perf_counter() - w0) * 1e3)
+            cpus.append((time.process_time() - c0) * 1e3)
+        fire = FireSpec(pattern=FireKind.BULLETML, bullet="pellet", delay=0.0, file=name, bulletml=pattern)
+        ship = WaveSpec(
+            at=0.0,
+            enemy="scout",
+            count=1,
+            every=0.0,
+            hp=10**9,
+            score=1,
+            path=PathSpec(kind=PathKind.HOLD, x=240.0, speed=300.0, hold_y=120.0, hold_for=1e6),
+            fire=fire,
+            mirror=False,
+        )
+        world = World(dataclasses.replace(picket, waves=(ship,), boss=None), arms, seed=1)
+        g_walls, g_cpus = [], []
+        for _ in range(game_frames):
+            w0, c0 = time.perf_counter(), time.process_time()
+            world.step(IDLE)
+            g_walls.append((time.perf_counter() - w0) * 1e3)
+            g_cpus.append((time.process_time() - c0) * 1e3)
+        rows.append(
+            {
+                "pattern": name,
+                "engine_mean_ms": float(np.mean(walls)),
+                "engine_max_ms": float(np.max(walls)),
+                "engine_cpu_mean_ms": float(np.mean(cpus)),
+                "engine_cpu_max_ms": float(np.max(cpus)),
+                "game_mean_ms": float(np.mean(g_walls)),
+                "game_max_ms": float(np.max(g_walls)),
+                "game_cpu_mean_ms": float(np.mean(g_cpus)),
+                "game_cpu_max_ms": float(np.max(g_cpus)),
+                "fired": int(eng.fired),
+                "game_bullets": int(world.enemy_bullets.n),
+            }
+        )
+    worst = max(rows, key=lambda r: r["game_max_ms"])
+    return {
+        "frames": frames,
+        "game_frames": game_frames,
+        "rows": rows,
+        "worst_game_step_ms": worst["game_max_ms"],
+        "worst_game_step_cpu_ms": max(r["game_cpu_max_ms"] for r in rows),
+        "worst_pattern": worst["pattern"],
+        "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+    }
+
+
+def limits_markdown(result: dict) -> str:
+    """The corpus run as markdown: one row per file and the worst step over the corpus."""
+    la = result.get("load_average")
+    load = f"; host load average {la[0]:.2f} over 1 minute" if la else ""
+    lines = [
+        f"\n### BulletML limit corpus: the engine for {result['frames']} frames, the whole game step for "
+        f"{result['game_frames']} frames{load}\n",
+        f"Worst game step over the corpus: {result['worst_game_step_ms']:.1f} ms wall ({result['worst_pattern']}), "
+        f"{result['worst_game_step_cpu_ms']:.1f} ms CPU\n",
+        "| pattern | engine mean / max ms | engine CPU mean / max ms | game step mean / max ms "
+        "| game step CPU mean / max ms | fired (engine) | enemy bullets at the end (game) |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in result["rows"]:
+        lines.append(
+            f"| {r['pattern']} | {r['engine_mean_ms']:.1f} / {r['engine_max_ms']:.1f} | "
+            f"{r['engine_cpu_mean_ms']:.1f} / {r['engine_cpu_max_ms']:.1f} | {r['game_mean_ms']:.1f} / "
+            f"{r['game_max_ms']:.1f} | {r['game_cpu_mean_ms']:.1f} / {r['game_cpu_max_ms']:.1f} | {r['fired']:,} | "
+            f"{r['game_bullets']:,} |"
+        )
+    return "\n".join(lines)

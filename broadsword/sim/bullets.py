@@ -97,7 +97,7 @@ class EnemyBullets(Movers):
         self.owner[i:j] = 0
         return k
 
-    def _born(self, i: int) -> None:
+    def _born(self, i: int | slice) -> None:
         d = self._data
         d["prev"][i] = d["pos"][i]
         d["arm"][i] = d["tag"][i]

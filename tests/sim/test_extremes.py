@@ -16,6 +16,7 @@ from sim_bullets import add_bullets
 
 from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
+from broadsword.patterns.bulletml.limits import FIRE_STEPS, MAX_STEPS_PER_PART
 from broadsword.sim import DT, FIELD, IDLE, Pilot, World
 from broadsword.sim.boss import BossState
 
@@ -125,7 +126,9 @@ def test_a_sweep_from_far_outside_to_far_outside(far):
 # ---------------------------------------------------------------------- thousands in one frame
 def test_ten_thousand_bullets_fired_in_one_frame_from_the_level_data():
     """A wave of 2 x 50 ships, all spawned in the same frame, each firing a ring of 100 on
-    the same frame: 10,000 bullets appear at once, then the game goes on."""
+    the same frame: 10,000 bullets are due at once; the pattern engine fires them over the
+    next frames within its budget of steps a frame (limits.MAX_STEPS_PER_PART), none lost,
+    then the game goes on."""
     ring = FireSpec(pattern="ring", bullet="pellet", speed=60.0, every=0.5, shots=100, delay=0.0)
     level = dataclasses.replace(
         BROADSWORD,
@@ -144,7 +147,8 @@ def test_ten_thousand_bullets_fired_in_one_frame_from_the_level_data():
     w = World(level, ARMATURES, seed=2)
     events = play(w, 60)
     assert w.ships.pool.n == 100
-    assert max(ev.enemy_shots for ev in events) == 100 * 100
+    assert sum(ev.enemy_shots for ev in events) >= 100 * 100
+    assert max(ev.enemy_shots for ev in events) <= MAX_STEPS_PER_PART // (1 + FIRE_STEPS)
 
 
 def test_two_thousand_ships_spawned_in_one_frame():
@@ -156,8 +160,9 @@ def test_two_thousand_ships_spawned_in_one_frame():
     w = World(level, ARMATURES, seed=3)
     w.step(IDLE)
     assert w.ships.pool.n == 2000
-    events = play(w, 60, pilot=False)  # they all reach the field and fire their first shot together
-    assert max(ev.enemy_shots for ev in events) == 2000
+    events = play(w, 60, pilot=False)  # they all reach the field and are due to fire together
+    assert sum(ev.enemy_shots for ev in events) >= 2000  # within the engine's budget a frame
+    assert max(ev.enemy_shots for ev in events) < 2000
     play(w, 30)
 
 
@@ -267,8 +272,9 @@ def test_a_level_inside_every_documented_range_does_not_stall():
     assert w.frame == 30 and w.ships.pool.n == SHIPS_LIMIT and w.enemy_bullets.n <= ENEMY_BULLETS_LIMIT
     engine = w.guns.engine
     assert engine.busiest == engine.max_steps and engine.deferred >= 30  # every frame's emitters hit the cap
-    assert w.warnings == [
+    assert w.warnings[:2] == [
         f"more than {SHIPS_LIMIT:,} ships at once: the rest were not made",
         f"more than {engine.max_steps:,} pattern commands in one frame: the rest wait for the next",
-        f"more than {ENEMY_BULLETS_LIMIT:,} enemy bullets at once: the rest were not made",
     ]
+    full = f"more than {ENEMY_BULLETS_LIMIT:,} enemy bullets at once: the rest were not made"
+    assert w.warnings[2:] == ([full] if w.enemy_bullets.refused else [])

@@ -27,7 +27,7 @@ import numpy as np
 
 from ._trig import heading_deg
 from .expr import Expr, Scope
-from .limits import MAX_LIVE_BULLETS, MAX_STEPS_PER_PART
+from .limits import AIM_STEPS, FIRE_STEPS, MAX_LIVE_BULLETS, MAX_STEPS_PER_PART, WAKE_STEPS
 from .machine import Runner, Thread
 from .model import Pattern
 from .store import NEVER, Movers
@@ -40,10 +40,11 @@ class Engine:
     :class:`Movers` capped at ``max_bullets``; the game passes its enemy-bullet pool, a
     Movers with its own columns and limit). Fires past the store's limit are refused and
     counted in ``bullets.refused``; fires from a ``mute`` emitter are dropped. Each part of a
-    frame runs at most ``max_steps`` commands in all (``MAX_STEPS_PER_PART``); past it, the
+    frame takes at most ``max_steps`` steps in all (``MAX_STEPS_PER_PART``: a command is a
+    step, a fire, an aim and waking a runner cost more, see ``limits``); past it, the
     runners not yet served wait for the next frame and are served first then. Counters:
     ``fired`` (bullets created so far), ``peak`` (most live at the end of a frame),
-    ``busiest`` (most commands run in one part of a frame), ``deferred`` (parts of frames
+    ``busiest`` (most steps taken in one part of a frame, at most ``max_steps``), ``deferred`` (parts of frames
     that reached ``max_steps``)."""
 
     def __init__(
@@ -64,12 +65,15 @@ class Engine:
         self.bullets = bullets if bullets is not None else Movers(256, limit=max_bullets)
         self.fired = self.peak = 0
         self.max_steps = int(max_steps)
-        self.budget = self.max_steps  # commands left in the part of the frame being run
+        self.budget = self.max_steps  # steps left in the part of the frame being run
         self.busiest = self.deferred = 0
         # per store (emitters, bullets): the row to serve first next time, after a part that
-        # ran out of commands (rows are served in order from it, then from row 0)
+        # ran out of steps (rows are served in order from it, then from row 0)
         self._resume = {"emitters": 0, "bullets": 0}
         self._bullet_part = False  # True while advance() runs: new bullets run in the same part
+        # bullets fired and not yet in the store, added all at once by _flush (x, y,
+        # direction, speed, runner, wake, tag per bullet: one list each)
+        self._new: tuple[list, ...] = ([], [], [], [], [], [], [])
 
     @property
     def refused(self) -> int:
@@ -104,6 +108,7 @@ class Engine:
     def evaluate(self, expr: Expr, params) -> float:
         if expr.const is not None:
             return expr.const
+        self.budget -= expr.steps
         self.scope.params = params
         return expr.value(self.scope)
 
@@ -112,7 +117,8 @@ class Engine:
 
     def aim(self, movers: Movers, row: int) -> float:
         """Direction from ``row`` to the target (degrees, 0 = up, clockwise)."""
-        p = movers.pos[row]
+        self.budget -= AIM_STEPS
+        p = movers._data["pos"][row]
         return float(heading_deg(float(self.target[0] - p[0]), float(self.target[1] - p[1])))
 
     def vanish(self, movers: Movers, row: int) -> None:
@@ -124,23 +130,44 @@ class Engine:
     def spawn(
         self, movers: Movers, row: int, direction: float, speed: float, pattern: Pattern, actions, params
     ) -> None:
-        if movers.mute[row]:
+        """Fire one bullet from ``row``: it is queued and joins the store, with every bullet
+        fired in the same batch, at :meth:`_flush` (one vectorised add, not a call per
+        bullet). Past the store's limit it is refused and counted."""
+        data = movers._data
+        if data["mute"][row]:
             return
+        b, new = self.bullets, self._new
+        if b.limit is not None and b.n + len(new[0]) >= b.limit:
+            b.refused += 1
+            return
+        self.budget -= FIRE_STEPS
         runner = Runner([Thread(pattern, actions, params)]) if actions else None
-        p = movers.pos[row]
-        if (
-            self.bullets.add_one(
-                float(p[0]),
-                float(p[1]),
-                direction,
-                speed,
-                runner,
-                NEVER if runner is None else self.frame if self._bullet_part else self.frame + 1,
-                int(movers.tag[row]),
+        p = data["pos"][row]
+        new[0].append(p[0])
+        new[1].append(p[1])
+        new[2].append(direction)
+        new[3].append(speed)
+        new[4].append(runner)
+        new[5].append(NEVER if runner is None else self.frame if self._bullet_part else self.frame + 1)
+        new[6].append(data["tag"][row])
+        self.fired += 1
+
+    def _flush(self) -> None:
+        """Add the queued bullets to the store, in the order fired."""
+        new = self._new
+        if new[0]:
+            f8 = np.float64
+            self.bullets.add_many(
+                np.array(new[0], f8),
+                np.array(new[1], f8),
+                np.array(new[2], f8),
+                np.array(new[3], f8),
+                new[4],
+                np.array(new[5], np.int64),
+                np.array(new[6], np.int64),
             )
-            is not None
-        ):
-            self.fired += 1
+            for column in new:
+                column.clear()
 
     # -- one frame ----------------------------------------------------------------------
     def step(self) -> None:
@@ -156,6 +183,7 @@ class Engine:
         at their emitters and are settled, not moved)."""
         e = self.emitters
         self._run(e, e.n, self.frame)
+        self._flush()
         self.bullets.settle()
 
     def advance(self, m: int | None = None) -> None:
@@ -168,6 +196,7 @@ class Engine:
             self._run(b, m, self.frame)
         finally:
             self._bullet_part = False
+            self._flush()
         b.settle()
         b.move(m)
         if b.n and b.dead.any():
@@ -187,18 +216,21 @@ class Engine:
         self._resume[which] = 0
         self.budget = self.max_steps
         start = movers.n  # rows added from here on were fired in this part
+        wake, runner = movers._data["wake"], movers._data["runner"]
         while len(due):
             for row in due.tolist():
                 if self.budget <= 0:
                     self._resume[which] = row
                     break
-                movers.wake[row] = movers.runner[row].run(self, movers, row, now)
+                self.budget -= WAKE_STEPS
+                wake[row] = runner[row].run(self, movers, row, now)
             if self.budget <= 0 or not self._bullet_part:
                 break
             # the bullets fired by bullets in this part run in it too, in the order fired
+            self._flush()
             due = start + np.flatnonzero(movers.wake[start:] <= now)
             start = movers.n
-        self.busiest = max(self.busiest, self.max_steps - self.budget)
+        self.busiest = max(self.busiest, min(self.max_steps, self.max_steps - self.budget))
         if self.budget <= 0:
             self.deferred += 1
 

@@ -66,12 +66,15 @@ def clamp(value: float) -> float:
 @dataclass(frozen=True)
 class Expr:
     """A compiled expression. ``const`` is its value when it reads no ``$`` variable.
-    ``max_param`` is the highest ``$n`` it reads (0 for none)."""
+    ``max_param`` is the highest ``$n`` it reads (0 for none). ``steps`` is what evaluating
+    it costs the engine's budget (its tokens; 0 for a constant): a 2,000-character expression
+    is hundreds of Python operations, so it counts as hundreds of commands."""
 
     text: str
     const: float | None
     fn: Fn
     max_param: int
+    steps: int = 0
 
     def value(self, scope: Scope) -> float:
         """The expression's value in ``scope`` (finite, clamped; see the module doc)."""
@@ -228,4 +231,4 @@ def compile_expression(text: str) -> Expr:
     if const is not None:
         value = clamp(const)
         return Expr(text, value, lambda s: value, 0)
-    return Expr(text, None, fn, parser.max_param)
+    return Expr(text, None, fn, parser.max_param, len(parser.tokens))

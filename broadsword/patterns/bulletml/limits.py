@@ -26,13 +26,26 @@ MAX_PARAM_INDEX = 64
 MAX_REPEAT = 100_000
 #: Largest magnitude an expression yields at run time (non-finite results become 0).
 MAX_VALUE = 1e9
-#: Commands one runner may execute in one frame; past it, it resumes next frame.
-MAX_STEPS_PER_FRAME = 10_000
-#: Commands all the runners of one engine may execute in one part of a frame (the emitters'
+#: The work of a frame is counted in steps: a command is one step; firing a bullet costs
+#: ``FIRE_STEPS`` more, measuring an aim (the deterministic arctangent) ``AIM_STEPS`` more,
+#: waking a runner ``WAKE_STEPS``, and evaluating an expression one step per token (a constant
+#: nothing). The weights follow what each costs in Python (a fire with an
+#: aim is about ten times a ``wait``), so a budget of steps is a budget of time.
+FIRE_STEPS = 4
+AIM_STEPS = 4
+WAKE_STEPS = 1
+#: Steps one runner may take in one frame; past it, it resumes next frame.
+MAX_STEPS_PER_FRAME = 4_000
+#: Steps all the runners of one engine may take in one part of a frame (the emitters'
 #: part, :meth:`~.engine.Engine.fire`, or the bullets', :meth:`~.engine.Engine.advance`);
 #: past it, every runner not yet served waits for the next frame (and is served first then).
-#: Bounds the work of a frame however many emitters fire (thousands of ships each firing
-#: 256-bullet rings every frame would otherwise run a million commands a frame).
-MAX_STEPS_PER_PART = 40_000
+#: Bounds the work of a frame however many emitters fire: about 4 ms a part on this project's
+#: benchmark machine (docs/PERFORMANCE.md), where 40,000 commands took 50 to 90 ms.
+MAX_STEPS_PER_PART = 4_000
+#: Fastest a mover goes, px per frame on each axis (its velocity is clamped to it). A speed
+#: near ``MAX_VALUE`` crosses the field a million times a frame: swept against the player, such
+#: bullets cost the collision's exact fallback thousands of calls a frame. 64 px a frame is
+#: 3,840 px/s, six field heights a second.
+MAX_SPEED = 64.0
 #: Live bullets one pattern run may hold (``trace`` and ``check``); fires past it are refused.
 MAX_LIVE_BULLETS = 4_096

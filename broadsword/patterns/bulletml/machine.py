@@ -55,7 +55,7 @@ class _Rep:
 class Thread:
     """One libBulletML runner: its action list, stack, clock and ``sequence`` memory."""
 
-    __slots__ = ("pattern", "nodes", "next_node", "stack", "act_turn", "prev_dir", "prev_spd", "params")
+    __slots__ = ("pattern", "nodes", "next_node", "stack", "act_turn", "prev_dir", "prev_spd", "params", "due", "cut")
 
     def __init__(self, pattern, nodes, params: tuple[float, ...]):
         self.pattern, self.nodes, self.next_node, self.params = pattern, nodes, 0, params
@@ -63,11 +63,27 @@ class Thread:
         self.act_turn: int | None = None
         self.prev_dir: float | None = None  # sequence direction: the last fire's, or unset
         self.prev_spd: float | None = None
+        self.due = NEVER  # the frame the last run asked to run next
+        self.cut = False  # the last run stopped at a step limit, not at a wait
 
     def run(self, eng, movers: Movers, row: int, now: int) -> int:
-        """Run this frame's commands; returns the frame at which it must run next."""
+        """Run this frame's commands; returns the frame at which it must run next.
+
+        A thread the engine kept waiting (its due frame passed while the engine's budget was
+        spent) or cut short at a step limit resumes with its clock moved on to ``now``: it
+        carries on where it stopped, later, rather than running every frame it missed at once
+        (which would turn one deferred frame into a burst)."""
         if self.act_turn is None:
             self.act_turn = now
+        elif self.due < now:
+            self.act_turn += now - self.due
+        if self.cut:
+            self.act_turn, self.cut = max(self.act_turn, now), False
+        self.due = self._run(eng, movers, row, now)
+        return self.due
+
+    def _run(self, eng, movers: Movers, row: int, now: int) -> int:
+        assert self.act_turn is not None
         if not self.stack:
             if self.next_node >= len(self.nodes):
                 return NEVER
@@ -78,7 +94,8 @@ class Thread:
         while stack and self.act_turn <= now:
             steps += 1
             if steps > MAX_STEPS_PER_FRAME or eng.budget <= 0:
-                return now + 1  # a hostile loop, or the engine's work for this frame done: resume next frame
+                self.cut = True  # a hostile loop, or the engine's work for this frame done
+                return now + 1  # resume next frame
             eng.budget -= 1
             top = stack[-1]
             if type(top) is _Rep:

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import DTypeLike
 
 from ._trig import velocity_deg
+from .limits import MAX_SPEED
 
 #: ``wake`` of a row with nothing left to run.
 NEVER = np.iinfo(np.int64).max
@@ -163,8 +164,31 @@ class Movers(Columns):
         self._born(i)
         return i
 
-    def _born(self, i: int) -> None:
-        """Hook: fill the extra columns of new row ``i``."""
+    def add_many(self, x, y, direction, speed, runner: list, wake, tag) -> None:
+        """Append ``len(x)`` rows at once (the caller has checked the ``limit``): ``x``,
+        ``y``, ``direction``, ``speed`` (k,) float64; ``runner`` a list of k runners (or
+        None); ``wake``, ``tag`` (k,) int64. Their velocity is computed at the next
+        :meth:`settle`."""
+        k = len(x)
+        if not k:
+            return
+        i, j = self.n, self.n + k
+        self._grow(j)
+        d = self._data
+        d["pos"][i:j, 0], d["pos"][i:j, 1] = x, y
+        d["state"][i:j, DIR], d["state"][i:j, SPD] = direction, speed
+        d["state"][i:j, AX:] = 0.0
+        d["dirty"][i:j] = True
+        d["wake"][i:j] = wake
+        d["ch_on"][i:j] = False
+        d["runner"][i:j] = runner
+        d["dead"][i:j] = d["mute"][i:j] = False
+        d["tag"][i:j], d["owner"][i:j] = tag, 0
+        self.n = j
+        self._born(slice(i, j))
+
+    def _born(self, rows: int | slice) -> None:
+        """Hook: fill the extra columns of the new row (or slice of rows) ``rows``."""
 
     def set_channel(self, row: int, ch: int, x0: int, x1: int, y0: float, y1: float) -> None:
         """Start a linear change of column ``ch`` of ``row``: ``y0`` at frame ``x0`` to ``y1``
@@ -191,15 +215,16 @@ class Movers(Columns):
         self.dirty[r] = True
 
     def settle(self) -> None:
-        """Recompute ``step`` (direction and speed as a vector, plus the accel velocity) for
-        the dirty rows, all at once."""
+        """Recompute ``step`` (direction and speed as a vector, plus the accel velocity, each
+        axis clamped to ``MAX_SPEED``) for the dirty rows, all at once."""
         rows = np.flatnonzero(self.dirty)
         if not len(rows):
             return
         st = self.state[rows]
         vx, vy = velocity_deg(st[:, DIR], st[:, SPD])
-        self.step[rows, 0] = vx + st[:, AX]
-        self.step[rows, 1] = vy + st[:, AY]
+        # at most MAX_SPEED px a frame on each axis (a value in range keeps its bits)
+        self.step[rows, 0] = np.clip(vx + st[:, AX], -MAX_SPEED, MAX_SPEED)
+        self.step[rows, 1] = np.clip(vy + st[:, AY], -MAX_SPEED, MAX_SPEED)
         self.dirty[rows] = False
         self._settled(rows)
 
