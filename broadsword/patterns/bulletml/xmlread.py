@@ -13,6 +13,7 @@ import os
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
+from ...fileio import FileTooLarge, read_capped
 from .limits import MAX_DEPTH, MAX_ELEMENTS, MAX_FILE_BYTES
 
 
@@ -53,11 +54,11 @@ def read_elements(path: str | os.PathLike, data: bytes | None = None) -> Element
     name = os.fspath(path)
     if data is None:
         try:
-            size = os.path.getsize(name)
-            if size > MAX_FILE_BYTES:
-                raise ValueError(f"{name}: file is {size} bytes (at most {MAX_FILE_BYTES})")
-            with open(name, "rb") as fh:
-                data = fh.read(MAX_FILE_BYTES + 1)
+            data = read_capped(name, MAX_FILE_BYTES)
+        except FileTooLarge as exc:
+            raise ValueError(
+                f"{name}: file is {exc.size}{'' if exc.exact else '+'} bytes (at most {MAX_FILE_BYTES})"
+            ) from None
         except OSError as exc:
             raise ValueError(f"{name}: cannot read the file ({exc.strerror or exc})") from None
     if len(data) > MAX_FILE_BYTES:
