@@ -7,9 +7,9 @@ so that nothing the player set is lost.
   aside first (:func:`keep_copy`: ``options.json`` -> ``options.json.bad``), so a later
   save can never destroy what the player wrote; the caller keeps every valid value. A
   regular file over the size cap is renamed to ``<name>.bad`` instead (never read whole).
-- :func:`merged_for_save` carries into a save whatever the file on disk holds that this
-  version does not know (a newer version's extra options, at any depth) and a newer
-  version number, so a downgrade and a save lose nothing.
+- :func:`merged_for_save` carries into a save whatever a newer version's file on disk holds
+  that this version does not know (its extra options, at any depth) and its version
+  number, so a downgrade and a save lose nothing.
 """
 
 from __future__ import annotations
@@ -76,20 +76,21 @@ def _move_aside(path: Path) -> str:
 
 
 def merged_for_save(path: Path, doc: dict, max_bytes: int, version: int) -> dict:
-    """``doc`` (this version's settings, with ``"version": version``) plus what the file now
-    at ``path`` holds that ``doc`` lacks, at every depth of nested tables, and the file's
-    ``version`` when it is a newer one. A file that cannot be read adds nothing."""
+    """``doc`` (this version's settings, with ``"version": version``) plus, when the file now
+    at ``path`` was written by a newer version (a higher ``version``), what it holds that
+    ``doc`` lacks, at every depth of nested tables, and its version. A file of this version
+    or older adds nothing (its unknown keys were named as bad and copied aside with it), nor
+    does one that cannot be read."""
     try:
         on_disk = json.loads(read_capped(path, max_bytes).decode("utf-8"))
     except (OSError, ValueError, RecursionError):
         return doc
     if not isinstance(on_disk, dict):
         return doc
-    merged = _keep_unknown(on_disk, doc)
     old = on_disk.get("version")
-    if type(old) is int and old > version:
-        merged["version"] = old
-    return merged
+    if not (type(old) is int and old > version):
+        return doc
+    return {**_keep_unknown(on_disk, doc), "version": old}
 
 
 def _keep_unknown(old: dict, new: dict) -> dict:

@@ -100,3 +100,14 @@ def test_options__a_fifo_device_or_directory_is_refused_at_once_and_never_replac
 
 def test_options__volume_is_a_mixer_level():
     assert Options(music=0).volume("music") == 0.0 and Options(sound=10).volume("sound") == 1.0
+
+
+def test_options__an_unknown_key_of_this_version_is_dropped_by_a_save_but_kept_aside(tmp_path):
+    path = tmp_path / "options.json"
+    path.write_text('{"version": 1, "volume": 3, "music": 2}')
+    o, warning = load_options(path)
+    assert o == Options(music=2) and "volume" in warning
+    save_options(o, path)
+    assert "volume" not in json.loads(path.read_text())
+    assert load_options(path) == (Options(music=2), None)  # no warning at every launch after
+    assert "volume" in (tmp_path / "options.json.bad").read_text()
