@@ -8,8 +8,12 @@ and exits with status 2.
 from __future__ import annotations
 
 import argparse
+import math
+from collections.abc import Callable
 
 SEED_LIMIT = 2**63
+#: ``--lab E,B`` at most: ships, and bullets (the game's own enemy-bullet cap).
+LAB_SHIPS_MAX, LAB_BULLETS_MAX = 2_000, 32_768
 
 
 def _int(text: str) -> int:
@@ -43,12 +47,46 @@ def seed(text: str) -> int:
     return value
 
 
+def at_most(limit: int) -> Callable[[str], int]:
+    """An argument type: a whole number in [1, ``limit``]."""
+
+    def bounded(text: str) -> int:
+        value = _int(text)
+        if not 1 <= value <= limit:
+            raise argparse.ArgumentTypeError(f"must be a whole number in [1, {limit:,}], got {value}")
+        return value
+
+    bounded.__name__ = f"at_most_{limit}"
+    return bounded
+
+
+def nonempty(text: str) -> str:
+    """A name or path that is not empty (nor only spaces)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("must not be empty")
+    return text
+
+
+def finite(text: str) -> float:
+    """A finite number (``nan`` and ``inf`` refused: a limit of nan disables a check silently)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text[:40]!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text[:40]}")
+    return value
+
+
 def lab_size(text: str) -> tuple[int, int]:
-    """``E,B``: E >= 1 ships and B >= 0 bullets, e.g. ``200,10000``."""
+    """``E,B``: 1 <= E <= LAB_SHIPS_MAX ships and 0 <= B <= LAB_BULLETS_MAX bullets, e.g. ``200,10000``."""
     try:
         ships, bullets = (int(part) for part in text.split(","))
     except ValueError:
         ships, bullets = 0, -1
-    if ships < 1 or bullets < 0:
-        raise argparse.ArgumentTypeError(f"wants E,B (E >= 1 ships, B >= 0 bullets), e.g. 200,10000; got {text!r}")
+    if not (1 <= ships <= LAB_SHIPS_MAX and 0 <= bullets <= LAB_BULLETS_MAX):
+        raise argparse.ArgumentTypeError(
+            f"wants E,B (1 <= E <= {LAB_SHIPS_MAX:,} ships, 0 <= B <= {LAB_BULLETS_MAX:,} bullets), "
+            f"e.g. 200,10000; got {text[:40]!r}"
+        )
     return ships, bullets

@@ -28,8 +28,9 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
-from .data import DataError, list_levels
+from .data import DataError, list_levels, load_level, resolve_level
 from .data.difficulty import Difficulty
+from .fileio import check_writable, write_atomic
 
 #: A run stops after this many frames even if the stage has not ended (20 minutes).
 FRAME_LIMIT = 72_000
@@ -180,6 +181,15 @@ def main(argv: list[str] | None = None) -> int:
     if args.seeds < 1 or args.workers < 1:
         print("broadsword balance: --seeds and --workers must be at least 1", file=sys.stderr)
         return 2
+    try:  # every stage loads here, naming a bad one, before any worker starts
+        for stage in stages:
+            load_level(resolve_level(stage))
+    except DataError as exc:
+        print(f"broadsword balance: --stages: {exc}", file=sys.stderr)
+        return 2
+    if args.json is not None and (why := check_writable(args.json)):  # before the runs, not after them
+        print(f"broadsword balance: --json {args.json}: {why}", file=sys.stderr)
+        return 2
     jobs = [Job(s, d.value, seed) for s in stages for d in diffs for seed in range(args.seeds)]
     if args.still:
         jobs += [Job(s, d.value, seed, still=True) for s in stages for d in diffs for seed in range(args.seeds)]
@@ -191,7 +201,9 @@ def main(argv: list[str] | None = None) -> int:
     rows = summarise(runs)
     print(table(rows))
     if args.json:
-        from .fileio import write_atomic
-
-        write_atomic(args.json, (json.dumps({"rows": rows, "runs": runs}, indent=1) + "\n").encode())
+        try:
+            write_atomic(args.json, (json.dumps({"rows": rows, "runs": runs}, indent=1) + "\n").encode())
+        except OSError as exc:  # checked before the runs; the disk filled or changed since
+            print(f"broadsword balance: --json {args.json}: cannot write ({exc.strerror or exc})", file=sys.stderr)
+            return 1
     return 0

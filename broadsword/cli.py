@@ -31,13 +31,15 @@ import importlib
 import json
 import os
 import sys
+import time
 from dataclasses import dataclass
 
 from . import __version__
-from .argtypes import lab_size, natural, seed
+from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, lab_size, natural, nonempty, seed
 from .data import DataError, list_levels, load_level, resolve_level
 from .data.difficulty import Difficulty
-from .data.recordings import load_recording, save_recording, save_stage_recordings
+from .data.recordings import load_recording, save_stage_recordings
+from .fileio import check_writable
 
 
 @dataclass(frozen=True)
@@ -61,7 +63,9 @@ PLAY = "play"
 
 
 def _add_play_options(ap: argparse.ArgumentParser) -> None:
-    ap.add_argument("--level", help="a shipped level's name (see --list-levels) or a path to a level file")
+    ap.add_argument(
+        "--level", type=nonempty, help="a shipped level's name (see --list-levels) or a path to a level file"
+    )
     ap.add_argument("--seed", type=seed, default=0, help="the run's seed, a whole number in [0, 2**63) (default 0)")
     ap.add_argument("--autopilot", action="store_true", help="let the deterministic autopilot play")
     ap.add_argument(
@@ -77,7 +81,9 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         metavar="FILE",
         help="save the run's inputs to FILE (a recording); with a window, a run of several stages saves "
         "one recording a stage: the first to FILE, each next beside it as FILE's name plus the level's "
-        "(run.json, run-2-gauntlet.json, ...), each replayable on its own",
+        "(run.json, run-2-gauntlet.json, ...), each replayable on its own. FILE is checked before play "
+        "(exit 2 if it cannot be written); if the write still fails at the end, the run is saved in the "
+        "data directory's recordings folder instead, and the path said",
     )
     ap.add_argument(
         "--replay",
@@ -97,8 +103,8 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         type=lab_size,
         const=(100, 2000),
         metavar="E,B",
-        help="show the benchmark's reference scene (E >= 1 ships, B >= 0 bullets; default 100,2000) "
-        "live with the overlay",
+        help=f"show the benchmark's reference scene (1-{LAB_SHIPS_MAX:,} ships, 0-{LAB_BULLETS_MAX:,} bullets; "
+        "default 100,2000) live with the overlay, in a window (not with --headless)",
     )
     ap.add_argument(
         "--difficulty",
@@ -172,6 +178,16 @@ def _run_play(args: argparse.Namespace) -> int:
     try:
         if args.list_levels:
             return _list_levels()
+        if args.headless and args.lab is not None:
+            print(
+                "broadsword: --lab shows the reference scene in a window; drop --headless "
+                "(python -m broadsword.bench measures it without one)",
+                file=sys.stderr,
+            )
+            return 2
+        if args.record is not None and (why := check_writable(args.record)):  # before play, not after it
+            print(f"broadsword: --record {args.record!r}: {why}", file=sys.stderr)
+            return 2
         replay = load_recording(args.replay) if args.replay else None
         if replay and (args.rotation or args.level or args.difficulty):
             print(
@@ -183,7 +199,9 @@ def _run_play(args: argparse.Namespace) -> int:
         level = args.level or (replay.level if replay else list_levels()[0])
         if args.level and args.headless:  # exit 2 at once, not after a first launch's compile
             load_level(resolve_level(level))  # (a window opens on the title and shows it there)
-        _load_kernels()
+        numba = _choose_kernel()
+        if numba and args.headless:
+            _warm_or_numpy(None)
         seed_ = replay.seed if replay and args.seed == 0 else args.seed
         if args.headless:
             os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
@@ -201,13 +219,12 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
             )
-            if args.record:
-                save_recording(args.record, recording)
+            saved = _save_recordings(args.record, [recording]) if args.record else True
             for warning in summary["warnings"]:
                 print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
-            return 0
-        return _play(level if args.level or replay else None, seed_, args, replay)
+            return 0 if saved else 1
+        return _play(level if args.level or replay else None, seed_, args, replay, numba)
     except (DataError, KernelChoiceError) as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 2
@@ -217,20 +234,71 @@ class KernelChoiceError(Exception):
     """``BROADSWORD_KERNEL`` names no kernel, or numba while numba is missing."""
 
 
-def _load_kernels() -> None:
-    """Load the compiled collision kernels when numba is chosen, before any window opens:
-    a first launch compiles them here (about 20 s, said on stderr), not in a frame."""
-    from .collision import Kernel, check_kernel, warm_kernel
+def _choose_kernel() -> bool:
+    """Whether the compiled (numba) kernels are to be loaded: chosen by ``BROADSWORD_KERNEL``
+    or by numba being installed. A numba that is installed but broken is said on stderr
+    (collision then runs on numpy); a bad ``BROADSWORD_KERNEL`` is a :class:`KernelChoiceError`."""
+    from .collision import Kernel, check_kernel
     from .collision._kernel import NUMBA_MISSING, numba_problem
 
     try:
         kernel = check_kernel(None)
     except (ValueError, ImportError) as exc:
         raise KernelChoiceError(str(exc)) from None
-    if kernel is Kernel.NUMBA:
-        warm_kernel()
-    elif (problem := numba_problem()) not in (None, NUMBA_MISSING):  # installed, but broken
+    if kernel is not Kernel.NUMBA and (problem := numba_problem()) not in (None, NUMBA_MISSING):  # installed, broken
         print(f"broadsword: {problem}; collision runs on numpy (the same answers, slower)", file=sys.stderr)
+    return kernel is Kernel.NUMBA
+
+
+def _warm_or_numpy(progress) -> None:
+    """Load the compiled kernels (a first launch compiles them: said on stderr), before any
+    frame; if that fails for any reason, say so in one line and run on numpy instead
+    (``BROADSWORD_KERNEL=numpy`` for this process: the same answers, slower)."""
+    from .collision import warm_kernel
+
+    try:
+        warm_kernel(progress)
+    except Exception as exc:  # a broken numba or compiler: the game still runs
+        _numpy_instead(exc)
+
+
+def _numpy_instead(exc: BaseException) -> None:
+    from .collision._kernel import ENV_VAR
+
+    why = " ".join(f"{type(exc).__name__}: {exc}".split())[:200]
+    print(f"broadsword: the numba kernels could not be loaded ({why}); collision runs on numpy", file=sys.stderr)
+    os.environ[ENV_VAR] = "numpy"
+
+
+def _save_recordings(dest: str, recordings: list) -> bool:
+    """Save ``recordings`` (one a stage) at ``dest`` (:func:`save_stage_recordings`). If that
+    fails (the disk filled, the folder went away since the check before play), save them
+    in the data directory's ``recordings`` folder instead and say where: a run is never
+    lost. Returns whether they went to ``dest``; says so on stderr when they did not."""
+    try:
+        paths = save_stage_recordings(dest, recordings)
+    except OSError as exc:
+        from .game.userdata import user_data_dir
+
+        why = exc.strerror or str(exc)
+        stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
+        rescue = user_data_dir() / "recordings" / f"run-{stamp}-{os.getpid()}.json"
+        try:
+            paths = save_stage_recordings(rescue, recordings)
+        except OSError as again:
+            print(
+                f"broadsword: --record {dest}: cannot write ({why}), nor in {rescue.parent} "
+                f"({again.strerror or again}): the recording is lost",
+                file=sys.stderr,
+            )
+            return False
+        print(
+            f"broadsword: --record {dest}: cannot write ({why}); saved the run as {paths[0]} instead", file=sys.stderr
+        )
+        return False
+    if len(paths) > 1:
+        print(f"broadsword: recorded {len(paths)} stages: {', '.join(map(str, paths))}", file=sys.stderr)
+    return True
 
 
 def _list_levels() -> int:
@@ -244,7 +312,7 @@ def _list_levels() -> int:
     return 0
 
 
-def _play(level, seed_, args, replay) -> int:
+def _play(level: str | None, seed_: int, args: argparse.Namespace, replay, numba: bool) -> int:
     import pygame
 
     from .game.app import App
@@ -252,6 +320,8 @@ def _play(level, seed_, args, replay) -> int:
     from .game.window import NoDisplay
 
     try:
+        if numba and not _open_while_compiling():
+            return 0  # the player closed the window while the kernels compiled
         with filtered_stderr():  # pygame.init() probes for audio; no sound card: 8 ALSA lines
             app = App(
                 start_level=level,
@@ -280,7 +350,33 @@ def _play(level, seed_, args, replay) -> int:
     app.run()
     recordings = app.recordings()
     if args.record and recordings:  # one file a stage: FILE is the first, FILE-LEVEL.json the next ones
-        paths = save_stage_recordings(args.record, recordings)
-        if len(paths) > 1:
-            print(f"broadsword: recorded {len(paths)} stages: {', '.join(map(str, paths))}", file=sys.stderr)
+        return 0 if _save_recordings(args.record, recordings) else 1
     return 0
+
+
+def _open_while_compiling() -> bool:
+    """Load the compiled kernels; when they must be compiled (a first launch), open the
+    window first and show the progress there while they compile in a worker thread
+    (:mod:`broadsword.game.compiling`). A failure falls back to numpy. Returns False when
+    the player closed the window meanwhile. NoDisplay and pygame.error propagate."""
+    from .collision._warm import kernels_cached
+
+    if kernels_cached():
+        _warm_or_numpy(None)  # about a second: no screen needed
+        return True
+    from .collision import warm_kernel
+    from .game.app import DEFAULT_SCALE, TITLE
+    from .game.compiling import compile_in_window
+    from .sim import FIELD
+
+    size = (int(FIELD[0] * DEFAULT_SCALE), int(FIELD[1] * DEFAULT_SCALE))
+    t0 = time.perf_counter()
+    wanted, error = compile_in_window(size, TITLE, warm_kernel)
+    if error is not None:
+        _numpy_instead(error)
+    elif wanted:
+        print(
+            f"broadsword: the kernels compiled in {time.perf_counter() - t0:.0f} s, with the window open",
+            file=sys.stderr,
+        )
+    return wanted

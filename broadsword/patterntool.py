@@ -17,7 +17,11 @@ import argparse
 import math
 import sys
 
-from .argtypes import positive, seed
+from .argtypes import at_most, seed
+from .fileio import check_writable
+
+#: ``--frames`` at most: ten minutes of game time.
+FRAMES_MAX = 36_000
 
 
 def _rank(text: str) -> float:
@@ -49,7 +53,12 @@ def _parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
     check = sub.add_parser("check", help="validate files and report bullets fired, peak live bullets, duration")
     check.add_argument("files", nargs="+", metavar="FILE")
-    check.add_argument("--frames", type=positive, default=1200, help="frames to run each pattern (default 1200)")
+    check.add_argument(
+        "--frames",
+        type=at_most(FRAMES_MAX),
+        default=1200,
+        help=f"frames to run each pattern, 1-{FRAMES_MAX} (default 1200)",
+    )
     check.add_argument("--rank", type=_rank, default=0.5, help="$rank, 0..1 (default 0.5)")
     check.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions, e.g. 2.5,3,30,60,0")
     view = sub.add_parser("view", help="watch a pattern fire (target at the mouse)")
@@ -57,7 +66,12 @@ def _parser() -> argparse.ArgumentParser:
     view.add_argument("--rank", type=_rank, default=0.5, help="starting $rank, 0..1 (default 0.5)")
     view.add_argument("--seed", type=seed, default=0, help="the $rand stream's seed (default 0)")
     view.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions")
-    view.add_argument("--frames", type=positive, default=None, help="quit after this many frames (for tests)")
+    view.add_argument(
+        "--frames",
+        type=at_most(FRAMES_MAX),
+        default=None,
+        help=f"quit after this many frames, 1-{FRAMES_MAX} (for tests)",
+    )
     view.add_argument("--screenshot", metavar="PNG", help="save the last frame to this PNG file")
     return ap
 
@@ -107,6 +121,9 @@ def main(argv: list[str]) -> int:
         return exc.code if isinstance(exc.code, int) else 2
     if args.command == "check":
         return check(args.files, args.frames, args.rank, args.params)
+    if args.screenshot is not None and (why := check_writable(args.screenshot)):  # before the window, not after
+        print(f"broadsword pattern: --screenshot {args.screenshot}: {why}", file=sys.stderr)
+        return 2
     from .game.patternview import view
 
     return view(

@@ -36,9 +36,10 @@ import traceback
 
 import numpy as np
 
+from .argtypes import finite
 from .data import DataError, data_dir, load_armatures, load_level, resolve_level
 from .data.levels import check_level_sprites
-from .fileio import write_atomic
+from .fileio import check_writable, write_atomic
 
 HOUR_FRAMES = 216_000  # one hour of game time at 60 Hz
 MAX_GROWTH_PCT = 5.0
@@ -289,7 +290,10 @@ def _parser() -> argparse.ArgumentParser:
         "--progress-every", type=natural, default=10_000, help="frames between progress lines on stderr (0: none)"
     )
     ap.add_argument(
-        "--max-growth", type=float, default=MAX_GROWTH_PCT, help="allowed RSS growth after warm-up, percent (default 5)"
+        "--max-growth",
+        type=finite,
+        default=MAX_GROWTH_PCT,
+        help="allowed RSS growth after warm-up, percent, a finite number (default 5)",
     )
     ap.add_argument("--json", metavar="FILE", help="also write the summary to FILE")
     return ap
@@ -302,6 +306,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.sample_every < 1:
         print("broadsword soak: --sample-every must be >= 1", file=sys.stderr)
+        return 2
+    if args.json is not None and (why := check_writable(args.json)):  # before the run, not after it
+        print(f"broadsword soak: --json {args.json}: {why}", file=sys.stderr)
         return 2
     from .collision import retain_heap
 
@@ -345,7 +352,12 @@ def main(argv: list[str] | None = None) -> int:
         file=sys.stderr,
     )
     text = json.dumps(summary)
+    saved = True
     if args.json:
-        write_atomic(args.json, (text + "\n").encode())
+        try:
+            write_atomic(args.json, (text + "\n").encode())
+        except OSError as exc:  # checked before the run; the disk filled or changed since
+            print(f"broadsword soak: --json {args.json}: cannot write ({exc.strerror or exc})", file=sys.stderr)
+            saved = False
     print(text)
-    return 0 if summary["ok"] else 1
+    return 0 if summary["ok"] and saved else 1

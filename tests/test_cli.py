@@ -89,12 +89,12 @@ def test_broken_level__exit_2_one_line_naming_file_and_field(tmp_path, capsys):
 
 def test_broken_level__said_before_the_kernels_load(tmp_path, capsys, monkeypatch):
     """Headless, a broken ``--level`` is refused before the compiled kernels are loaded (a
-    first launch would otherwise compile them, about 20 s, before exiting 2). In a window
+    first launch would otherwise compile them, 20 s to minutes, before exiting 2). In a window
     the game opens on the title and says it there (tests/game/test_app_robustness.py)."""
     import broadsword.cli as cli
 
     loaded = []
-    monkeypatch.setattr(cli, "_load_kernels", lambda: loaded.append(True))
+    monkeypatch.setattr(cli, "_choose_kernel", lambda: loaded.append(True))
     bad = tmp_path / "bad.toml"
     bad.write_text('[scene]\ntiers = ["bins", "sphere"]\n')
     code, out, err = run(["--headless", "--level", str(bad)], capsys)

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..data import DataError
+from ..fileio import read_head
 
 __all__ = ["PIXELS_MAX", "SIDE_MAX", "PngHeader", "read_png_header"]
 
@@ -51,8 +52,7 @@ def read_png_header(path: str | Path) -> PngHeader:
     """
     path = Path(path)
     try:
-        with open(path, "rb") as f:
-            head = f.read(33)
+        head = read_head(path, 33)
     except FileNotFoundError:
         raise DataError(path, "", "cannot load image: no such file") from None
     except OSError as exc:

@@ -143,7 +143,7 @@ def jit(fn, signature: str):
         compiling = not _cache_present(fn)
         if compiling and not _Compiled.told:
             print(
-                "broadsword: compiling the numba collision kernels (once, then cached; about 20 s)...",
+                "broadsword: compiling the numba collision kernels (once, then cached; 20 s to a few minutes)...",
                 file=sys.stderr,
             )
             _Compiled.told = True
@@ -263,4 +263,3 @@ def _discard_cache(fn, where: str | None) -> int:
 def _cache_present(fn) -> bool:
     """Whether numba's on-disk cache holds an index for ``fn`` (best effort)."""
     return any(n.endswith(".nbi") for n in _cache_entries(fn, _cache_dir(fn)))
-

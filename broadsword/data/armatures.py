@@ -33,7 +33,7 @@ from pathlib import Path
 from ..collision import Armature
 from ..fileio import write_atomic
 from .errors import DataError, shown
-from .resources import read_toml
+from .resources import read_text, read_toml
 
 SUFFIX = ".armature.toml"
 #: Shape names: lower-case identifiers. ``hit`` is required in every frame.
@@ -144,8 +144,8 @@ def _shape_set(table, path: Path, where: str, name: str) -> tuple[dict[str, Arma
 
 def _header(path: Path) -> str:
     try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError):
+        lines = read_text(path, FILE_MAX_BYTES, "an armature file").splitlines()
+    except DataError:
         return ""
     head = []
     for line in lines:

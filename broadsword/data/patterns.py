@@ -43,7 +43,10 @@ def resolve_pattern(name: str, level_path: Path) -> Path:
         rel = rel.with_suffix(".xml")
     roots = [Path(level_path).resolve().parent, shipped_patterns().resolve()]
     for root in roots:
-        candidate = (root / rel).resolve()
+        try:
+            candidate = (root / rel).resolve()
+        except (RuntimeError, OSError) as exc:  # a symlink loop (RuntimeError in Python 3.11, OSError later)
+            raise ValueError(f"{name!r} cannot be resolved ({exc})") from None
         if candidate.is_file():
             if not candidate.is_relative_to(root):
                 raise ValueError(f"{name!r} leads outside {root} (through a link)")

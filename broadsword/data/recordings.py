@@ -35,7 +35,8 @@ from .. import __version__
 from ..fileio import write_atomic
 from .difficulty import Difficulty
 from .errors import DataError, shown
-from .resources import read_text
+from .levels import LEVEL_MAX_BYTES
+from .resources import read_bytes, read_text
 
 #: The format this game reads and writes.
 FORMAT_VERSION = 2
@@ -112,8 +113,10 @@ class Recording:
 
 
 def file_sha256(path: str | Path) -> str:
-    """Hex SHA-256 of a file's bytes (a level's identity in a recording)."""
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    """Hex SHA-256 of a level file's bytes (a level's identity in a recording): read as a
+    level is, at most ``LEVEL_MAX_BYTES`` of a regular file (:class:`DataError` naming the
+    file for anything else), so a huge or endless file is never read whole."""
+    return hashlib.sha256(read_bytes(path, LEVEL_MAX_BYTES, "a level file")).hexdigest()
 
 
 def save_recording(path: str | Path, rec: Recording) -> None:

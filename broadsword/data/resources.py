@@ -13,12 +13,11 @@ Nothing read is ever executed.
 from __future__ import annotations
 
 import importlib.resources
-import os
 import re
-import stat
 import tomllib
 from pathlib import Path
 
+from ..fileio import FileTooLarge, NotRegularFile, read_capped
 from .errors import DataError
 
 _ROOT = Path(__file__).resolve().parents[2]  # the repository, in a source checkout
@@ -41,32 +40,33 @@ def data_dir(kind: str) -> Path:
     raise FileNotFoundError(f"shipped {kind} not found in {shipped} or {_ROOT / kind}")
 
 
-def read_text(path: str | Path, max_bytes: int, kind: str) -> str:
-    """The UTF-8 text of the data file ``path`` (``kind`` names it in errors: "a level file").
+def read_bytes(path: str | Path, max_bytes: int, kind: str) -> bytes:
+    """The bytes of the data file ``path`` (``kind`` names it in errors: "a level file"),
+    read by :func:`broadsword.fileio.read_capped`.
 
-    Refused, with a :class:`DataError` naming the file: anything but a regular file; a file
-    over ``max_bytes`` bytes, by its size before reading and by reading at most
-    ``max_bytes + 1`` bytes in case the size lies; and bytes that are not UTF-8.
+    Refused, with a :class:`DataError` naming the file: anything but a regular file (a FIFO
+    or a device never blocks or floods the read); a file over ``max_bytes`` bytes, by its
+    size before reading and by reading at most ``max_bytes + 1`` bytes in case the size
+    lies; a file that cannot be read (missing, no permission, a symlink loop).
     """
     path = Path(path)
     try:
-        regular = stat.S_ISREG(path.stat().st_mode)
-        if regular:
-            with open(path, "rb") as fh:
-                size = os.fstat(fh.fileno()).st_size
-                data = fh.read(max_bytes + 1) if size <= max_bytes else b""
+        return read_capped(path, max_bytes)
+    except NotRegularFile as exc:
+        raise DataError(path, "", f"{exc.strerror}; {kind} is a file") from None
+    except FileTooLarge as exc:
+        plus = "" if exc.exact else "+"
+        raise DataError(path, "", f"is {exc.size:,}{plus} bytes; {kind} is at most {max_bytes:,}") from None
     except OSError as exc:
         raise DataError(path, "", f"cannot read: {exc.strerror or exc}") from None
     except ValueError as exc:  # a path the system cannot take (an embedded NUL)
         raise DataError(path, "", f"cannot read: {exc}") from None
-    if not regular:
-        raise DataError(path, "", f"not a regular file; {kind} is a text file")
-    if size > max_bytes or len(data) > max_bytes:
-        raise DataError(
-            path,
-            "",
-            f"is {max(size, len(data)):,}{'+' if size <= max_bytes else ''} bytes; {kind} is at most {max_bytes:,}",
-        )
+
+
+def read_text(path: str | Path, max_bytes: int, kind: str) -> str:
+    """The UTF-8 text of the data file ``path``: :func:`read_bytes`, and a
+    :class:`DataError` naming the file for bytes that are not UTF-8."""
+    data = read_bytes(path, max_bytes, kind)
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:

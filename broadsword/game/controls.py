@@ -8,8 +8,13 @@ actions an event presses (menus and toggles), and what the ship is told this fra
 (:meth:`Controls.input`).
 
 Bindings are saved as JSON in the user's data directory (``controls.json`` beside the high
-scores), written atomically; a file that cannot be read or makes no sense falls back to the
-defaults with a one-line ``warning`` the title shows, never a crash.
+scores), written atomically (:mod:`.settingsfile`). The file is read name by name: a bad
+one (an unknown key or pad button, an action that is not rebindable, a fixed key, a key
+already bound to another action: what the options screen refuses) is named in a one-line
+``warning`` the title shows and left out, the rest is kept, an action left with none of its
+names keeps its defaults, and the file is first copied aside as ``controls.json.bad``. A
+file that is no controls file at all gives the default keys and a warning, never a crash
+or a hang; what a newer version adds survives a save.
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ import pygame
 from ..fileio import write_atomic
 from ..sim import Input
 from .scores import data_home
+from .settingsfile import SettingsUnreadable, keep_copy, merged_for_save, one_line, read_settings
 
 #: The file's format, and its largest sensible size (anything bigger is not a bindings file).
 FORMAT_VERSION = 1
@@ -180,25 +186,63 @@ class Bindings:
         }
 
     @classmethod
-    def from_json(cls, doc) -> Bindings:
-        """The bindings ``doc`` describes; ``ValueError`` naming the field for anything else.
-        An action the file leaves out keeps its default."""
-        if not isinstance(doc, dict) or doc.get("version") != FORMAT_VERSION:
-            raise ValueError(f"version: must be {FORMAT_VERSION}")
+    def from_json(cls, doc) -> tuple[Bindings, list[str]]:
+        """The bindings ``doc`` describes, name by name, and one ``"field: what"`` for each
+        name refused. Refused as the options screen refuses them: an unknown key or pad
+        button, an action that is not rebindable, a fixed key (:data:`FIXED_KEYS`) unless
+        it is among the action's own defaults (Esc pauses), a key or button the file
+        already gave another action. An action the file leaves out, or whose names are
+        all refused, keeps its defaults, less what the file gives other actions (as
+        :meth:`bind_key` takes a key from every other action)."""
+        if not isinstance(doc, dict):
+            return cls(), ["the file must be a JSON object of version, keys and buttons"]
+        problems = []
+        version = doc.get("version")
+        newer = type(version) is int and version > FORMAT_VERSION  # its new actions: kept, not named
+        if not newer and version != FORMAT_VERSION:
+            problems.append(f"version: must be {FORMAT_VERSION}, got {version!r}")
         b = cls()
         for part, parse, table in (("keys", _key_code, b.keys), ("buttons", _button_code, b.buttons)):
             given = doc.get(part, {})
             if not isinstance(given, dict):
-                raise ValueError(f"{part}: must be a table of action -> list of names")
+                problems.append(f"{part}: must be a table of action -> list of names")
+                continue
+            chosen: dict[Action, tuple[int, ...]] = {}
+            taken: set[int] = set()
             for name, values in given.items():
+                where = f"{part}.{name}"
                 try:
                     action = Action(name)
                 except ValueError:
-                    raise ValueError(f"{part}.{name}: not an action") from None
+                    if not newer:
+                        problems.append(
+                            f"{where}: not an action (rebindable: {', '.join(a.value for a in REBINDABLE)})"
+                        )
+                    continue
                 if action not in REBINDABLE or not isinstance(values, list) or len(values) > 8:
-                    raise ValueError(f"{part}.{name}: must be a list of at most 8 names of a rebindable action")
-                table[action] = tuple(parse(f"{part}.{name}", v) for v in values)
-        return b
+                    problems.append(f"{where}: must be a list of at most 8 names of a rebindable action")
+                    continue
+                codes = []
+                for value in values:
+                    try:
+                        code = parse(where, value)
+                        if part == "keys" and code in FIXED_KEYS and code not in DEFAULT_KEYS.get(action, ()):
+                            raise ValueError(f"{where}: {value!r} is a fixed key ({FIXED_KEYS[code].title})")
+                        if code in taken or code in codes:
+                            raise ValueError(f"{where}: {value!r} is bound twice")
+                    except ValueError as exc:
+                        problems.append(str(exc))
+                        continue
+                    codes.append(code)
+                if codes or not values:
+                    chosen[action] = tuple(codes)
+                    taken.update(codes)
+            for action in REBINDABLE:
+                if action in chosen:
+                    table[action] = chosen[action]
+                elif action in table:
+                    table[action] = tuple(c for c in table[action] if c not in taken)
+        return b, [one_line(p) for p in problems]
 
 
 def _button_name(b: int) -> str:
@@ -217,7 +261,7 @@ def _key_code(where: str, name) -> int:
 def _button_code(where: str, name) -> int:
     if isinstance(name, str) and name in PadButton.__members__:
         return int(PadButton[name])
-    if isinstance(name, str) and name.isdigit() and int(name) < 32:
+    if isinstance(name, str) and name.isascii() and name.isdecimal() and len(name) <= 2 and int(name) < 32:
         return int(name)
     raise ValueError(f"{where}: unknown pad button {name!r} (A, B, X, Y, LB, RB, BACK, START or 0-31)")
 
@@ -227,27 +271,30 @@ def bindings_path() -> Path:
 
 
 def load_bindings(path: Path | None = None) -> tuple[Bindings, str | None]:
-    """The saved bindings, or the defaults and a one-line warning saying why not.
-    A missing file is the defaults, silently."""
+    """The saved bindings, name by name, and a one-line warning naming each name not used
+    (None when all were); a missing file is the defaults, silently. A file with any bad
+    content is copied aside (``controls.json.bad``) first, and the warning says where."""
     path = Path(path) if path is not None else bindings_path()
     try:
-        if path.stat().st_size > FILE_MAX_BYTES:
-            raise ValueError(f"larger than {FILE_MAX_BYTES:,} bytes")
-        return Bindings.from_json(json.loads(path.read_text(encoding="utf-8"))), None
-    except FileNotFoundError:
+        got = read_settings(path, FILE_MAX_BYTES)
+    except SettingsUnreadable as exc:
+        return Bindings(), f"controls file {path} not used ({exc}): default keys"
+    if got is None:
         return Bindings(), None
-    except (OSError, ValueError, UnicodeDecodeError, RecursionError) as exc:
-        return Bindings(), f"controls file {path} not used ({_one_line(exc)}): default keys"
+    doc, data = got
+    bindings, problems = Bindings.from_json(doc)
+    if not problems:
+        return bindings, None
+    return bindings, f"controls file {path}: {'; '.join(problems)} (the rest kept; {keep_copy(path, data)})"
 
 
 def save_bindings(bindings: Bindings, path: Path | None = None) -> None:
-    """Write atomically (temp file + os.replace); OSError propagates."""
+    """Write atomically (temp file + os.replace), keeping what the file holds that this
+    version does not know; OSError propagates, and a FIFO or device in the file's place is
+    never replaced."""
     path = Path(path) if path is not None else bindings_path()
-    write_atomic(path, (json.dumps(bindings.to_json(), indent=1) + "\n").encode())
-
-
-def _one_line(exc: BaseException) -> str:
-    return " ".join(str(exc).split())[:160] or type(exc).__name__
+    doc = merged_for_save(path, bindings.to_json(), FILE_MAX_BYTES, FORMAT_VERSION)
+    write_atomic(path, (json.dumps(doc, indent=1) + "\n").encode())
 
 
 class Controls:

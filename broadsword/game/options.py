@@ -1,9 +1,13 @@
 """The player's options: difficulty, volumes, fullscreen, always showing the hit shape.
 
 Kept as ``options.json`` in the user's data directory (beside the high scores and the
-controls), written atomically. A file that cannot be read or makes no sense falls back to
-the defaults with a one-line ``warning`` (shown on the title), never a crash; a value out
-of range in an otherwise good file is named in the warning too.
+controls), written atomically (:mod:`.settingsfile`). Read value by value: a bad value (a
+volume of 11 or NaN, a difficulty "Insane", an unknown option) is named in a one-line
+``warning`` (shown on the title) and only that value falls back to its default; the file
+is first copied aside as ``options.json.bad``. A file that is no options file at all (not
+JSON, too big, a FIFO or a device in its place) gives the defaults and a warning, never a
+crash or a hang. A newer version's options (a higher ``version``, keys this one does not
+know) are kept silently and survive a save.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from pathlib import Path
 from ..data.difficulty import Difficulty
 from ..fileio import write_atomic
 from .scores import data_home
+from .settingsfile import SettingsUnreadable, keep_copy, merged_for_save, one_line, read_settings
 
 FORMAT_VERSION = 1
 FILE_MAX_BYTES = 64 << 10
@@ -52,22 +57,36 @@ class Options:
         return {"version": FORMAT_VERSION, **doc}
 
     @classmethod
-    def from_json(cls, doc) -> Options:
-        if not isinstance(doc, dict) or doc.get("version") != FORMAT_VERSION:
-            raise ValueError(f"version: must be {FORMAT_VERSION}")
+    def from_json(cls, doc) -> tuple[Options, list[str]]:
+        """The options ``doc`` holds, value by value, and one ``"field: what"`` per value
+        that was refused (it keeps its default). Keys unknown to this version are refused
+        by name unless ``version`` says a newer version wrote the file."""
+        if not isinstance(doc, dict):
+            return cls(), ["the file must be a JSON object of version and options"]
+        problems = []
+        version = doc.get("version")
+        newer = type(version) is int and version > FORMAT_VERSION
+        if not newer and version != FORMAT_VERSION:
+            problems.append(f"version: must be {FORMAT_VERSION}, got {version!r}")
         known = set(cls.__dataclass_fields__)
-        extra = sorted(set(doc) - known - {"version"})
-        if extra:
-            raise ValueError(f"{extra[0]}: unknown option (options are {', '.join(sorted(known))})")
-        values = {k: v for k, v in doc.items() if k in known}
-        if "difficulty" in values:
+        if not newer:
+            for key in sorted(set(doc) - known - {"version"}):
+                problems.append(f"{key}: unknown option (options are {', '.join(sorted(known))})")
+        options = cls()
+        for key in sorted(known & set(doc)):
+            value = doc[key]
+            if key == "difficulty":
+                try:
+                    value = Difficulty(value)
+                except (ValueError, TypeError):
+                    names = ", ".join(d.value for d in Difficulty)
+                    problems.append(f"difficulty: must be one of {names}, got {value!r}")
+                    continue
             try:
-                values["difficulty"] = Difficulty(values["difficulty"])
-            except ValueError:
-                raise ValueError(
-                    f"difficulty: must be one of {', '.join(d.value for d in Difficulty)}, got {values['difficulty']!r}"
-                ) from None
-        return replace(cls(), **values)
+                options = replace(options, **{key: value})
+            except ValueError as exc:
+                problems.append(str(exc))
+        return options, [one_line(p) for p in problems]
 
 
 def options_path() -> Path:
@@ -75,21 +94,28 @@ def options_path() -> Path:
 
 
 def load_options(path: Path | None = None) -> tuple[Options, str | None]:
-    """The saved options, or the defaults and a one-line warning saying why not (a missing
-    file is the defaults, silently)."""
+    """The saved options, value by value, and a one-line warning naming each value not
+    used (None when all were); a missing file is the defaults, silently. A file with any
+    bad content is copied aside (``options.json.bad``) before anything can be written
+    over it, and the warning says where."""
     path = Path(path) if path is not None else options_path()
     try:
-        if path.stat().st_size > FILE_MAX_BYTES:
-            raise ValueError(f"larger than {FILE_MAX_BYTES:,} bytes")
-        return Options.from_json(json.loads(path.read_text(encoding="utf-8"))), None
-    except FileNotFoundError:
+        got = read_settings(path, FILE_MAX_BYTES)
+    except SettingsUnreadable as exc:
+        return Options(), f"options file {path} not used ({exc}): defaults"
+    if got is None:
         return Options(), None
-    except (OSError, ValueError, UnicodeDecodeError, RecursionError, TypeError) as exc:
-        why = " ".join(str(exc).split())[:160] or type(exc).__name__
-        return Options(), f"options file {path} not used ({why}): defaults"
+    doc, data = got
+    options, problems = Options.from_json(doc)
+    if not problems:
+        return options, None
+    return options, f"options file {path}: {'; '.join(problems)} (the rest kept; {keep_copy(path, data)})"
 
 
 def save_options(options: Options, path: Path | None = None) -> None:
-    """Write atomically (temp file + os.replace); OSError propagates."""
+    """Write atomically (temp file + os.replace), keeping what the file holds that this
+    version does not know (:func:`~.settingsfile.merged_for_save`); OSError propagates,
+    and a FIFO or device in the file's place is never replaced."""
     path = Path(path) if path is not None else options_path()
-    write_atomic(path, (json.dumps(options.to_json(), indent=1) + "\n").encode())
+    doc = merged_for_save(path, options.to_json(), FILE_MAX_BYTES, FORMAT_VERSION)
+    write_atomic(path, (json.dumps(doc, indent=1) + "\n").encode())

@@ -200,7 +200,12 @@ def view(
         pygame.display.flip()
         shown += 1
         clock.tick(60)
+    status = 0
     if screenshot:
-        pygame.image.save(screen, screenshot)
+        try:
+            pygame.image.save(screen, screenshot)
+        except (pygame.error, OSError) as exc:  # checked before the window opened; changed since
+            print(f"broadsword: --screenshot {screenshot}: cannot write ({exc})", file=sys.stderr)
+            status = 1
     pygame.quit()
-    return 0
+    return status

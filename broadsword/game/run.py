@@ -105,8 +105,8 @@ def replay_stage(rec: Recording, rec_path: str, armatures) -> Stage:
     seed, settings and carry. :class:`~broadsword.data.DataError` if the level cannot load
     or has changed since."""
     path = resolve_level(rec.level)
+    level = load_level(path)  # its size and kind checked before any digest reads it
     check_level_digest(rec, rec_path, path)
-    level = load_level(path)
     check_level_sprites(level, armatures)
     settings = Settings(rotation=rec.settings["rotation"], difficulty=rec.settings["difficulty"])
     carry = Carry(**rec.carry)

@@ -44,7 +44,7 @@ from datetime import UTC, datetime
 from datetime import date as _date
 from pathlib import Path
 
-from ..fileio import locked, remove_stale_temps, write_atomic
+from ..fileio import FileTooLarge, locked, read_capped, remove_stale_temps, write_atomic
 from .userdata import user_data_dir
 
 __all__ = ["Entry", "HighScores", "data_home", "sanitise_name", "FORMAT_VERSION", "NAME_MAX"]
@@ -186,10 +186,11 @@ class HighScores:
         """The file's best ``MAX`` entries, ranked, and ``""``; ``([], "")`` if there is no
         file; ``(None, one-line reason)`` if its content is corrupt. OSError if unreadable."""
         try:
-            with open(self.path, "rb") as fh:
-                blob = fh.read(FILE_MAX_BYTES + 1)
+            blob = read_capped(self.path, FILE_MAX_BYTES)
         except FileNotFoundError:
             return [], ""
+        except FileTooLarge:
+            return None, f"larger than {FILE_MAX_BYTES} bytes"
         entries, reason = _parse(blob)
         if entries is None:
             return None, _one_line(reason)

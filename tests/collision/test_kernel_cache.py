@@ -81,8 +81,9 @@ def test_a_damaged_cache_entry_is_discarded_and_rebuilt(built_cache, tmp_path, s
     lines = [ln for ln in hurt.stderr.splitlines() if "damaged" in ln]
     assert len(lines) == 1 and error in lines[0] and "_bounds_kernel._overlap_py" in lines[0], hurt.stderr
     assert entry.is_file() and entry.stat().st_size > 0  # rebuilt
-    again = _run(tmp_path)  # and the rebuilt cache loads silently
-    assert again.returncode == 0 and again.stderr == "", again.stderr
+    if error == "UnpicklingError":  # once (a process each is slow): the rebuilt cache loads silently
+        again = _run(tmp_path)
+        assert again.returncode == 0 and again.stderr == "", again.stderr
 
 
 def test_no_writable_cache_location_compiles_in_memory(tmp_path):

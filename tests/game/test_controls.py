@@ -11,6 +11,7 @@ import pytest
 from broadsword.game.controls import (
     DEFAULT_KEYS,
     FIXED_KEYS,
+    REBINDABLE,
     Action,
     Bindings,
     Controls,
@@ -135,21 +136,90 @@ def test_bindings_file__missing_is_the_defaults_silently(tmp_path):
     [
         (b"\xff\xfe not json", "controls.json"),
         (b"[1, 2]", "version"),
-        (b'{"version": 2}', "version"),
+        (b'{"version": 0}', "version"),
         (b'{"version": 1, "keys": {"fire": ["no such key"]}}', "keys.fire"),
         (b'{"version": 1, "keys": {"mute": ["q"]}}', "keys.mute"),
         (b'{"version": 1, "keys": {"jump": ["q"]}}', "keys.jump"),
+        (b'{"version": 1, "keys": {"fire": ["return"]}}', "keys.fire"),  # a fixed key
+        (b'{"version": 1, "keys": {"fire": ["f1"]}}', "keys.fire"),
         (b'{"version": 1, "buttons": {"bomb": ["Z9"]}}', "buttons.bomb"),
+        ('{"version": 1, "buttons": {"bomb": ["\u00b2"]}}'.encode(), "buttons.bomb"),  # "2" in superscript
         (b'{"version": 1, "keys": []}', "keys"),
         (b"[" * 100_000, "controls.json"),
+        (b'{"version": 1, "keys": {"fire": ["q', "controls.json"),  # truncated
     ],
 )
-def test_bindings_file__broken_falls_back_to_defaults_with_a_message(tmp_path, content, field):
+def test_bindings_file__a_bad_file_or_name_falls_back_with_a_message(tmp_path, content, field):
     path = tmp_path / "controls.json"
     path.write_bytes(content)
     b, warning = load_bindings(path)
     assert b == Bindings()
     assert warning is not None and str(path) in warning and field in warning and "\n" not in warning
+    assert "int()" not in warning and "invalid literal" not in warning
+    assert (tmp_path / "controls.json.bad").read_bytes() == content
+    assert not path.exists() if len(content) > 64 << 10 else path.read_bytes() == content  # too big: moved
+
+
+def _table(b: Bindings) -> tuple[dict, dict]:
+    return {a: b.keys.get(a, ()) for a in REBINDABLE}, {a: b.buttons.get(a, ()) for a in REBINDABLE}
+
+
+def test_bindings_file__one_bad_name_keeps_every_valid_one(tmp_path):
+    path = tmp_path / "controls.json"
+    doc = {
+        "version": 1,
+        "keys": {"bomb": ["v", "no such key"], "slow": ["c"], "fire": ["escape"], "pause": ["p", "escape"]},
+        "buttons": {"fire": ["Y", "\u00b2"], "slow": ["RB"]},
+    }
+    path.write_text(json.dumps(doc))
+    b, warning = load_bindings(path)
+    expected = Bindings()
+    expected.bind_key(Action.BOMB, pygame.K_v)
+    expected.bind_key(Action.SLOW, pygame.K_c)
+    expected.keys[Action.PAUSE] = (pygame.K_p, pygame.K_ESCAPE)  # Esc pauses by default: allowed
+    expected.bind_button(Action.FIRE, PadButton.Y)
+    expected.bind_button(Action.SLOW, PadButton.RB)
+    assert _table(b) == _table(expected)  # fire's only key was refused: it keeps its defaults
+    assert warning is not None
+    for named in ("keys.bomb: unknown key 'no such key'", "keys.fire: 'escape' is a fixed key", "buttons.fire"):
+        assert named in warning
+    assert "'²'" in warning
+
+
+def test_bindings_file__a_key_bound_twice_is_refused_the_second_time(tmp_path):
+    path = tmp_path / "controls.json"
+    path.write_text(json.dumps({"version": 1, "keys": {"fire": ["q"], "bomb": ["q", "v"]}}))
+    b, warning = load_bindings(path)
+    assert b.keys[Action.FIRE] == (pygame.K_q,) and b.keys[Action.BOMB] == (pygame.K_v,)
+    assert warning is not None and "keys.bomb: 'q' is bound twice" in warning
+
+
+def test_bindings_file__a_file_key_leaves_the_defaults_of_other_actions(tmp_path):
+    path = tmp_path / "controls.json"
+    path.write_text(json.dumps({"version": 1, "keys": {"fire": ["a"]}}))  # A moves left by default
+    b, warning = load_bindings(path)
+    assert warning is None and b.keys[Action.FIRE] == (pygame.K_a,) and b.keys[Action.LEFT] == (pygame.K_LEFT,)
+
+
+def test_bindings_file__a_newer_versions_additions_survive_a_save(tmp_path):
+    path = tmp_path / "controls.json"
+    path.write_text(json.dumps({"version": 3, "keys": {"bomb": ["v"], "dash": ["q"]}, "mouse": {"aim": True}}))
+    b, warning = load_bindings(path)
+    assert warning is None and b.keys[Action.BOMB] == (pygame.K_v,)
+    b.bind_key(Action.SLOW, pygame.K_c)
+    save_bindings(b, path)
+    doc = json.loads(path.read_text())
+    assert doc["keys"]["dash"] == ["q"] and doc["mouse"] == {"aim": True} and doc["version"] == 3
+    assert doc["keys"]["slow"] == ["c"] and doc["keys"]["bomb"] == ["v"]
+
+
+def test_bindings_file__a_fifo_is_refused_at_once(tmp_path):
+    import os
+
+    path = tmp_path / "controls.json"
+    os.mkfifo(path)
+    b, warning = load_bindings(path)
+    assert b == Bindings() and warning is not None and "a FIFO, not a regular file" in warning
 
 
 def test_bindings_file__a_directory_in_its_place_is_not_a_crash(tmp_path):

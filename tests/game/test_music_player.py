@@ -14,6 +14,7 @@ A fake renderer (a short tone, counted) stands in for the real one so these stay
 
 from __future__ import annotations
 
+import os
 import threading
 
 import numpy as np
@@ -194,6 +195,13 @@ def test_cache__corrupt_or_foreign_file_is_rendered_again(tmp_path):
     assert cache.load(Track.TITLE, song, 22050) is None
     np.save(path, np.zeros((10,), np.float32))
     assert cache.load(Track.TITLE, song, 22050) is None
+    path.unlink()
+    os.mkfifo(path)  # no writer: np.load(path) would block the game's start forever
+    assert cache.load(Track.TITLE, song, 22050) is None
+    path.unlink()
+    path.symlink_to("/dev/zero")  # reading it would never end
+    assert cache.load(Track.TITLE, song, 22050) is None
+    path.unlink()
     fake = FakeRender()
     p = player(fake, cache)
     p.play(Track.TITLE)

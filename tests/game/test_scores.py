@@ -400,7 +400,7 @@ def test_load__permission_denied_warns_without_renaming(tmp_path, monkeypatch):
     def denied(*args, **kwargs):
         raise PermissionError(13, "Permission denied", str(path))
 
-    monkeypatch.setattr(scores_mod, "open", denied, raising=False)
+    monkeypatch.setattr(scores_mod, "read_capped", denied)
     table = HighScores(path).load()
     assert table.entries == []
     assert table.warning is not None and str(path) in table.warning

@@ -209,7 +209,7 @@ def test_merge__file_turned_unreadable_is_not_replaced(tmp_path, monkeypatch):
     def denied(*args, **kwargs):
         raise PermissionError(13, "Permission denied", str(path))
 
-    monkeypatch.setattr(scores_mod, "open", denied, raising=False)
+    monkeypatch.setattr(scores_mod, "read_capped", denied)
     with pytest.raises(PermissionError) as info:
         table.save()
     assert info.value.filename == str(path)

@@ -12,6 +12,7 @@ and ``save`` returns False; neither raises.
 from __future__ import annotations
 
 import hashlib
+import io
 import os
 import sys
 import tempfile
@@ -19,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...fileio import read_capped
 from .renderer import loop_samples
 from .songs import Song
 from .tracks import Track
@@ -26,6 +28,9 @@ from .tracks import Track
 __all__ = ["cache_home", "MusicCache"]
 
 _SOURCES = ("notes.py", "instruments.py", "grooves.py", "songs.py", "compose.py", "renderer.py")
+
+#: An .npy header is at most this many bytes (numpy pads it to 64; 4 KiB is generous).
+NPY_HEADER_MAX = 4096
 
 
 def cache_home() -> Path:
@@ -77,11 +82,12 @@ class MusicCache:
     def load(self, track: Track, song: Song, rate: int) -> np.ndarray | None:
         """The cached samples, int16 ``(n, 2)`` of the length ``song`` renders to; else None."""
         path = self.path(track, song, rate)
-        try:
-            samples = np.load(path, allow_pickle=False)
+        expected = loop_samples(song, rate) + (0 if song.loop else int(round(song.tail * rate)))
+        try:  # a regular file of at most the samples and a header (a FIFO or device: re-render)
+            data = read_capped(path, expected * 4 + NPY_HEADER_MAX)
+            samples = np.load(io.BytesIO(data), allow_pickle=False)
         except (OSError, ValueError, EOFError):
             return None
-        expected = loop_samples(song, rate) + (0 if song.loop else int(round(song.tail * rate)))
         if samples.dtype != np.int16 or samples.shape != (expected, 2):
             return None
         return samples

@@ -14,6 +14,7 @@ import stat
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
+from ...fileio import FileTooLarge, read_capped
 from .limits import MAX_DEPTH, MAX_ELEMENTS, MAX_FILE_BYTES
 
 
@@ -54,14 +55,11 @@ def read_elements(path: str | os.PathLike, data: bytes | None = None) -> Element
     name = os.fspath(path)
     if data is None:
         try:
-            st = os.stat(name)
-            if not stat.S_ISREG(st.st_mode):  # a FIFO or device would block or never end
-                raise ValueError(f"{name}: not a regular file")
-            size = st.st_size
-            if size > MAX_FILE_BYTES:
-                raise ValueError(f"{name}: file is {size} bytes (at most {MAX_FILE_BYTES})")
-            with open(name, "rb") as fh:
-                data = fh.read(MAX_FILE_BYTES + 1)
+            data = read_capped(name, MAX_FILE_BYTES)
+        except FileTooLarge as exc:
+            raise ValueError(
+                f"{name}: file is {exc.size}{'' if exc.exact else '+'} bytes (at most {MAX_FILE_BYTES})"
+            ) from None
         except OSError as exc:
             raise ValueError(f"{name}: cannot read the file ({exc.strerror or exc})") from None
     if len(data) > MAX_FILE_BYTES:
