@@ -9,6 +9,9 @@ clearing the stage pays for the clear, for no miss and for no bomb.
 
 from __future__ import annotations
 
+import weakref
+from typing import TYPE_CHECKING
+
 from .bombs import FRAMES as BOMB_FRAMES
 from .bombs import GRACE_S
 from .boss import PhaseEnd
@@ -17,16 +20,24 @@ from .field import DT
 from .items import ItemKind
 from .scoring import CLEAR_BONUS, NO_BOMB_BONUS, NO_MISS_BONUS
 
+if TYPE_CHECKING:
+    from .world import World
+
 #: Continues a run may use.
 CONTINUES = 3
 
 
 class Progress:
     """The world's stage-level rules and tallies (``bombs_used``, ``continues_used``,
-    ``bonuses``)."""
+    ``bonuses``).
 
-    def __init__(self, world, continues_used: int = 0):
-        self.world = world
+    It refers to its world weakly (a :func:`weakref.proxy`): the world owns it, and a
+    strong reference back would make every world a reference cycle, freed only when the
+    cyclic collector gets round to it -- a soak's finished games piled up until then
+    (docs/RELIABILITY.md). Its methods need the world alive."""
+
+    def __init__(self, world: World, continues_used: int = 0):
+        self.world: World = weakref.proxy(world)
         self.bombs_used = 0
         self.continues_used = continues_used
         self.bonuses: list[tuple[str, int]] = []  # every bonus paid this stage
@@ -58,6 +69,8 @@ class Progress:
         the wreck and its drops if it was the last."""
         w = self.world
         boss = w.boss
+        if boss is None:
+            raise ValueError("a boss phase ended in a level without a boss")
         ended = boss.phase if boss.dead else boss.phase - 1
         ev.phase_ended = True
         eb = w.enemy_bullets
