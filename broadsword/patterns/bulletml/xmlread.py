@@ -10,7 +10,6 @@ depth and element count are capped while parsing, before any tree grows past the
 from __future__ import annotations
 
 import os
-import stat
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
