@@ -26,27 +26,33 @@ from broadsword.sim.snapshot import COVERAGE, FORMAT_VERSION, MAGIC, Snapshots
 
 SEED = 5
 #: Snapshot at these frames of each shipped level, then step AFTER frames.
-AT, AFTER = (0, 150, 260), 40
+AT, AFTER = (0, 120, 220), 30
 RUN = max(AT) + AFTER
+
+
+def _record(w: World, frames: int, at, every: bool = False):
+    """Let the autopilot play ``w`` on for ``frames`` steps: the input and the hash after each
+    step, and the snapshot before each step of ``at`` (or every one) and AFTER frames later,
+    all by the world's frame number."""
+    snaps, pilot = Snapshots(w), Pilot()
+    inputs, hashes, saved = {}, {}, {}
+    end = w.frame + frames
+    while True:
+        f = w.frame
+        if every or f in at or f - AFTER in at:
+            saved[f] = snaps.save(w)
+        if f == end:
+            return inputs, hashes, saved
+        inputs[f] = pilot(w)
+        w.step(inputs[f])
+        hashes[f] = w.state_hash()
 
 
 @functools.cache
 def _run(name: str, rotation: str, frames: int = RUN, every: bool = False):
-    """An autopilot run: its inputs, the hash after each step, and the snapshot before each
-    step of ``AT`` (or of every frame)."""
+    """An autopilot run of a shipped level from its start (see :func:`_record`)."""
     w = World(shipped.level(name), shipped.armatures(), SEED, Settings(rotation=rotation))
-    snaps, pilot = Snapshots(w), Pilot()
-    inputs, hashes, saved = [], [], {}
-    for f in range(frames + 1):
-        if every or f in AT or f - AFTER in AT:
-            saved[f] = snaps.save(w)
-        if f == frames:
-            break
-        inp = pilot(w)
-        inputs.append(inp)
-        w.step(inp)
-        hashes.append(w.state_hash())
-    return inputs, hashes, saved
+    return _record(w, frames, AT, every)
 
 
 def _fresh(name: str, rotation: str = "lut", seed: int = SEED, **kw) -> World:
@@ -66,8 +72,7 @@ def _step_and_compare(w: World, snaps: Snapshots, start: int, n: int, run) -> No
 @pytest.mark.parametrize("name", list_levels())
 def test_restore__steps_like_the_uninterrupted_world(name, rotation):
     run = _run(name, rotation)
-    w = _fresh(name, rotation)
-    snaps = Snapshots(w)
+    snaps = Snapshots(_fresh(name, rotation))
     for start in AT:
         w = _fresh(name, rotation)
         snaps.restore(w, run[2][start])
@@ -84,8 +89,37 @@ def test_restore__across_kernels():
         w = _fresh("3-broadsword")
         w.pipeline.kernel = kernel
         snaps = Snapshots(w)
-        snaps.restore(w, run[2][150])
-        _step_and_compare(w, snaps, 150, AFTER, run)
+        snaps.restore(w, run[2][120])
+        _step_and_compare(w, snaps, 120, AFTER, run)
+
+
+@pytest.mark.parametrize(
+    "name,phase,draws",
+    [("2-gauntlet", 2, True), ("3-broadsword", 1, False), ("3-broadsword", 2, True), ("4-storm", 1, False)]
+    + [("5-citadel", 2, True)],
+)
+def test_restore__in_boss_phases(name, phase, draws):
+    """Boss phases, whose patterns draw ``$rand`` (the pattern stream) and run long action
+    stacks: the boss brought forward to the start, the fight moved on to ``phase``."""
+    level = shipped.level(name)
+    assert level.boss is not None
+    level = dataclasses.replace(level, waves=(), boss=dataclasses.replace(level.boss, at=0.2))
+    w = World(level, shipped.armatures(), SEED)
+    for _ in range(40):
+        w.step(Input(fire=True))
+    for _ in range(phase):
+        assert w.boss is not None
+        w.damage_boss(w.boss.hp, Events())
+    start, rand = w.frame, w.guns.engine.scope.rng
+    before = rand.bit_generator.state
+    at = (start + 60, start + 130)
+    run = _record(w, 130 + AFTER, at)
+    assert (rand.bit_generator.state != before) == draws  # the phase's patterns draw $rand, or not
+    snaps = Snapshots(w)
+    for f in at:
+        b = World(level, shipped.armatures(), SEED)
+        snaps.restore(b, run[2][f])
+        _step_and_compare(b, snaps, f, AFTER, run)
 
 
 @functools.cache
@@ -233,7 +267,7 @@ def test_round_trip__pools_streams_lists_and_machines():
     run = _run("3-broadsword", "lut")
     a = _fresh("3-broadsword")
     snaps = Snapshots(a)
-    snaps.restore(a, run[2][260])
+    snaps.restore(a, run[2][220])
     a.items.drop(np.array([100.0, 100.0]), [])
     a.warnings.append("a warning")
     a.progress.bonuses.append(("phase 1", 10_000))
@@ -259,19 +293,22 @@ def test_round_trip__pools_streams_lists_and_machines():
 
 def test_round_trip__boss_fight():
     """A boss mid-fight (parts, phase, clock, armed emitters) comes back whole."""
-    a = _fresh("1-picket")
-    spec = a.level.boss
-    assert spec is not None
-    for _ in range(round(spec.at * 60) + 200):
+    level = shipped.level("1-picket")
+    assert level.boss is not None
+    level = dataclasses.replace(level, boss=dataclasses.replace(level.boss, at=0.5))  # no waves to sit through
+    a, b = (World(level, shipped.armatures(), SEED) for _ in range(2))
+    for _ in range(150):
         a.step(Input(fire=True))
         a.player.invulnerable = 10.0  # keep it alive, whatever flies
     assert a.boss is not None and a.boss.fighting and a.parts.n
     ev = Events()
     a.damage_boss(a.boss.hp, ev)
     assert ev.phase_ended
+    for _ in range(70):  # into the next phase: its patterns armed and firing
+        a.step(Input(fire=True))
     snaps = Snapshots(a)
-    b = _fresh("1-picket")
     snaps.restore(b, snaps.save(a))
+    assert a.boss.phase == 1 and a.guns.boss_phase == 1 and a.enemy_bullets.n
     assert b.boss is not None and (b.boss.phase, b.boss.state, b.boss.hp) == (a.boss.phase, a.boss.state, a.boss.hp)
     for _ in range(90):
         for x in (a, b):
@@ -283,7 +320,7 @@ def test_round_trip__boss_fight():
 # ------------------------------------------------------------------------- refusals
 @functools.cache
 def _sample() -> bytes:
-    return _run("3-broadsword", "lut")[2][150]
+    return _run("3-broadsword", "lut")[2][120]
 
 
 def _restore_into_fresh(data: bytes, **kw):
