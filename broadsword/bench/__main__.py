@@ -16,7 +16,9 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
    whole game frame's;
-4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
+4. snapshots: size, save and restore time at the bullet-hell stage's peak and at 10,000
+   bullets; seeking a 5-minute run (``--quick``: 1 minute) by snapshots and stepping;
+5. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
    table's error, the paper test's numerical failures by family, hitbox fidelity.
 
     python -m broadsword.bench                   # everything
@@ -435,6 +437,14 @@ def main(argv: list[str] | None = None) -> int:
     patterns = run_pattern_frames(frames=60 if args.quick else 240, seed=args.seed)
     print(patterns_markdown(patterns, game[0] if game else None), flush=True)
 
+    from .snapshots import markdown as snapshots_markdown
+    from .snapshots import run_seek, run_snapshots
+
+    print("  snapshots and seeking ...", file=sys.stderr, flush=True)
+    snapshot = run_snapshots(args.quick, args.seed)
+    seek = run_seek(minutes=1.0 if args.quick else 5.0, seeks=10 if args.quick else 60, seed=args.seed)
+    print(snapshots_markdown(snapshot, seek), flush=True)
+
     sections = {}
     for key, fn in (
         ("scaling", analysis.scaling),
@@ -464,6 +474,8 @@ def main(argv: list[str] | None = None) -> int:
             "bullet_drawing": drawing,
             "levels_vs_sprites": visual,
             "patterns": patterns,
+            "snapshot": snapshot,
+            "seek": seek,
             **sections,
         }
         with open(args.json, "w") as fh:

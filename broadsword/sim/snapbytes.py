@@ -70,16 +70,16 @@ class Writer:
 
     @contextmanager
     def section(self, name: str) -> Iterator[None]:
-        """Fields written inside the ``with`` block form section ``name``."""
-        outer, self.parts = self.parts, []
-        try:
-            yield
-        finally:
-            body = b"".join(self.parts)
-            self.parts = outer
-        self.text(name)
-        self.parts.append(_U64.pack(len(body)))
-        self.parts.append(body)
+        """Fields written inside the ``with`` block form section ``name`` (its header goes in
+        front of them once their length is known; nothing is copied)."""
+        start = len(self.parts)
+        yield
+        length = sum(len(p) for p in self.parts[start:])
+        data = name.encode("utf-8")
+        self.parts[start:start] = [_U32.pack(len(data)) + data + _U64.pack(length)]
+
+    def size(self) -> int:
+        return sum(len(p) for p in self.parts)
 
     def bytes(self) -> bytes:
         return b"".join(self.parts)

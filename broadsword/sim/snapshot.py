@@ -259,6 +259,11 @@ def _live_columns(cols: Columns) -> Iterator[tuple[str, np.ndarray]]:
         yield name, a
 
 
+def _has_runner(col: np.ndarray) -> np.ndarray:
+    """(n,) bool: the rows of a runner column (n,) object that hold a runner."""
+    return np.fromiter((x is not None for x in col), dtype=bool, count=len(col))
+
+
 def _put_columns(w: Writer, cols: Columns, table: NodeTable | None = None) -> None:
     w.i64(cols.n)
     w.i64(cols.refused)
@@ -267,7 +272,9 @@ def _put_columns(w: Writer, cols: Columns, table: NodeTable | None = None) -> No
         w.array(a)
     if isinstance(cols, Movers):
         assert table is not None
-        ints, floats = encode_runners(table, cols.runner.tolist())
+        col = cols.runner
+        rows = np.flatnonzero(_has_runner(col))
+        ints, floats = encode_runners(table, rows.tolist(), col[rows].tolist())
         w.array(ints)
         w.array(floats)
 
@@ -288,12 +295,11 @@ def _get_columns(r: Reader, cols: Columns, table: NodeTable | None = None) -> tu
         assert table is not None
         ints = r.array("runner ints", np.int64, (None,))
         floats = r.array("runner floats", np.float64, (None,))
-        runners = decode_runners(table, ints, floats, n, r.where)
-        waiting = [i for i, x in enumerate(runners) if x is None and out["wake"][i] != NEVER]
-        if waiting:
-            raise r.fail(f"row {waiting[0]} is due to run but has no runner")
         col = np.empty(n, dtype=object)
-        col[:] = runners
+        col[:] = decode_runners(table, ints, floats, n, r.where)
+        waiting = np.flatnonzero(~_has_runner(col) & (out["wake"] != NEVER))
+        if len(waiting):
+            raise r.fail(f"row {waiting[0]} is due to run but has no runner")
         out["runner"] = col
     return n, refused, out
 
@@ -384,6 +390,7 @@ class Snapshots:
         w.raw(MAGIC)
         w.i64(FORMAT_VERSION)
         w.i64(0)  # the total length, filled in below
+        at_length = len(w.parts) - 1
         w.text(world.level.name)
         w.i64(world.seed)
         w.text(world.settings.difficulty.value)
@@ -446,10 +453,12 @@ class Snapshots:
                 w.i64(row)
             _put_rng(w, eng.scope.rng)
             _put_columns(w, eng.emitters, self.table)
-        body = bytearray(w.bytes())
-        total = len(body) + 4
-        body[len(MAGIC) + 8 : len(MAGIC) + 16] = total.to_bytes(8, "little", signed=True)
-        return bytes(body) + zlib.crc32(body).to_bytes(4, "little")
+        w.parts[at_length] = (w.size() + 4).to_bytes(8, "little", signed=True)
+        crc = 0
+        for part in w.parts:
+            crc = zlib.crc32(part, crc)
+        w.raw(crc.to_bytes(4, "little"))
+        return w.bytes()
 
     # ------------------------------------------------------------------ restoring
     def restore(self, world: World, data: bytes) -> None:

@@ -94,15 +94,13 @@ class NodeTable:
         return self.nodes[k]
 
 
-def encode_runners(table: NodeTable, runners: Sequence[Runner | None]) -> tuple[np.ndarray, np.ndarray]:
-    """The runners of a store's rows (None: a row with no runner, skipped) as an int64 and a
-    float64 stream (see the module doc)."""
+def encode_runners(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
+    """The ``runners`` of a store's ``rows`` (increasing; the rows with no runner left out)
+    as an int64 and a float64 stream (see the module doc)."""
     ints: list[int] = []
     floats: list[float] = []
     pidx, nidx, cidx = table.pattern_index, table.index, table.commands_of
-    for row, r in enumerate(runners):
-        if r is None:
-            continue
+    for row, r in zip(rows, runners, strict=True):
         ints += (row, int(r.gone), len(r.threads))
         for t in r.threads:
             ints.append(pidx[id(t.pattern)])
