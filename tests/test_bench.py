@@ -48,6 +48,11 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     assert pat["bullets"] == 2000 and pat["frames"] == 60 and pat["pattern_median_ms"] > 0
     assert pat["changing_at_end"] == 2000  # every bullet is mid-action while it is timed
     assert len(doc["levels_vs_sprites"]) >= 3
+    snaps = doc["snapshot"]  # issue 21: size and time per scene
+    assert [e["scene"] for e in snaps] == ["3-broadsword", "stress-5000"] and snaps[1]["bullets"] >= 4750
+    assert all(e["size_bytes"] > 0 and e["save_ms"] > 0 and e["restore_ms"] > 0 for e in snaps)
+    seek = doc["seek"]
+    assert seek["frames"] == 900 and seek["seeks"] == 10 and seek["wrong"] == 0 and seek["max_ms"] > 0
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity"):
         assert key in doc, key
     text = capsys.readouterr().out

@@ -17,7 +17,7 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
    whole game frame's;
 4. snapshots: size, save and restore time at the bullet-hell stage's peak and at 10,000
-   bullets; seeking a 5-minute run (``--quick``: 1 minute) by snapshots and stepping;
+   bullets; seeking a 5-minute run (``--quick``: 15 s) by snapshots and stepping;
 5. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
    table's error, the paper test's numerical failures by family, hitbox fidelity.
 
@@ -442,7 +442,7 @@ def main(argv: list[str] | None = None) -> int:
 
     print("  snapshots and seeking ...", file=sys.stderr, flush=True)
     snapshot = run_snapshots(args.quick, args.seed)
-    seek = run_seek(minutes=1.0 if args.quick else 5.0, seeks=10 if args.quick else 60, seed=args.seed)
+    seek = run_seek(minutes=0.25 if args.quick else 5.0, seeks=10 if args.quick else 60, seed=args.seed)
     print(snapshots_markdown(snapshot, seek), flush=True)
 
     sections = {}
