@@ -19,6 +19,7 @@ from broadsword.collision import ROTATION_MODES
 from broadsword.collision._kernel import Kernel, numba_available
 from broadsword.data import list_levels
 from broadsword.data.difficulty import Difficulty
+from broadsword.patterns import bulletml
 from broadsword.patterns.bulletml.machine import Runner, Thread, _Rep, _Seq
 from broadsword.sim import Events, Input, Pilot, Settings, World
 from broadsword.sim import snapshot as snap
@@ -393,3 +394,13 @@ def test_refused__bad_content_names_the_section_and_field_and_changes_nothing():
     with pytest.raises(ValueError, match=r"^snapshot section 'bomb': age: 10000 is out of range \[-1, 119\]$"):
         Snapshots(w).restore(w, bad)
     assert Snapshots(w).save(w) == before
+
+
+def test_refused__saving_a_pattern_the_level_cannot_run():
+    """An emitter added by hand with a pattern from elsewhere cannot be numbered: a clear
+    error, not a KeyError."""
+    w = _fresh("1-picket")
+    extra = bulletml.loads('<bulletml><action label="top"><wait>10</wait></action></bulletml>', name="by-hand")
+    w.guns.engine.add_emitter(extra, (100.0, 100.0))
+    with pytest.raises(ValueError, match=r"a running pattern is not one the level can run \(by-hand\)"):
+        Snapshots(w).save(w)

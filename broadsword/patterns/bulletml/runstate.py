@@ -96,7 +96,20 @@ class NodeTable:
 
 def encode_runners(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
     """The ``runners`` of a store's ``rows`` (increasing; the rows with no runner left out)
-    as an int64 and a float64 stream (see the module doc)."""
+    as an int64 and a float64 stream (see the module doc). ``ValueError`` if one runs a
+    pattern the table does not number."""
+    try:
+        return _encode(table, rows, runners)
+    except KeyError:
+        names = ", ".join(
+            sorted({t.pattern.name for r in runners for t in r.threads} - {p.name for p in table.patterns})
+        )
+        raise ValueError(
+            f"a running pattern is not one the level can run ({names or 'a node outside the table'})"
+        ) from None
+
+
+def _encode(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
     ints: list[int] = []
     floats: list[float] = []
     pidx, nidx, cidx = table.pattern_index, table.index, table.commands_of
