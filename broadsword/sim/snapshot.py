@@ -243,17 +243,23 @@ def _get_rng(r: Reader, rng: np.random.Generator, what: str) -> dict:
 
 
 # ---------------------------------------------------------------------------- pools
+#: A Movers' channel columns, written only for the rows with a channel running.
+CHANNEL_ENDS = ("ch_x0", "ch_x1", "ch_y0", "ch_y1")
+
+
 def _live_columns(cols: Columns) -> Iterator[tuple[str, np.ndarray]]:
-    """A store's live columns as saved: a Movers' runners are left out (written apart) and
-    the values nothing reads before writing are zeroed -- a stopped channel's ends, a dirty
-    row's cached step -- so equal states give equal bytes."""
+    """A store's live columns as saved. A Movers' runners are left out (written apart); its
+    channel ends are written for the rows with a channel running only (``ch_on`` comes
+    before them), the ends of a stopped channel as zeros; a dirty row's cached step (not read
+    before it is recomputed) as zeros: so equal states give equal bytes."""
     movers = isinstance(cols, Movers)
+    active = np.flatnonzero(cols.ch_on.any(axis=1)) if movers else None
     for name in cols.spec:
         if movers and name == "runner":
             continue
         a = getattr(cols, name)
-        if movers and name.startswith("ch_") and name != "ch_on":
-            a = np.where(cols.ch_on, a, 0)
+        if active is not None and name in CHANNEL_ENDS:
+            a = np.where(cols.ch_on[active], a[active], 0)
         elif movers and name == "step":
             a = np.where(cols.dirty[:, None], 0.0, a)
         yield name, a
@@ -290,7 +296,12 @@ def _get_columns(r: Reader, cols: Columns, table: NodeTable | None = None) -> tu
         found = r.text("column name")
         if found != name:
             raise r.fail(f"expected column {name!r}, found {found!r}")
-        out[name] = r.array(name, dtype, (n, *shape))
+        if isinstance(cols, Movers) and name in CHANNEL_ENDS:
+            active = np.flatnonzero(out["ch_on"].any(axis=1))
+            out[name] = np.zeros((n, *shape), dtype)
+            out[name][active] = r.array(name, dtype, (len(active), *shape))
+        else:
+            out[name] = r.array(name, dtype, (n, *shape))
     if isinstance(cols, Movers):
         assert table is not None
         ints = r.array("runner ints", np.int64, (None,))
