@@ -52,6 +52,14 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     assert [r["pattern"] for r in lim["rows"]] == list(CORPUS) and lim["worst_game_step_ms"] > 0
     assert lim["worst_pattern"] in CORPUS
     assert len(doc["levels_vs_sprites"]) >= 3
+    snaps = doc["snapshot"]  # issue 21: size and time per scene
+    assert [e["scene"] for e in snaps] == ["3-broadsword", "stress-5000"] and snaps[1]["bullets"] >= 4750
+    assert all(e["size_bytes"] > 0 and e["save_ms"] > 0 and e["restore_ms"] > 0 for e in snaps)
+    seek = doc["seek"]
+    assert seek["frames"] == 900 and seek["seeks"] == 10 and seek["wrong"] == 0 and seek["max_ms"] > 0
+    lasers = {r["model"]: r for r in doc["lasers"]}  # issue 23: the exact test and the engines' models
+    assert {"exact", "rect_per_segment", "circle_per_node", "capsule_per_segment", "tapered_capsule"} <= set(lasers)
+    assert all({"false_hits", "false_misses", "median_ms"} <= set(r) for r in lasers.values())
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity", "outliers"):
         assert key in doc, key
     before, after = doc["outliers"]["table"]  # the bomb no longer coarsens the grid

@@ -19,7 +19,9 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    engine's and the whole game step's mean and worst ms per file, and the worst over it;
    lasers: the exact test against other engines' models (false hits and misses, cost) on
    one corpus (:mod:`.lasers`);
-4. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
+4. snapshots: size, save and restore time at the bullet-hell stage's peak and at 10,000
+   bullets; seeking a 5-minute run (``--quick``: 15 s) by snapshots and stepping;
+5. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
    table's error, the paper test's numerical failures by family, hitbox fidelity, and the
    bin grid with one object many times larger than the rest (the bomb), before and after
    issue 24's rule (:mod:`.outliers`).
@@ -451,6 +453,14 @@ def main(argv: list[str] | None = None) -> int:
     lasers = run_laser_models(args.quick, args.seed, _progress("lasers against the engines' models"))
     print(lasers_markdown(lasers), flush=True)
 
+    from .snapshots import markdown as snapshots_markdown
+    from .snapshots import run_seek, run_snapshots
+
+    print("  snapshots and seeking ...", file=sys.stderr, flush=True)
+    snapshot = run_snapshots(args.quick, args.seed)
+    seek = run_seek(minutes=0.25 if args.quick else 5.0, seeks=10 if args.quick else 60, seed=args.seed)
+    print(snapshots_markdown(snapshot, seek), flush=True)
+
     sections = {}
     for key, fn in (
         ("scaling", analysis.scaling),
@@ -483,6 +493,8 @@ def main(argv: list[str] | None = None) -> int:
             "patterns": patterns,
             "pattern_limits": pattern_limits,
             "lasers": lasers,
+            "snapshot": snapshot,
+            "seek": seek,
             **sections,
         }
         with open(args.json, "w") as fh:

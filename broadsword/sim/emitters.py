@@ -59,7 +59,7 @@ class EnemyGuns:
         self.fires = fires
         self.engine = Engine(rank=fires.rank, seed=np.random.SeedSequence(seed, spawn_key=(0xB011E7,)), bullets=bullets)
         self.ship_uid_seen = -1  # ships with a larger uid have no emitter yet
-        self.boss_phase = None  # the phase whose patterns the parts run (None: not armed)
+        self.boss_phase: int | None = None  # the phase whose patterns the parts run (None: not armed)
 
     def _add(self, spec: FireSpec, pos, owner: int, arm: int, wait: float) -> None:
         """An emitter for ``spec`` whose pattern starts in ``wait`` s."""

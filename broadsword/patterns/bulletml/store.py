@@ -75,6 +75,22 @@ class Columns:
     def __len__(self) -> int:
         return self.n
 
+    @property
+    def spec(self) -> dict[str, tuple[tuple[int, ...], np.dtype]]:
+        """Each column's ``(shape per row, dtype)``, in declaration order."""
+        return dict(self._spec)
+
+    def replace_rows(self, n: int, columns: Mapping[str, np.ndarray]) -> None:
+        """Make the live rows ``n`` rows given as ``columns`` (every declared column, each
+        ``(n, *shape)``), as a snapshot restores them; the rows past ``n`` are forgotten."""
+        if set(columns) != set(self._spec):
+            raise ValueError(f"columns {sorted(columns)} are not the declared {sorted(self._spec)}")
+        self._forget(0, self.n)
+        self._grow(n)
+        for name, arr in self._data.items():
+            arr[:n] = columns[name]
+        self.n = n
+
     def full(self) -> bool:
         return self.limit is not None and self.n >= self.limit
 

@@ -1,0 +1,181 @@
+"""Snapshots and seeking, measured: the size and time of an exact snapshot where the game is
+busiest, and how long a replay theatre's seek takes.
+
+``snapshot``: one entry per scene -- the shipped bullet-hell stage at its peak (54 s in, as
+the game-frame section plays it) and the stress scene once it holds 10,000 enemy bullets
+-- with ``size_bytes`` (and ``zlib1_bytes``, compressed at level 1 as a
+:class:`~broadsword.sim.seek.Seeker` keeps them), ``save_ms`` and ``restore_ms`` (medians
+of ``repeats``).
+
+``seek``: a run of the shipped stages in play order, the autopilot playing (continuing when
+it loses), until it is ``minutes`` long; one Seeker per stage, prepared (every snapshot
+made), then ``seeks`` random frames of the whole run reached in a seeded order: median and
+worst ms, each checked against straight playback's state hash.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+import zlib
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from ..data import check_level_sprites, data_dir, list_levels, load_armatures, load_level, resolve_level
+from ..data.levels import Level
+from ..sim import Input, Pilot, World
+from ..sim.seek import SNAPSHOT_EVERY, Seeker
+from ..sim.snapshot import Snapshots
+from .game_frame import STRESS_LEVELS
+
+#: Steps to the bullet-hell stage's peak (as the game-frame section plays it).
+PEAK_STEPS = 3240
+
+
+def _opener(level: str | Path, seed: int) -> Callable[[], World]:
+    """Makes fresh worlds of ``level`` (loaded once) with the shipped armatures."""
+    spec: Level = load_level(resolve_level(str(level)))
+    armatures = load_armatures(data_dir("assets") / "sprites")
+    check_level_sprites(spec, armatures)
+    return lambda: World(spec, armatures, seed)
+
+
+def measure(world: World, other: World, repeats: int) -> dict:
+    """Size and median save and restore times of ``world``'s snapshot, restored into
+    ``other`` (a world of the same level, armatures, seed and settings)."""
+    snaps = Snapshots(world)
+    saves, restores = [], []
+    data = b""
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        data = snaps.save(world)
+        t1 = time.perf_counter()
+        snaps.restore(other, data)
+        t2 = time.perf_counter()
+        saves.append((t1 - t0) * 1e3)
+        restores.append((t2 - t1) * 1e3)
+    if snaps.save(other) != data:
+        raise AssertionError("a restored world's snapshot differs from the one restored")
+    return {
+        "frame": world.frame,
+        "bullets": world.enemy_bullets.n,
+        "size_bytes": len(data),
+        "zlib1_bytes": len(zlib.compress(data, 1)),
+        "save_ms": float(np.median(saves)),
+        "restore_ms": float(np.median(restores)),
+        "repeats": repeats,
+    }
+
+
+def run_snapshots(quick: bool = False, seed: int = 0) -> list[dict]:
+    """The ``snapshot`` list: the bullet-hell stage at its peak (``--quick``: 120 steps in,
+    and says so) and the stress scene at 10,000 enemy bullets (``--quick``: 5,000)."""
+    out = []
+    scenes: list[tuple[str, int | None, int]] = [("3-broadsword", None, 120 if quick else PEAK_STEPS)]
+    count = 5000 if quick else 10_000
+    scenes.append((str(STRESS_LEVELS[count]), count, 900))
+    for level, bullets, steps in scenes:
+        make = _opener(level, seed)
+        world, pilot = make(), Pilot()
+        while world.frame < steps and (bullets is None or world.enemy_bullets.n < bullets) and not world.over:
+            world.step(pilot(world))
+        entry = measure(world, make(), 5 if quick else 20)
+        entry["scene"] = Path(level).stem
+        entry["where"] = (
+            ("--quick: early in the level, NOT its peak" if quick else "the level's bullet-hell peak (54 s in)")
+            if bullets is None
+            else f"stress scene, once {bullets:,} enemy bullets were reached"
+        )
+        out.append(entry)
+    return out
+
+
+def _record(make: Callable[[], World], frames: int) -> tuple[list[Input], list, list[str]]:
+    """An autopilot run of at most ``frames`` steps (continuing after each game over while it
+    may): its inputs, toggles and the state hash after every step."""
+    world, pilot = make(), Pilot()
+    inputs: list[Input] = []
+    hashes: list[str] = []
+    while len(inputs) < frames and not world.complete:
+        if world.over:
+            if not world.progress.can_continue:
+                break
+            world.continue_game()
+        inputs.append(pilot(world))
+        world.step(inputs[-1])
+        hashes.append(world.state_hash())
+    return inputs, list(world.toggles), hashes
+
+
+def run_seek(minutes: float = 5.0, seeks: int = 60, seed: int = 0, every: int = SNAPSHOT_EVERY) -> dict:
+    """The ``seek`` entry: a ``minutes``-long run over the shipped stages, a Seeker per stage
+    (snapshots every ``every`` frames), ``seeks`` random frames reached."""
+    frames_left = round(minutes * 60 * 60)
+    stages = []  # (seeker, hashes)
+    t0 = time.perf_counter()
+    for level in list_levels():
+        if frames_left <= 0:
+            break
+        make = _opener(level, seed)
+        inputs, toggles, hashes = _record(make, frames_left)
+        frames_left -= len(inputs)
+        stages.append((level, Seeker(make, inputs, toggles, every), hashes))
+    recorded = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    for _, seeker, _ in stages:
+        seeker.prepare()
+    prepared = time.perf_counter() - t0
+    starts = np.cumsum([0] + [len(h) for _, _, h in stages])
+    rng = np.random.default_rng(seed)
+    times, wrong = [], 0
+    for frame in rng.integers(1, starts[-1], seeks).tolist():
+        i = int(np.searchsorted(starts, frame, side="right")) - 1
+        _, seeker, hashes = stages[i]
+        local = frame - int(starts[i])
+        t = time.perf_counter()
+        world = seeker.seek(local)
+        times.append((time.perf_counter() - t) * 1e3)
+        if local and world.state_hash() != hashes[local - 1]:
+            wrong += 1
+    return {
+        "minutes": float(starts[-1] / 3600),
+        "frames": int(starts[-1]),
+        "stages": [level for level, _, _ in stages],
+        "every": every,
+        "snapshots": sum(len(s.snapshots) for _, s, _ in stages),
+        "snapshot_bytes": sum(len(b) for _, s, _ in stages for b in s.snapshots.values()),
+        "seeks": seeks,
+        "median_ms": float(np.median(times)),
+        "max_ms": float(np.max(times)),
+        "p90_ms": float(np.percentile(times, 90)),
+        "wrong": wrong,
+        "record_s": recorded,
+        "prepare_s": prepared,
+        "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else None,
+    }
+
+
+def markdown(snapshots: list[dict], seek: dict | None) -> str:
+    lines = [
+        "## Snapshots",
+        "",
+        "| scene | frame | enemy bullets | size | zlib-1 | save ms | restore ms |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    for e in snapshots:
+        lines.append(
+            f"| {e['scene']} ({e['where']}) | {e['frame']} | {e['bullets']:,} | {e['size_bytes']:,} | "
+            f"{e['zlib1_bytes']:,} | {e['save_ms']:.2f} | {e['restore_ms']:.2f} |"
+        )
+    if seek is not None:
+        lines += [
+            "",
+            f"Seeking a {seek['minutes']:.1f}-minute run ({', '.join(seek['stages'])}; a snapshot every "
+            f"{seek['every']} frames, {seek['snapshots']} kept, {seek['snapshot_bytes'] / 1e6:.1f} MB): "
+            f"{seek['seeks']} random seeks, median {seek['median_ms']:.0f} ms, 90th percentile "
+            f"{seek['p90_ms']:.0f} ms, worst {seek['max_ms']:.0f} ms; {seek['wrong']} differed from straight "
+            f"playback (load average {seek['load_average']}).",
+        ]
+    return "\n".join(lines)

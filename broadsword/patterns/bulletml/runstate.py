@@ -1,0 +1,235 @@
+"""Running BulletML machines as numbers, and back: what a snapshot of the engine keeps.
+
+A :class:`~.machine.Runner` refers to the pattern's model objects (the actions on its
+stacks, the repeat bodies, the top actions). :class:`NodeTable` numbers every pattern the
+game can run and every action and action reference in them, walking each pattern in its
+file's order, so the same patterns loaded again number the same way; a runner is then two
+flat streams (:func:`encode_runners`): whole numbers (indices, counters, frames) and
+doubles (parameters, the ``sequence`` memory), bit-exact. :func:`decode_runners` checks
+every index and count and raises ``ValueError`` naming the row and what is wrong.
+
+Layout of one runner in the int stream (floats in the float stream, in the same order)::
+
+    row, gone, threads
+    per thread: pattern, nodes, node..., next_node, has_act_turn, act_turn,
+                has_prev_dir, has_prev_spd, params   [floats: prev_dir?, prev_spd?, params...]
+                stack, per entry: kind (0 a command list, 1 a repeat), node, i or left,
+                params   [floats: params...]
+
+A command list is numbered by the action whose commands it runs; a repeat by its body.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from .engine import Engine
+from .limits import MAX_REPEAT
+from .machine import Runner, Thread, _Rep, _Seq
+from .model import Action, ActionRef, Bullet, Fire, Pattern, Repeat
+
+#: Stack entry kinds in the int stream.
+SEQ, REP = 0, 1
+
+
+class NodeTable:
+    """Numbers for ``patterns`` (in the order given, duplicates dropped) and for every
+    :class:`Action` and :class:`ActionRef` in them (in file order).
+
+    Attributes
+    ----------
+    patterns : list of Pattern
+    nodes : list of Action or ActionRef
+        ``nodes[k]`` is node ``k``; ``index`` maps ``id(node)`` back to ``k``.
+    """
+
+    def __init__(self, patterns: Sequence[Pattern]):
+        self.patterns: list[Pattern] = []
+        self.pattern_index: dict[int, int] = {}
+        self.nodes: list[Action | ActionRef] = []
+        self.index: dict[int, int] = {}
+        self.commands_of: dict[int, int] = {}  # id(action.commands) -> an action with them
+        for p in patterns:
+            if id(p) not in self.pattern_index:
+                self.pattern_index[id(p)] = len(self.patterns)
+                self.patterns.append(p)
+                self._walk_pattern(p)
+
+    def _walk_pattern(self, p: Pattern) -> None:
+        for a in p.top:
+            self._walk(a)
+        for a in p.actions.values():
+            self._walk(a)
+        for b in p.bullets.values():
+            self._walk(b)
+        for f in p.fires.values():
+            self._walk(f)
+
+    def _walk(self, node) -> None:
+        kind = type(node)
+        if kind is Action or kind is ActionRef:
+            if id(node) in self.index:
+                return
+            self.index[id(node)] = len(self.nodes)
+            self.nodes.append(node)
+            if kind is Action:
+                self.commands_of.setdefault(id(node.commands), self.index[id(node)])
+                for c in node.commands:
+                    self._walk(c)
+        elif kind is Repeat:
+            self._walk(node.body)
+        elif kind is Fire:
+            self._walk(node.bullet)
+        elif kind is Bullet:
+            for a in node.actions:
+                self._walk(a)
+        # FireRef, BulletRef and the plain commands hold no action of their own: what they
+        # name is walked from the pattern's tables.
+
+    def node(self, k: int, where: str) -> Action | ActionRef:
+        if not 0 <= k < len(self.nodes):
+            raise ValueError(f"{where}: node {k} is not one of the {len(self.nodes)} pattern nodes")
+        return self.nodes[k]
+
+
+def encode_runners(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
+    """The ``runners`` of a store's ``rows`` (increasing; the rows with no runner left out)
+    as an int64 and a float64 stream (see the module doc). ``ValueError`` if one runs a
+    pattern the table does not number."""
+    try:
+        return _encode(table, rows, runners)
+    except KeyError:
+        names = ", ".join(
+            sorted({t.pattern.name for r in runners for t in r.threads} - {p.name for p in table.patterns})
+        )
+        raise ValueError(
+            f"a running pattern is not one the level can run ({names or 'a node outside the table'})"
+        ) from None
+
+
+def _encode(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
+    ints: list[int] = []
+    floats: list[float] = []
+    pidx, nidx, cidx = table.pattern_index, table.index, table.commands_of
+    for row, r in zip(rows, runners, strict=True):
+        ints += (row, int(r.gone), len(r.threads))
+        for t in r.threads:
+            ints.append(pidx[id(t.pattern)])
+            ints.append(len(t.nodes))
+            ints += [nidx[id(n)] for n in t.nodes]
+            ints += (t.next_node, t.act_turn is not None, t.act_turn or 0, t.prev_dir is not None)
+            ints += (t.prev_spd is not None, len(t.params))
+            if t.prev_dir is not None:
+                floats.append(t.prev_dir)
+            if t.prev_spd is not None:
+                floats.append(t.prev_spd)
+            floats += t.params
+            ints.append(len(t.stack))
+            for e in t.stack:
+                if type(e) is _Rep:
+                    ints += (REP, nidx[id(e.body)], e.left, len(e.params))
+                else:
+                    ints += (SEQ, cidx[id(e.commands)], e.i, len(e.params))
+                floats += e.params
+    return np.array(ints, dtype=np.int64), np.array(floats, dtype=np.float64)
+
+
+class _Cursor:
+    """Reads the two streams in order, with bounds checks."""
+
+    def __init__(self, ints: np.ndarray, floats: np.ndarray, where: str):
+        self.ints, self.floats = ints.tolist(), floats.tolist()
+        self.i = self.f = 0
+        self.where = where
+
+    def whole(self, what: str, lo: int = 0, hi: int | None = None) -> int:
+        if self.i >= len(self.ints):
+            raise ValueError(f"{self.where}: {what}: the runner stream ends early")
+        v = self.ints[self.i]
+        self.i += 1
+        if v < lo or (hi is not None and v > hi):
+            raise ValueError(f"{self.where}: {what}: {v} is out of range [{lo}, {hi}]")
+        return v
+
+    def double(self, what: str) -> float:
+        if self.f >= len(self.floats):
+            raise ValueError(f"{self.where}: {what}: the runner float stream ends early")
+        v = self.floats[self.f]
+        self.f += 1
+        return v
+
+    def params(self, k: int, what: str) -> tuple[float, ...]:
+        if self.f + k > len(self.floats):
+            raise ValueError(f"{self.where}: {what}: the runner float stream ends early")
+        out = tuple(self.floats[self.f : self.f + k])
+        self.f += k
+        return out
+
+
+def decode_runners(
+    table: NodeTable, ints: np.ndarray, floats: np.ndarray, rows: int, where: str
+) -> list[Runner | None]:
+    """The runners of ``rows`` rows from :func:`encode_runners`' streams. ``ValueError``
+    (starting with ``where``) for an index out of range, a count past the streams' end, a
+    row out of order, or values left over."""
+    out: list[Runner | None] = [None] * rows
+    c = _Cursor(ints, floats, where)
+    nodes, last = table.nodes, -1
+    big = len(c.ints) + len(c.floats)  # no count can exceed what the streams hold
+    while c.i < len(c.ints):
+        row = c.whole("runner row", last + 1, rows - 1)
+        last = row
+        w = f"runner of row {row}"
+        gone = bool(c.whole(f"{w}: gone", 0, 1))
+        threads = []
+        for _ in range(c.whole(f"{w}: threads", 1, big)):
+            pattern = table.patterns[c.whole(f"{w}: pattern", 0, len(table.patterns) - 1)]
+            k = c.whole(f"{w}: nodes", 0, big)
+            tnodes = tuple(nodes[c.whole(f"{w}: node", 0, len(nodes) - 1)] for _ in range(k))
+            next_node = c.whole(f"{w}: next_node", 0, k)
+            has_turn = c.whole(f"{w}: has act_turn", 0, 1)
+            act_turn = c.whole(f"{w}: act_turn", -(1 << 62), 1 << 62)
+            has_dir, has_spd = c.whole(f"{w}: has prev_dir", 0, 1), c.whole(f"{w}: has prev_spd", 0, 1)
+            nparams = c.whole(f"{w}: params", 0, big)
+            t = Thread(pattern, tnodes, ())
+            t.next_node, t.act_turn = next_node, act_turn if has_turn else None
+            t.prev_dir = c.double(f"{w}: prev_dir") if has_dir else None
+            t.prev_spd = c.double(f"{w}: prev_spd") if has_spd else None
+            t.params = c.params(nparams, f"{w}: params")
+            for _ in range(c.whole(f"{w}: stack", 0, big)):
+                kind = c.whole(f"{w}: stack entry kind", SEQ, REP)
+                node = table.node(c.whole(f"{w}: stack node", 0, len(nodes) - 1), w)
+                count = c.whole(f"{w}: stack counter", 0, MAX_REPEAT if kind == REP else None)
+                params = c.params(c.whole(f"{w}: stack params", 0, big), f"{w}: stack params")
+                if kind == REP:
+                    t.stack.append(_Rep(node, count, params))
+                elif type(node) is not Action:
+                    raise ValueError(f"{where}: {w}: a command list's node {table.index[id(node)]} is not an action")
+                elif count > len(node.commands):
+                    raise ValueError(f"{where}: {w}: command {count} is past the action's {len(node.commands)}")
+                else:
+                    t.stack.append(_Seq(node.commands, params))
+                    t.stack[-1].i = count
+            threads.append(t)
+        runner = Runner(threads)
+        runner.gone = gone
+        out[row] = runner
+    if c.f != len(c.floats):
+        raise ValueError(f"{where}: {len(c.floats) - c.f} runner floats left over")
+    return out
+
+
+#: The engine's counters a snapshot keeps (its ``rank`` and ``max_steps`` are settings).
+ENGINE_COUNTERS = ("frame", "fired", "peak", "budget", "busiest", "deferred")
+
+
+def resume_rows(engine: Engine) -> tuple[int, int]:
+    """The rows the engine serves first next frame (emitters, bullets), after a part of a
+    frame that ran out of commands (0, 0: none waiting)."""
+    return engine._resume["emitters"], engine._resume["bullets"]
+
+
+def set_resume_rows(engine: Engine, emitters: int, bullets: int) -> None:
+    engine._resume["emitters"], engine._resume["bullets"] = emitters, bullets
