@@ -361,7 +361,9 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     "EnemyGuns": (frozenset({f[0] for f in GUNS_FIELDS} | {"boss_phase", "engine"}), frozenset({"fires"})),
     "Engine": (
         frozenset({f[0] for f in ENGINE_FIELDS} | {"scope", "emitters", "bullets", "_resume"}),
-        frozenset({"rank", "max_steps"}),
+        # _new (bullets fired, queued for one batched add) and _bullet_part live inside a
+        # step only: between steps the queue is empty and the flag False (save checks it)
+        frozenset({"rank", "max_steps", "_new", "_bullet_part"}),
     ),
     "CollisionStep": (frozenset({"pipeline"}), frozenset({"kinds", "graze", "ids"})),
     "Pipeline": (  # the kernel is not state: numpy and numba give the same bits
@@ -456,6 +458,8 @@ class Snapshots:
             _put_fields(w, world.bomb, BOMB_FIELDS)
         with w.section("guns"):
             guns, eng = world.guns, world.guns.engine
+            if any(eng._new) or eng._bullet_part:
+                raise ValueError("snapshot: the pattern engine is inside a step (bullets queued); save between steps")
             _put_fields(w, guns, GUNS_FIELDS)
             w.flag(guns.boss_phase is not None)
             w.i64(guns.boss_phase or 0)

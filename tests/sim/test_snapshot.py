@@ -206,7 +206,9 @@ def test_coverage__every_attribute_is_kept_or_declared_static():
         assert set(vars(pool)) == {"_spec", "_data", "n", "limit", "refused"}
     # the BulletML machine's parts: every slot is written by runstate
     assert set(Thread.__slots__) == {"pattern", "nodes", "next_node", "stack", "act_turn", "prev_dir", "prev_spd"} | {
-        "params"
+        "params",
+        "due",
+        "cut",
     }
     assert set(Runner.__slots__) == {"threads", "gone"}
     assert set(_Seq.__slots__) == {"commands", "i", "params"} and set(_Rep.__slots__) == {"body", "left", "params"}

@@ -11,7 +11,7 @@ every index and count and raises ``ValueError`` naming the row and what is wrong
 Layout of one runner in the int stream (floats in the float stream, in the same order)::
 
     row, gone, threads
-    per thread: pattern, nodes, node..., next_node, has_act_turn, act_turn,
+    per thread: pattern, nodes, node..., next_node, has_act_turn, act_turn, due, cut,
                 has_prev_dir, has_prev_spd, params   [floats: prev_dir?, prev_spd?, params...]
                 stack, per entry: kind (0 a command list, 1 a repeat), node, i or left,
                 params   [floats: params...]
@@ -29,6 +29,7 @@ from .engine import Engine
 from .limits import MAX_REPEAT
 from .machine import Runner, Thread, _Rep, _Seq
 from .model import Action, ActionRef, Bullet, Fire, Pattern, Repeat
+from .store import NEVER
 
 #: Stack entry kinds in the int stream.
 SEQ, REP = 0, 1
@@ -119,7 +120,7 @@ def _encode(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) ->
             ints.append(pidx[id(t.pattern)])
             ints.append(len(t.nodes))
             ints += [nidx[id(n)] for n in t.nodes]
-            ints += (t.next_node, t.act_turn is not None, t.act_turn or 0, t.prev_dir is not None)
+            ints += (t.next_node, t.act_turn is not None, t.act_turn or 0, t.due, int(t.cut), t.prev_dir is not None)
             ints += (t.prev_spd is not None, len(t.params))
             if t.prev_dir is not None:
                 floats.append(t.prev_dir)
@@ -191,10 +192,13 @@ def decode_runners(
             next_node = c.whole(f"{w}: next_node", 0, k)
             has_turn = c.whole(f"{w}: has act_turn", 0, 1)
             act_turn = c.whole(f"{w}: act_turn", -(1 << 62), 1 << 62)
+            due = c.whole(f"{w}: due", -(1 << 62), NEVER)
+            cut = bool(c.whole(f"{w}: cut", 0, 1))
             has_dir, has_spd = c.whole(f"{w}: has prev_dir", 0, 1), c.whole(f"{w}: has prev_spd", 0, 1)
             nparams = c.whole(f"{w}: params", 0, big)
             t = Thread(pattern, tnodes, ())
             t.next_node, t.act_turn = next_node, act_turn if has_turn else None
+            t.due, t.cut = due, cut
             t.prev_dir = c.double(f"{w}: prev_dir") if has_dir else None
             t.prev_spd = c.double(f"{w}: prev_spd") if has_spd else None
             t.params = c.params(nparams, f"{w}: params")
