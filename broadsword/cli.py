@@ -34,10 +34,10 @@ import sys
 from dataclasses import dataclass
 
 from . import __version__
-from .argtypes import lab_size, natural, seed
+from .argtypes import frame_list, lab_size, natural, seed
 from .data import DataError, list_levels, load_level, resolve_level
 from .data.difficulty import Difficulty
-from .data.recordings import load_recording, save_recording, save_stage_recordings
+from .data.recordings import Recording, load_recording, save_recording
 
 
 @dataclass(frozen=True)
@@ -75,15 +75,22 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     ap.add_argument(
         "--record",
         metavar="FILE",
-        help="save the run's inputs to FILE (a recording); with a window, a run of several stages saves "
-        "one recording a stage: the first to FILE, each next beside it as FILE's name plus the level's "
-        "(run.json, run-2-gauntlet.json, ...), each replayable on its own",
+        help="save the run to FILE (a recording): its inputs, toggles and state digests; with a window, "
+        "a run of several stages is one recording with every stage's start",
     )
     ap.add_argument(
         "--replay",
         metavar="FILE",
-        help="play a recording's inputs and toggles: on screen (watch it, with pause, F2 step and the "
-        "overlay), or with --headless check its hashes",
+        help="play a recording, every stage and continue of it: on screen (watch it, with pause, F2 step "
+        "and the overlay), or with --headless check it frame by frame (the JSON's replay_matches, and "
+        "first_divergence: the first frame that differs and the part of the state)",
+    )
+    ap.add_argument(
+        "--hashes",
+        type=frame_list,
+        metavar="F1,F2,...",
+        help="--headless --replay: report the state hash after each of these frames of the run "
+        '(the JSON\'s hashes: {"F": hash})',
     )
     ap.add_argument(
         "--list-levels",
@@ -172,7 +179,14 @@ def _run_play(args: argparse.Namespace) -> int:
     try:
         if args.list_levels:
             return _list_levels()
-        replay = load_recording(args.replay) if args.replay else None
+        replay, replay_error = None, None
+        if args.replay:
+            try:
+                replay = load_recording(args.replay)
+            except DataError as exc:
+                if args.headless:
+                    raise
+                replay_error = exc  # in a window the game opens on the title and says why
         if replay and (args.rotation or args.level or args.difficulty):
             print(
                 "broadsword: --replay plays the recording's own level and settings; "
@@ -180,11 +194,14 @@ def _run_play(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
             return 2
-        level = args.level or (replay.level if replay else list_levels()[0])
+        if args.hashes is not None and not (args.headless and replay):
+            print("broadsword: --hashes needs --headless and --replay", file=sys.stderr)
+            return 2
+        level = args.level or (replay.first.level if replay else list_levels()[0])
         if args.level and args.headless:  # exit 2 at once, not after a first launch's compile
             load_level(resolve_level(level))  # (a window opens on the title and shows it there)
         _load_kernels()
-        seed_ = replay.seed if replay and args.seed == 0 else args.seed
+        seed_ = replay.first.seed if replay and args.seed == 0 else args.seed
         if args.headless:
             os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
             os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
@@ -200,6 +217,7 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.replay or "",
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
+                args.hashes or (),
             )
             if args.record:
                 save_recording(args.record, recording)
@@ -207,6 +225,8 @@ def _run_play(args: argparse.Namespace) -> int:
                 print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
             return 0
+        if replay_error is not None:
+            return _play(None, seed_, args, None, replay_error)
         return _play(level if args.level or replay else None, seed_, args, replay)
     except (DataError, KernelChoiceError) as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
@@ -244,7 +264,16 @@ def _list_levels() -> int:
     return 0
 
 
-def _play(level, seed_, args, replay) -> int:
+def _play(
+    level: str | None,
+    seed_: int,
+    args: argparse.Namespace,
+    replay: Recording | None,
+    replay_error: DataError | None = None,
+) -> int:
+    """Open the window and play: ``level`` (None: the title), or watch ``replay``. A replay
+    that cannot be read or played (``replay_error``, or its level broken or changed) leaves
+    the game on the title, saying why: the game goes on."""
     import pygame
 
     from .game.app import App
@@ -269,18 +298,17 @@ def _play(level, seed_, args, replay) -> int:
         return 1
     if args.mute:
         app.audio.toggle_mute()
-    if replay is not None:
+    if replay_error is not None:
+        app.report(replay_error)
+    elif replay is not None:
         try:
             app.watch_replay(replay, args.replay)  # watch it: the recorded inputs drive the world
-        except DataError:
-            app.close()
-            raise
+        except DataError as exc:
+            app.report(exc)
     elif level is not None and args.lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
-    recordings = app.recordings()
-    if args.record and recordings:  # one file a stage: FILE is the first, FILE-LEVEL.json the next ones
-        paths = save_stage_recordings(args.record, recordings)
-        if len(paths) > 1:
-            print(f"broadsword: recorded {len(paths)} stages: {', '.join(map(str, paths))}", file=sys.stderr)
+    recording = app.recording()
+    if args.record and recording is not None:  # the whole run, every stage, in one file
+        save_recording(args.record, recording)
     return 0
