@@ -45,8 +45,8 @@ from .resources import read_text
 
 #: The format this game reads and writes.
 FORMAT_VERSION = 3
-#: A recording is at most this big (with seven parts, about 39 characters a frame: an
-#: hour at 60 fps; a 5-minute run is about 0.7 MiB).
+#: A recording is at most this big (with eight parts, about 46 characters a frame: some
+#: 50 minutes at 60 fps; a 5-minute run is about 0.8 MiB).
 RECORDING_MAX_BYTES = 8 << 20
 #: Bytes of each part's digest after each frame (a CRC-32: broadsword.sim.hashing).
 DIGEST_BYTES = 4

@@ -97,15 +97,24 @@ class Playback:
         self.played += 1
         return inp
 
-    def stepped(self, world: World, digests: bytes) -> None:
-        """Compare the state after the step just played (``digests``: its
-        :func:`~broadsword.sim.hashing.part_digests`) with the recording's."""
+    def check(self, digests: bytes) -> None:
+        """Compare the state after the stage's last frame played (``digests``: its
+        :func:`~broadsword.sim.hashing.part_digests`) with the recording's; the first
+        difference is kept in ``divergence``."""
+        if self.frame == 0 or self.divergence is not None:
+            return
         width = len(PARTS) * DIGEST_BYTES
         k = self.frame - 1
         recorded = self.stage.digests[k * width : (k + 1) * width]
-        if self.divergence is None and recorded != digests:
+        if recorded != digests:
             part = differing_part(recorded, digests)
             self.divergence = Divergence(self.played, part.value if part is not None else CHECKPOINT)
+
+    def stepped(self, world: World, digests: bytes) -> None:
+        """Compare the state after the step just played (``digests``: its
+        :func:`~broadsword.sim.hashing.part_digests`) with the recording's, and its
+        checkpoint when one is due."""
+        self.check(digests)
         cps = self.stage.checkpoints
         if self._checkpoint < len(cps) and cps[self._checkpoint][0] == world.frame:
             frame, expected = cps[self._checkpoint]

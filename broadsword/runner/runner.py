@@ -113,10 +113,12 @@ class Runner:
         """The recording's input for the next step of the stage in play (its due toggles
         applied), or None when this stage cannot go on: its inputs ran out, the state
         already differs, or the world has ended (cleared, or a game over with no recorded
-        continue to come)."""
+        continue to come). The state is compared with the recording's again first, so a
+        change made between two steps is named at the frame it was made after."""
         pb = self.playback
         assert pb is not None, "replay_input needs a runner made by Runner.replaying"
         world = self.world
+        pb.check(part_digests(world))  # the state is still the one recorded (nothing changed it between steps)
         if pb.divergence is not None or pb.stage_done:
             return None
         if world.complete or (world.over and not pb.continue_pending(world)):

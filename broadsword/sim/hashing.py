@@ -130,13 +130,35 @@ def _attrs(h: _Crc, obj, names: tuple[str, ...] | None = None, skip: tuple[str, 
     h.update(repr(vals).encode())
 
 
+#: Odd weights, one a word, for :func:`_words` (a read-only table, the same everywhere).
+_CHUNK = 1 << 16
+_WEIGHTS = (np.arange(1, _CHUNK + 1, dtype=np.uint64) * np.uint64(0x9E3779B97F4A7C15)) | np.uint64(1)
+_WEIGHTS.flags.writeable = False
+
+
+def _words(h: _Crc, a: np.ndarray) -> None:
+    """An array's exact bits. Columns of 8-byte numbers go in as the weighted sum of their
+    words mod 2**64 (a chunk of ``_CHUNK`` words at a time, each word times its own odd
+    weight: a change to any one word always changes the sum, and a swap of two almost
+    always): several times cheaper than a CRC of every byte at 10,000 bullets. Others go in
+    byte by byte."""
+    flat = a.reshape(-1)  # a C-ordered column's live rows: a view, no copy
+    if flat.dtype.itemsize != 8:
+        h.update(flat)
+        return
+    u = flat.view(np.uint64)
+    for i in range(0, len(u), _CHUNK):
+        part = u[i : i + _CHUNK]
+        h.update(int(np.dot(part, _WEIGHTS[: len(part)])).to_bytes(8, "little"))
+
+
 def _columns(h: _Crc, store) -> None:
     """A pool's (or BulletML store's) live rows: every numeric column's exact bits."""
     n = store.n
     h.update(n.to_bytes(8, "little"))
     for arr in store._data.values():
         if arr.dtype != object:
-            h.update(arr[:n])  # live rows of a C-ordered column: contiguous, no copy
+            _words(h, arr[:n])
 
 
 def _rng(h: _Crc, rng: np.random.Generator) -> None:

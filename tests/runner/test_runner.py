@@ -222,3 +222,16 @@ def test_nothing_but_the_runner_makes_or_steps_a_world():
     bad = [f"{p}:{line}" for p in files for line in _steps_a_world(p)]
     assert not bad, "worlds made or stepped outside broadsword.runner: " + ", ".join(bad)
     assert _steps_a_world(root / "runner" / "runner.py")  # the check sees the one that does
+
+
+def test_a_change_made_between_two_steps_is_named_at_the_frame_before_it():
+    """A change to the world after frame F's step (before F + 1's) is the state of frame F
+    differing: named at F, with its part."""
+    rec, _ = autopilot_run()
+    runner = Runner.replaying(rec, "run.json", ARMATURES)
+    while runner.frame < 120:
+        runner.step(runner.replay_input())
+    _ulp(runner.world.player.pos)
+    assert runner.replay_input() is None
+    d = runner.playback.divergence
+    assert (d.frame, d.part) == (120, "player") and not runner.playback.matches
