@@ -169,6 +169,10 @@ def test_version__one_source(capsys):
         (["--difficulty", "brutal"], "invalid choice"),
         (["armature", "generate", "x.png", "--max-vertices", "2"], "--max-vertices must be at least 3"),
         (["soak", "--frames", "-5"], "--frames: must be >= 0"),
+        (["--headless", "--hashes", "5"], "--hashes needs --headless and --replay"),
+        (["--headless", "--hashes", "5,x"], "--hashes: not a whole number"),
+        (["--headless", "--hashes", "5,-1"], "--hashes: must be >= 0"),
+        (["--headless", "--hashes", ""], "--hashes: wants 1 to 10,000 frames"),
     ],
 )
 def test_usage_errors__exit_2_with_the_reason(args, says, capsys):
