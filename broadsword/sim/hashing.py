@@ -168,10 +168,13 @@ def _rng(h: _Crc, rng: np.random.Generator) -> None:
 def _part(world, part: Part, h: _Crc) -> None:
     if part is Part.PLAYER:
         _attrs(h, world.player)
+        _attrs(h, world, ("_bomb_held",))  # the bomb button's edge
     elif part is Part.BULLETS:
         _columns(h, world.enemy_bullets)
         _columns(h, world.player_bullets)
         _columns(h, world.guns.engine.emitters)
+        _attrs(h, world.guns, ("ship_uid_seen", "boss_phase"))
+        _attrs(h, world.guns.engine, ("frame", "target", "fired", "budget", "deferred", "_resume"))
     elif part is Part.ENEMIES:
         _columns(h, world.ships.pool)
         _attrs(h, world.ships, ("next_uid",))  # the rest is the level's, fixed

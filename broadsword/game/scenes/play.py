@@ -16,7 +16,7 @@ from typing import Protocol
 import pygame
 
 from ...data import DataError
-from ...runner import Runner
+from ...runner import Playback, Runner
 from ...sim import DT, Input, Pilot, World
 from .. import heap
 from ..controls import Action, Controls
@@ -78,7 +78,8 @@ class ReplayInput:
         self.error: str | None = None  # why the next stage could not open, if it could not
 
     @property
-    def playback(self):
+    def playback(self) -> Playback:
+        assert self.runner.playback is not None  # a replaying runner has one
         return self.runner.playback
 
     def next(self, world: World) -> Input | None:
