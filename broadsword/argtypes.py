@@ -90,3 +90,18 @@ def lab_size(text: str) -> tuple[int, int]:
             f"e.g. 200,10000; got {text[:40]!r}"
         )
     return ships, bullets
+
+
+#: At most this many frames in one list (``--hashes``).
+FRAMES_MAX = 10_000
+
+
+def frame_list(text: str) -> list[int]:
+    """``F1,F2,...``: one or more frames, whole numbers >= 0, in the order given (at most
+    :data:`FRAMES_MAX`), e.g. ``600,60,3000``."""
+    parts = text.split(",")
+    if not text or len(parts) > FRAMES_MAX:
+        raise argparse.ArgumentTypeError(
+            f"wants 1 to {FRAMES_MAX:,} frames F1,F2,... (whole numbers >= 0); got {text!r}"
+        )
+    return [natural(p.strip()) for p in parts]

@@ -46,16 +46,16 @@ class Job:
 
 def play(job: Job) -> dict:
     """Play one job to the stage's end or game over; its outcome as a dict."""
-    from .headless import make_world
+    from .runner import PeakBullets, Runner, StageStart
     from .sim import Input, Pilot, Settings
 
-    world, _ = make_world(job.level, job.seed, Settings(difficulty=Difficulty(job.difficulty)))
+    peak = PeakBullets()
+    start = StageStart(job.level, job.seed, Settings(difficulty=Difficulty(job.difficulty)))
+    runner = Runner.open(start, observers=[peak])
     pilot = Pilot()
     hold = Input(fire=True)
-    peak = 0
-    while not (world.over or world.complete) and world.frame < FRAME_LIMIT:
-        world.step(hold if job.still else pilot(world))
-        peak = max(peak, world.enemy_bullets.n)
+    runner.play((lambda w: hold) if job.still else pilot, FRAME_LIMIT)
+    world = runner.world
     return {
         "level": job.level,
         "difficulty": job.difficulty,
@@ -65,7 +65,7 @@ def play(job: Job) -> dict:
         "frames": world.frame,
         "deaths": world.player.misses,
         "bombs": world.progress.bombs_used,
-        "peak_bullets": peak,
+        "peak_bullets": peak.peak,
         "score": world.score.points,
     }
 

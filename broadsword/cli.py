@@ -35,10 +35,10 @@ import time
 from dataclasses import dataclass
 
 from . import __version__
-from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, lab_size, natural, nonempty, seed
+from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, frame_list, lab_size, natural, nonempty, seed
 from .data import DataError, list_levels, load_level, resolve_level
 from .data.difficulty import Difficulty
-from .data.recordings import load_recording, save_stage_recordings
+from .data.recordings import Recording, load_recording, save_recording
 from .fileio import check_writable
 
 
@@ -79,17 +79,24 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     ap.add_argument(
         "--record",
         metavar="FILE",
-        help="save the run's inputs to FILE (a recording); with a window, a run of several stages saves "
-        "one recording a stage: the first to FILE, each next beside it as FILE's name plus the level's "
-        "(run.json, run-2-gauntlet.json, ...), each replayable on its own. FILE is checked before play "
+        help="save the run to FILE (a recording): its inputs, toggles and state digests; with a window, "
+        "a run of several stages is one recording with every stage's start. FILE is checked before play "
         "(exit 2 if it cannot be written); if the write still fails at the end, the run is saved in the "
         "data directory's recordings folder instead, and the path said",
     )
     ap.add_argument(
         "--replay",
         metavar="FILE",
-        help="play a recording's inputs and toggles: on screen (watch it, with pause, F2 step and the "
-        "overlay), or with --headless check its hashes",
+        help="play a recording, every stage and continue of it: on screen (watch it, with pause, F2 step "
+        "and the overlay), or with --headless check it frame by frame (the JSON's replay_matches, and "
+        "first_divergence: the first frame that differs and the part of the state)",
+    )
+    ap.add_argument(
+        "--hashes",
+        type=frame_list,
+        metavar="F1,F2,...",
+        help="--headless --replay: report the state hash after each of these frames of the run "
+        '(the JSON\'s hashes: {"F": hash})',
     )
     ap.add_argument(
         "--list-levels",
@@ -188,7 +195,14 @@ def _run_play(args: argparse.Namespace) -> int:
         if args.record is not None and (why := check_writable(args.record)):  # before play, not after it
             print(f"broadsword: --record {args.record!r}: {why}", file=sys.stderr)
             return 2
-        replay = load_recording(args.replay) if args.replay else None
+        replay, replay_error = None, None
+        if args.replay:
+            try:
+                replay = load_recording(args.replay)
+            except DataError as exc:
+                if args.headless:
+                    raise
+                replay_error = exc  # in a window the game opens on the title and says why
         if replay and (args.rotation or args.level or args.difficulty):
             print(
                 "broadsword: --replay plays the recording's own level and settings; "
@@ -196,13 +210,16 @@ def _run_play(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
             return 2
-        level = args.level or (replay.level if replay else list_levels()[0])
+        if args.hashes is not None and not (args.headless and replay):
+            print("broadsword: --hashes needs --headless and --replay", file=sys.stderr)
+            return 2
+        level = args.level or (replay.first.level if replay else list_levels()[0])
         if args.level and args.headless:  # exit 2 at once, not after a first launch's compile
             load_level(resolve_level(level))  # (a window opens on the title and shows it there)
         numba = _choose_kernel()
         if numba and args.headless:
             _warm_or_numpy(None)
-        seed_ = replay.seed if replay and args.seed == 0 else args.seed
+        seed_ = replay.first.seed if replay and args.seed == 0 else args.seed
         if args.headless:
             os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
             os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
@@ -218,12 +235,15 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.replay or "",
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
+                args.hashes or (),
             )
-            saved = _save_recordings(args.record, [recording]) if args.record else True
+            saved = _save_recording(args.record, recording) if args.record else True
             for warning in summary["warnings"]:
                 print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
             return 0 if saved else 1
+        if replay_error is not None:
+            return _play(None, seed_, args, None, numba, replay_error)
         return _play(level if args.level or replay else None, seed_, args, replay, numba)
     except (DataError, KernelChoiceError) as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
@@ -270,13 +290,13 @@ def _numpy_instead(exc: BaseException) -> None:
     os.environ[ENV_VAR] = "numpy"
 
 
-def _save_recordings(dest: str, recordings: list) -> bool:
-    """Save ``recordings`` (one a stage) at ``dest`` (:func:`save_stage_recordings`). If that
+def _save_recording(dest: str, recording: Recording) -> bool:
+    """Save ``recording`` (the whole run, every stage) at ``dest``. If that
     fails (the disk filled, the folder went away since the check before play), save them
     in the data directory's ``recordings`` folder instead and say where: a run is never
     lost. Returns whether they went to ``dest``; says so on stderr when they did not."""
     try:
-        paths = save_stage_recordings(dest, recordings)
+        save_recording(dest, recording)
     except OSError as exc:
         from .game.userdata import user_data_dir
 
@@ -284,7 +304,7 @@ def _save_recordings(dest: str, recordings: list) -> bool:
         stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
         rescue = user_data_dir() / "recordings" / f"run-{stamp}-{os.getpid()}.json"
         try:
-            paths = save_stage_recordings(rescue, recordings)
+            save_recording(rescue, recording)
         except OSError as again:
             print(
                 f"broadsword: --record {dest}: cannot write ({why}), nor in {rescue.parent} "
@@ -292,12 +312,8 @@ def _save_recordings(dest: str, recordings: list) -> bool:
                 file=sys.stderr,
             )
             return False
-        print(
-            f"broadsword: --record {dest}: cannot write ({why}); saved the run as {paths[0]} instead", file=sys.stderr
-        )
+        print(f"broadsword: --record {dest}: cannot write ({why}); saved the run as {rescue} instead", file=sys.stderr)
         return False
-    if len(paths) > 1:
-        print(f"broadsword: recorded {len(paths)} stages: {', '.join(map(str, paths))}", file=sys.stderr)
     return True
 
 
@@ -312,7 +328,17 @@ def _list_levels() -> int:
     return 0
 
 
-def _play(level: str | None, seed_: int, args: argparse.Namespace, replay, numba: bool) -> int:
+def _play(
+    level: str | None,
+    seed_: int,
+    args: argparse.Namespace,
+    replay: Recording | None,
+    numba: bool,
+    replay_error: DataError | None = None,
+) -> int:
+    """Open the window and play: ``level`` (None: the title), or watch ``replay``. A replay
+    that cannot be read or played (``replay_error``, or its level broken or changed) leaves
+    the game on the title, saying why: the game goes on."""
     import pygame
 
     from .game.app import App
@@ -339,18 +365,19 @@ def _play(level: str | None, seed_: int, args: argparse.Namespace, replay, numba
         return 1
     if args.mute:
         app.audio.toggle_mute()
-    if replay is not None:
+    if replay_error is not None:
+        app.report(replay_error)
+    elif replay is not None:
         try:
             app.watch_replay(replay, args.replay)  # watch it: the recorded inputs drive the world
-        except DataError:
-            app.close()
-            raise
+        except DataError as exc:
+            app.report(exc)
     elif level is not None and args.lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
-    recordings = app.recordings()
-    if args.record and recordings:  # one file a stage: FILE is the first, FILE-LEVEL.json the next ones
-        return 0 if _save_recordings(args.record, recordings) else 1
+    recording = app.recording()
+    if args.record and recording is not None:  # the whole run, every stage, in one file
+        return 0 if _save_recording(args.record, recording) else 1
     return 0
 
 

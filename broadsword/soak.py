@@ -144,7 +144,8 @@ def soak(
         shared machine, mostly other tenants), ``error`` (``None``, or the exception's
         traceback text as one string).
     """
-    from .sim import DT, Pilot, World
+    from .runner import Runner, StageStart, open_level
+    from .sim import DT, Pilot
     from .sim.boss import BossState
 
     if frames < 0:
@@ -169,13 +170,14 @@ def soak(
     slow_steps = 0  # steps that took longer than a frame (1/60 s) of wall-clock time
     clock = time.perf_counter
     t_start = clock()
-    world = World(level, armatures, game_seed(seed, 0))
+    runner = Runner(open_level(level, armatures, StageStart(level.name, game_seed(seed, 0))))
+    world = runner.world
     pilot = Pilot()
     f = 0
     try:
         while f < frames:
             t0 = clock()
-            world.step(pilot(world))
+            runner.step(pilot(world))
             took = clock() - t0
             step_max = max(step_max, took)
             slow_steps += took > DT
@@ -190,7 +192,8 @@ def soak(
                 boss_games += world.boss is not None and world.boss.state is not BossState.WAITING
                 run_hash.update(world.state_hash().encode())
                 if f < frames:
-                    world = World(level, armatures, game_seed(seed, games))
+                    runner = Runner(open_level(level, armatures, StageStart(level.name, game_seed(seed, games))))
+                    world = runner.world
                     pilot = Pilot()
                     games += 1
             if f % sample_every == 0 or f == warmup or f == frames:

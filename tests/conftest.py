@@ -58,7 +58,7 @@ FIRST = (
     "data/test_fuzz_loaders.py",  # ~25, two fuzzers of 10-25 each
     "test_bench.py",  # ~13, one test
     "test_balance.py",  # one test of ~6
-    "sim/test_replay.py",  # ~27, four tests
+    "runner/test_runner.py",  # a few recordings played back, each shared by several tests
     "test_recordings.py",  # ~17, two of 8
     "collision/test_reference_tiers.py",  # one test of ~8
     "test_determinism.py",  # ~43, fifteen tests of 1-5

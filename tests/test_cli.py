@@ -8,6 +8,7 @@ import sys
 
 import pytest
 
+from broadsword import __version__
 from broadsword.cli import main
 from broadsword.data import list_levels, load_level, resolve_level
 
@@ -65,7 +66,7 @@ def test_record_and_replay__same_hash(tmp_path, capsys):
     ]
     recorded = summary(run(args, capsys)[1])
     doc = json.loads(rec.read_text())
-    assert doc["frames"] == recorded["frames"] and doc["state_hash"] == recorded["state_hash"]
+    assert doc["frames"] == recorded["frames"] and doc["stages"][0]["state_hash"] == recorded["state_hash"]
     replayed = summary(run(["--headless", "--replay", str(rec)], capsys)[1])
     assert replayed["state_hash"] == recorded["state_hash"] and replayed["replay_matches"] is True
     assert list(tmp_path.iterdir()) == [rec]  # written atomically: no temp files left
@@ -107,14 +108,23 @@ def test_broken_level__said_before_the_kernels_load(tmp_path, capsys, monkeypatc
     [
         ("not json", "bad JSON"),
         ('{"version": 9}', "version"),
-        ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "zz"}', "inputs"),
-        ('{"version": 2, "level": "1-picket", "seed": 0, "inputs": "ff"}', "inputs"),
+        (
+            '{"version": 3, "game_version": "%s", "parts": ["player"], "stages": [{"start": 0, "level": "1-picket", '
+            '"seed": 0, "inputs": "zz"}]}',
+            "stages[0].inputs",
+        ),
+        (
+            '{"version": 3, "game_version": "%s", "parts": ["player"], "stages": [{"start": 0, "level": "1-picket", '
+            '"seed": 0, "inputs": "ff"}]}',
+            "stages[0].inputs",
+        ),
         ('{"version": 1}', "older Broadsword"),
+        ('{"version": 2}', "older Broadsword"),
     ],
 )
 def test_broken_recording__exit_2(tmp_path, capsys, text, field):
     bad = tmp_path / "rec.json"
-    bad.write_text(text)
+    bad.write_text(text.replace("%s", __version__))
     code, _, err = run(["--headless", "--replay", str(bad)], capsys)
     assert code == 2 and str(bad) in err and field in err and len(err.strip().splitlines()) == 1
 
@@ -159,6 +169,10 @@ def test_version__one_source(capsys):
         (["--difficulty", "brutal"], "invalid choice"),
         (["armature", "generate", "x.png", "--max-vertices", "2"], "--max-vertices must be at least 3"),
         (["soak", "--frames", "-5"], "--frames: must be >= 0"),
+        (["--headless", "--hashes", "5"], "--hashes needs --headless and --replay"),
+        (["--headless", "--hashes", "5,x"], "--hashes: not a whole number"),
+        (["--headless", "--hashes", "5,-1"], "--hashes: must be >= 0"),
+        (["--headless", "--hashes", ""], "--hashes: wants 1 to 10,000 frames"),
     ],
 )
 def test_usage_errors__exit_2_with_the_reason(args, says, capsys):

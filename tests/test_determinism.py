@@ -135,7 +135,7 @@ def test_a_recorded_replay_reproduces_its_hash(rotation, tmp_path, armatures, ca
         capsys,
     )
     with cli_subprocess("--headless", "--replay", str(rec)) as other:
-        doc = load_recording(rec)
+        doc = load_recording(rec).first
         assert doc.state_hash == recorded["state_hash"] and doc.frames == recorded["frames"]
         assert doc.settings == {"rotation": rotation, "difficulty": "normal"}
         w = World(level_with(doc.level, rotation), armatures, doc.seed)
@@ -146,14 +146,17 @@ def test_a_recorded_replay_reproduces_its_hash(rotation, tmp_path, armatures, ca
     assert replayed["replay_matches"] is True
     assert replayed["state_hash"] == recorded["state_hash"]
 
-    # Change one early input (move the other way): the replay must no longer match.
-    raw = bytearray(bytes.fromhex(json.loads(rec.read_text())["inputs"]))
+    # Change one early input (move the other way): the replay must no longer match, and it
+    # says so at that very frame, naming the player.
+    raw = bytearray(bytes.fromhex(json.loads(rec.read_text())["stages"][0]["inputs"]))
     k = next(i for i, b in enumerate(raw) if Input.from_byte(b).dx != 0)
     old = Input.from_byte(raw[k])
     raw[k] = Input(-old.dx, old.dy, old.fire, old.slow).to_byte()
     tampered = json.loads(rec.read_text())
-    tampered["inputs"] = raw.hex()
+    tampered["stages"][0]["inputs"] = raw.hex()
     bad = tmp_path / "tampered.json"
     bad.write_text(json.dumps(tampered))
     tampered_run = run_cli_here(["--headless", "--replay", str(bad)], capsys)
     assert tampered_run["replay_matches"] is False
+    assert tampered_run["first_divergence"] == {"frame": k + 1, "part": "player"}
+    assert tampered_run["frames"] == k + 1  # it stopped there

@@ -1,7 +1,7 @@
 """The house's layering (DESIGN.md, Layers), checked from the code so it cannot rot.
 
-``collision`` <- ``patterns``, ``authoring`` <- ``sim`` <- ``game``; ``data`` feeds ``authoring``,
-``sim`` and ``game``; ``bench`` may use all, and nothing imports ``bench``. Two checks: every module
+``collision`` <- ``patterns``, ``authoring`` <- ``sim`` <- ``runner`` <- ``game``; ``data`` feeds
+``authoring``, ``sim``, ``runner`` and ``game``; ``bench`` may use all, and nothing imports ``bench``. Two checks: every module
 below ``game`` imports with pygame blocked, and no module imports a layer above its own
 (read from the source, every ``import`` statement, including those inside functions).
 """
@@ -26,9 +26,10 @@ ALLOWED = {
     "authoring": {"collision", "data"},  # the editor's document reads and writes armature files through data
     "data": {"collision", "patterns"},
     "sim": {"collision", "patterns", "authoring", "data"},
-    "game": {"collision", "patterns", "authoring", "data", "sim"},
+    "runner": {"collision", "patterns", "authoring", "data", "sim"},  # the game runner: no pygame
+    "game": {"collision", "patterns", "authoring", "data", "sim", "runner"},
 }
-BELOW_GAME = ("collision", "patterns", "authoring", "data", "sim")
+BELOW_GAME = ("collision", "patterns", "authoring", "data", "sim", "runner")
 
 
 def _modules(package: str) -> list[Path]:

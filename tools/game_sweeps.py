@@ -22,17 +22,18 @@ os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
 from broadsword.bench.game_frame import STRESS_LEVELS  # noqa: E402
 from broadsword.collision import Pipeline, retain_heap  # noqa: E402
 from broadsword.collision.frame import FrameObjects  # noqa: E402
-from broadsword.data import load_level, resolve_level  # noqa: E402
 from broadsword.game.sprites import SpriteBank  # noqa: E402
-from broadsword.sim import Pilot, World  # noqa: E402
+from broadsword.runner import Runner, StageStart  # noqa: E402
+from broadsword.sim import Pilot  # noqa: E402
 
 
 def main(count: int) -> str:
     retain_heap()
-    world = World(load_level(resolve_level(str(STRESS_LEVELS[count]))), SpriteBank().armatures, seed=0)
+    runner = Runner.open(StageStart(str(STRESS_LEVELS[count]), 0), SpriteBank().armatures)
+    world = runner.world
     pilot = Pilot()
     while world.enemy_bullets.n < count:
-        world.step(pilot(world))
+        runner.step(pilot(world))
     game = world.collide.pipeline
     grid = game.broad_phase
     swept_pipe, plain_pipe = (
@@ -48,7 +49,7 @@ def main(count: int) -> str:
     )
     swept, plain = [], []
     for f in range(40):
-        world.step(pilot(world))
+        runner.step(pilot(world))
         objects = world.collision.result.objects
         unswept = FrameObjects(objects.armature, objects.layer, objects.positions, objects.angles)
         runs = ((swept, swept_pipe, objects), (plain, plain_pipe, unswept))

@@ -5,7 +5,9 @@ game's own :class:`~broadsword.game.render.Renderer`, under SDL's dummy video dr
 whatever ``SDL_VIDEODRIVER`` says, e.g. ``x11`` under Xvfb), until its enemy bullets reach
 the count asked for; then ``frames`` whole frames are timed, each split into
 
-* ``step_ms``: the simulation step without its collision (patterns, movement, rules);
+* ``step_ms``: the game's step without its collision: :meth:`broadsword.runner.Runner.step`,
+  the step the play scene calls (patterns, movement, rules, and recording the frame with
+  its state digests);
 * ``collision_ms``: the collision pipeline inside the step (its own clock, the game's
   sweeps included);
 * ``render_ms``: drawing the world onto the field-sized surface;
@@ -56,25 +58,24 @@ def run_game_frames(
     os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     import pygame
 
-    from ..data import check_level_sprites, load_level, resolve_level
     from ..game.heap import settle
     from ..game.render import Renderer
     from ..game.sprites import SpriteBank
-    from ..sim import FIELD, Pilot, World
+    from ..runner import Runner, StageStart
+    from ..sim import FIELD, Pilot
 
     pygame.init()
     pygame.display.set_mode((int(FIELD[0] * SCALE), int(FIELD[1] * SCALE)))
     screen = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
     bank = SpriteBank()
     bank.convert()
-    spec = load_level(resolve_level(str(level)))
-    check_level_sprites(spec, bank.armatures)
-    world = World(spec, bank.armatures, seed=seed)
+    runner = Runner.open(StageStart(str(level), seed), bank.armatures)  # as the play scene's run
+    world = runner.world
     renderer = Renderer(bank, seed)
     pilot = Pilot()
     steps, peak, peak_step = 0, 0, 0
     while steps < warmup and (bullets is None or world.enemy_bullets.n < bullets) and not world.over:
-        renderer.on_events(world.step(pilot(world)))
+        renderer.on_events(runner.step(pilot(world)))
         steps += 1
         if world.enemy_bullets.n > peak:
             peak, peak_step = world.enemy_bullets.n, steps
@@ -88,7 +89,7 @@ def run_game_frames(
         action = pilot(world)  # the bench's stand-in for the player's hands: timed apart
         t0 = clock()
         pilots.append((t0 - tp) * 1e3)
-        ev = world.step(action)
+        ev = runner.step(action)  # the play scene's own step (Play.step): world, recording, digests
         renderer.on_events(ev)
         t1 = clock()
         renderer.draw(screen, world, 1.0)

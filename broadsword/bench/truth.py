@@ -53,13 +53,14 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
     os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     import pygame
 
-    from ..data import load_level, resolve_level
     from ..game.sprites import SpriteBank
-    from ..sim import Pilot, World
+    from ..runner import Runner, StageStart
+    from ..sim import Pilot
 
     pygame.init()
     bank = SpriteBank()
-    world = World(load_level(resolve_level(level_name)), bank.armatures, seed)
+    runner = Runner.open(StageStart(level_name, seed), bank.armatures)
+    world = runner.world
     pilot = Pilot()
     masks: dict[tuple[str, int, int], tuple[pygame.mask.Mask, int, int]] = {}
 
@@ -77,7 +78,7 @@ def level_visual_truth(level_name: str, frames: int, seed: int = 0) -> dict:
     entries = world.pipeline.layers.entries
     counts = {f"{names[a]}/{names[b]}": {"both": 0, "armature_only": 0, "sprite_only": 0} for a, b in entries}
     for _ in range(frames):
-        world.step(pilot(world))
+        runner.step(pilot(world))
         if world.over or world.complete or world.collision is None:
             break
         o = world.collision

@@ -1,29 +1,35 @@
-"""Recordings: a run's level, seed, settings, live toggles and inputs, with state hashes.
+"""Recordings: a whole run, every stage of it, with its inputs, toggles and state digests.
 
 A recording carries everything that can change the outcome (DESIGN.md, Recordings), so a
 replay is the same game or says why not. The file is UTF-8 JSON (docs/FORMATS.md):
 
-``version``        the format, 2 (a format-1 file gets a clear message, never a different game)
+``version``        the format, 3 (a format-1 or 2 file gets a clear message, never a different game)
 ``game_version``   the Broadsword that made it; another version is refused with a message
-``level``          a shipped level's name or a level file's path
-``level_sha256``   the level file's digest when recorded (optional); a changed file is refused
-``seed``           a whole number in [0, 2**63)
-``settings``       ``{"rotation": "lut" | "exact", "difficulty": "easy" | ...}``: every setting
-                   that changes the outcome
-``carry``          (optional) ``{"score": n, "lives": n | null, "continues": n}``: what the run
-                   brought into this level from the one before (null lives: the level's own)
-``toggles``        ``[[frame, "rotation", value], ...]``: each live switch, applied before
-                   that frame's step, frames not decreasing
-``inputs``         hex, one byte a frame (the :data:`INPUT_BITS` layout)
-``frames``         (optional) the number of inputs
-``checkpoints``    ``[[frame, hash], ...]``: the state hash after every ``CHECKPOINT_EVERY``-th step
-``state_hash``     (optional) the hash after the last step
+``parts``          the names of the state's parts, in the order of each frame's digests
+``frames``         the frames of the whole run (the sum of its stages')
+``stages``         one table a stage played, in play order:
 
-Every field is checked; a broken file raises :class:`DataError` naming the file and field.
+    ``start``          the run's frame this stage began at (the frames of the stages before it)
+    ``level``          a shipped level's name or a level file's path
+    ``level_sha256``   the level file's digest when recorded (optional); a changed file is refused
+    ``seed``           a whole number in [0, 2**63)
+    ``settings``       ``{"rotation": "lut" | "exact", "difficulty": "easy" | ...}``
+    ``carry``          (optional) ``{"score", "lives", "continues", "power"}`` the stage began with
+    ``toggles``        ``[[frame, name, value], ...]``: each live switch (F4's rotation, a
+                       continue), applied before that frame's step, frames not decreasing
+    ``frames``         the stage's number of inputs
+    ``inputs``         hex, one byte a frame (the :data:`INPUT_BITS` layout)
+    ``digests``        base64: after each frame, ``DIGEST_BYTES`` bytes per part
+    ``checkpoints``    ``[[frame, hash], ...]``: the state hash after every ``CHECKPOINT_EVERY``-th step
+    ``state_hash``     (optional) the hash after the stage's last step
+
+Frames inside a stage count from its start. Every field is checked; a broken file raises
+:class:`DataError` naming the file and field.
 """
 
 from __future__ import annotations
 
+import base64
 import hashlib
 import json
 import re
@@ -39,9 +45,14 @@ from .levels import LEVEL_MAX_BYTES
 from .resources import read_bytes, read_text
 
 #: The format this game reads and writes.
-FORMAT_VERSION = 2
-#: A recording is at most this big (two hex digits a frame: over 18 hours at 60 fps).
+FORMAT_VERSION = 3
+#: A recording is at most this big (with eight parts, about 46 characters a frame: some
+#: 50 minutes at 60 fps; a 5-minute run is about 0.8 MiB).
 RECORDING_MAX_BYTES = 8 << 20
+#: Bytes of each part's digest after each frame (a CRC-32: broadsword.sim.hashing).
+DIGEST_BYTES = 4
+#: At most this many stages in one recording, and this many parts.
+STAGES_MAX, PARTS_MAX = 1000, 32
 #: A state hash is kept after every this many steps.
 CHECKPOINT_EVERY = 600
 #: Settings a recording must name, and the values each may take.
@@ -73,10 +84,15 @@ def decode_input(b: int) -> tuple[int, int, bool, bool, bool]:
 
 
 # ---------------------------------------------------------------------- the record
+def _no_carry() -> dict:
+    return {"score": 0, "lives": None, "continues": 0, "power": None}
+
+
 @dataclass(frozen=True)
-class Recording:
-    """A run as data. ``inputs`` holds one byte a frame; ``toggles`` ``(frame, name, value)``;
-    ``checkpoints`` ``(frame, hash)``."""
+class StageRecording:
+    """One stage of a run as data. ``inputs`` holds one byte a frame; ``digests``
+    ``DIGEST_BYTES`` bytes per part a frame (empty: none kept); ``toggles`` ``(frame,
+    name, value)``; ``checkpoints`` ``(frame, hash)``; frames count from the stage's start."""
 
     level: str
     seed: int
@@ -86,17 +102,16 @@ class Recording:
     checkpoints: tuple[tuple[int, str], ...] = ()
     state_hash: str = ""
     level_sha256: str = ""
-    carry: dict = field(default_factory=lambda: {"score": 0, "lives": None, "continues": 0, "power": None})
-    game_version: str = __version__
+    carry: dict = field(default_factory=_no_carry)
+    digests: bytes = b""
 
     @property
     def frames(self) -> int:
         return len(self.inputs)
 
-    def to_json(self) -> dict:
+    def to_json(self, start: int) -> dict:
         doc = {
-            "version": FORMAT_VERSION,
-            "game_version": self.game_version,
+            "start": start,
             "level": self.level,
             "seed": self.seed,
             "settings": dict(self.settings),
@@ -104,12 +119,51 @@ class Recording:
             "toggles": [list(t) for t in self.toggles],
             "frames": self.frames,
             "inputs": self.inputs.hex(),
+            "digests": base64.b64encode(self.digests).decode(),
             "checkpoints": [list(c) for c in self.checkpoints],
             "state_hash": self.state_hash,
         }
         if self.level_sha256:
             doc["level_sha256"] = self.level_sha256
         return doc
+
+
+@dataclass(frozen=True)
+class Recording:
+    """A run as data: its stages in play order (each starts where the one before ended)
+    and ``parts``, the names of the state's parts in each frame's digests."""
+
+    stages: tuple[StageRecording, ...]
+    parts: tuple[str, ...] = ()
+    game_version: str = __version__
+
+    @property
+    def frames(self) -> int:
+        """Frames of the whole run."""
+        return sum(st.frames for st in self.stages)
+
+    @property
+    def starts(self) -> list[int]:
+        """The run's frame at which each stage began."""
+        out, at = [], 0
+        for st in self.stages:
+            out.append(at)
+            at += st.frames
+        return out
+
+    @property
+    def first(self) -> StageRecording:
+        """The stage the run began with (its level, seed and settings open a replay)."""
+        return self.stages[0]
+
+    def to_json(self) -> dict:
+        return {
+            "version": FORMAT_VERSION,
+            "game_version": self.game_version,
+            "parts": list(self.parts),
+            "frames": self.frames,
+            "stages": [st.to_json(at) for st, at in zip(self.stages, self.starts)],
+        }
 
 
 def file_sha256(path: str | Path) -> str:
@@ -124,83 +178,63 @@ def save_recording(path: str | Path, rec: Recording) -> None:
     write_atomic(path, (json.dumps(rec.to_json(), indent=1) + "\n").encode())
 
 
-def stage_recording_paths(path: str | Path, levels: list[str]) -> list[Path]:
-    """Where a run of several stages is saved by ``--record path``: one recording a stage
-    (each replays on its own: it carries the score, lives and continues it started with).
-    The first stage goes to ``path`` itself; each later one beside it, named after its
-    level: ``run.json`` then ``run-2-gauntlet.json``, ``run-3-broadsword.json``...
-    ``levels`` are the stages' level references (names or level file paths), in play order."""
-    path = Path(path)
-    out = [path]
-    for ref in levels[1:]:
-        out.append(path.with_name(f"{path.stem}-{Path(ref).stem}{path.suffix or '.json'}"))
-    return out
-
-
-def save_stage_recordings(path: str | Path, recs: list[Recording]) -> list[Path]:
-    """Save a run's stage recordings (:func:`stage_recording_paths`); returns the paths written."""
-    paths = stage_recording_paths(path, [r.level for r in recs])
-    for p, rec in zip(paths, recs):
-        save_recording(p, rec)
-    return paths
-
-
 # ---------------------------------------------------------------------- reading
 def _whole(v) -> TypeGuard[int]:
     return type(v) is int
 
 
-def _field(doc: dict, path: Path, key: str, kind, what: str, required: bool = True):
+def _field(doc: dict, path: Path, key: str, kind, what: str, required: bool = True, pre: str = ""):
     if key not in doc:
         if required:
-            raise DataError(path, key, f"missing: must be {what}")
+            raise DataError(path, pre + key, f"missing: must be {what}")
         return None
     v = doc[key]
     if not isinstance(v, kind) or isinstance(v, bool):
-        raise DataError(path, key, f"must be {what}, got {shown(v)}")
+        raise DataError(path, pre + key, f"must be {what}, got {shown(v)}")
     return v
 
 
-def _settings(doc: dict, path: Path) -> dict:
-    s = _field(doc, path, "settings", dict, f"a table of settings ({', '.join(SETTINGS)})")
+def _settings(doc: dict, path: Path, pre: str) -> dict:
+    s = _field(doc, path, "settings", dict, f"a table of settings ({', '.join(SETTINGS)})", pre=pre)
     for key in s:
         if key not in SETTINGS:
-            raise DataError(path, f"settings.{key}", f"unknown setting; settings are {', '.join(SETTINGS)}")
+            raise DataError(path, f"{pre}settings.{key}", f"unknown setting; settings are {', '.join(SETTINGS)}")
     for key, allowed in SETTINGS.items():
         if s.get(key) not in allowed:
             got = shown(s[key]) if key in s else "nothing (missing)"
-            raise DataError(path, f"settings.{key}", f"must be one of {', '.join(allowed)}; got {got}")
+            raise DataError(path, f"{pre}settings.{key}", f"must be one of {', '.join(allowed)}; got {got}")
     return dict(s)
 
 
-def _carry(doc: dict, path: Path) -> dict:
-    c = _field(doc, path, "carry", dict, "a table of score, lives, continues and power", required=False)
+def _carry(doc: dict, path: Path, pre: str) -> dict:
+    c = _field(doc, path, "carry", dict, "a table of score, lives, continues and power", required=False, pre=pre)
     if c is None:
-        return {"score": 0, "lives": None, "continues": 0, "power": None}
+        return _no_carry()
+    pre += "carry."
     for key in c:
         if key not in ("score", "lives", "continues", "power"):
-            raise DataError(path, f"carry.{key}", "unknown field (expected score, lives, continues, power)")
+            raise DataError(path, pre + key, "unknown field (expected score, lives, continues, power)")
     score, lives, continues, power = c.get("score", 0), c.get("lives"), c.get("continues", 0), c.get("power")
     if not _whole(score) or not 0 <= score < 2**63:
-        raise DataError(path, "carry.score", f"must be a whole number in [0, 2**63), got {shown(score)}")
+        raise DataError(path, pre + "score", f"must be a whole number in [0, 2**63), got {shown(score)}")
     if lives is not None and (not _whole(lives) or not 1 <= lives <= 99):
-        raise DataError(path, "carry.lives", f"must be a whole number in [1, 99] or null, got {shown(lives)}")
+        raise DataError(path, pre + "lives", f"must be a whole number in [1, 99] or null, got {shown(lives)}")
     if not _whole(continues) or not 0 <= continues <= 99:
-        raise DataError(path, "carry.continues", f"must be a whole number in [0, 99], got {shown(continues)}")
+        raise DataError(path, pre + "continues", f"must be a whole number in [0, 99], got {shown(continues)}")
     if power is not None and (not _whole(power) or not 0 <= power <= POWER_LIMIT):
         raise DataError(
-            path, "carry.power", f"must be a whole number in [0, {POWER_LIMIT}] or null, got {shown(power)}"
+            path, pre + "power", f"must be a whole number in [0, {POWER_LIMIT}] or null, got {shown(power)}"
         )
     return {"score": score, "lives": lives, "continues": continues, "power": power}
 
 
-def _toggles(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str, str], ...]:
-    raw = _field(doc, path, "toggles", list, "a list of [frame, name, value]", required=False) or []
+def _toggles(doc: dict, path: Path, frames: int, pre: str) -> tuple[tuple[int, str, str], ...]:
+    raw = _field(doc, path, "toggles", list, "a list of [frame, name, value]", required=False, pre=pre) or []
     if len(raw) > TOGGLES_MAX:
-        raise DataError(path, "toggles", f"must be at most {TOGGLES_MAX:,} toggles, got {len(raw):,}")
+        raise DataError(path, pre + "toggles", f"must be at most {TOGGLES_MAX:,} toggles, got {len(raw):,}")
     out, last = [], 0
     for i, t in enumerate(raw):
-        where = f"toggles[{i}]"
+        where = f"{pre}toggles[{i}]"
         if not (
             isinstance(t, list) and len(t) == 3 and _whole(t[0]) and isinstance(t[1], str) and isinstance(t[2], str)
         ):
@@ -219,13 +253,15 @@ def _toggles(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str, str], 
     return tuple(out)
 
 
-def _checkpoints(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str], ...]:
-    raw = _field(doc, path, "checkpoints", list, "a list of [frame, hash]", required=False) or []
+def _checkpoints(doc: dict, path: Path, frames: int, pre: str) -> tuple[tuple[int, str], ...]:
+    raw = _field(doc, path, "checkpoints", list, "a list of [frame, hash]", required=False, pre=pre) or []
     if len(raw) > frames // CHECKPOINT_EVERY + 1:
-        raise DataError(path, "checkpoints", f"must be at most one every {CHECKPOINT_EVERY} frames, got {len(raw):,}")
+        raise DataError(
+            path, pre + "checkpoints", f"must be at most one every {CHECKPOINT_EVERY} frames, got {len(raw):,}"
+        )
     out = []
     for i, c in enumerate(raw):
-        where = f"checkpoints[{i}]"
+        where = f"{pre}checkpoints[{i}]"
         if not (
             isinstance(c, list) and len(c) == 2 and _whole(c[0]) and isinstance(c[1], str) and _HEX_DIGEST.match(c[1])
         ):
@@ -239,10 +275,106 @@ def _checkpoints(doc: dict, path: Path, frames: int) -> tuple[tuple[int, str], .
     return tuple(out)
 
 
+def _inputs(doc: dict, path: Path, pre: str) -> bytes:
+    hexed = _field(doc, path, "inputs", str, "a hex string", pre=pre)
+    try:
+        inputs = bytes.fromhex(hexed)
+    except ValueError:
+        raise DataError(path, pre + "inputs", "must be a hex string, two digits a frame") from None
+    for i, b in enumerate(inputs):
+        try:
+            decode_input(b)
+        except ValueError as exc:
+            raise DataError(path, pre + "inputs", f"frame {i}: {exc}") from None
+    frames = len(inputs)
+    if not _whole(doc.get("frames")) or doc["frames"] != frames:
+        got = shown(doc["frames"]) if "frames" in doc else "nothing (missing)"
+        raise DataError(path, pre + "frames", f"must be the number of recorded inputs, {frames}; got {got}")
+    return inputs
+
+
+def _digests(doc: dict, path: Path, frames: int, parts: int, pre: str) -> bytes:
+    text = _field(doc, path, "digests", str, "base64 text", pre=pre)
+    try:
+        digests = base64.b64decode(text, validate=True)
+    except ValueError:
+        raise DataError(path, pre + "digests", "must be base64 text") from None
+    want = frames * parts * DIGEST_BYTES
+    if len(digests) != want:
+        raise DataError(
+            path,
+            pre + "digests",
+            f"must hold {DIGEST_BYTES} bytes per part ({parts}) a frame ({frames:,}): {want:,} bytes; "
+            f"got {len(digests):,}",
+        )
+    return digests
+
+
+_STAGE_FIELDS = {
+    "start",
+    "level",
+    "level_sha256",
+    "seed",
+    "settings",
+    "carry",
+    "toggles",
+    "frames",
+    "inputs",
+    "digests",
+    "checkpoints",
+    "state_hash",
+}
+_RUN_FIELDS = {"version", "game_version", "parts", "frames", "stages"}
+
+
+def _unknown(doc: dict, known: set[str], path: Path, pre: str) -> None:
+    extra = sorted(set(doc) - known)
+    if extra:
+        raise DataError(path, pre + extra[0], f"unknown field (expected some of {', '.join(sorted(known))})")
+
+
+def _stage(doc, path: Path, i: int, start: int, parts: int) -> StageRecording:
+    pre = f"stages[{i}]."
+    if not isinstance(doc, dict):
+        raise DataError(path, f"stages[{i}]", f"must be a table, got {shown(doc)}")
+    if doc.get("start") != start or not _whole(doc.get("start")):
+        got = shown(doc["start"]) if "start" in doc else "nothing (missing)"
+        raise DataError(path, pre + "start", f"must be {start} (the frames of the stages before it), got {got}")
+    level = _field(doc, path, "level", str, "a level name", pre=pre)
+    if not level:
+        raise DataError(path, pre + "level", "must name a level, got ''")
+    seed = _field(doc, path, "seed", int, "a whole number", pre=pre)
+    if not 0 <= seed < 2**63:
+        raise DataError(path, pre + "seed", f"must lie in [0, 2**63), got {shown(seed)}")
+    inputs = _inputs(doc, path, pre)
+    frames = len(inputs)
+    settings = _settings(doc, path, pre)
+    carry = _carry(doc, path, pre)
+    toggles = _toggles(doc, path, frames, pre)
+    checkpoints = _checkpoints(doc, path, frames, pre)
+    digests = _digests(doc, path, frames, parts, pre)
+    state_hash = _field(doc, path, "state_hash", str, "64 hex digits", required=False, pre=pre) or ""
+    if state_hash and not _HEX_DIGEST.match(state_hash):
+        raise DataError(path, pre + "state_hash", f"must be 64 hex digits, got {shown(state_hash)}")
+    digest = _field(doc, path, "level_sha256", str, "64 hex digits", required=False, pre=pre) or ""
+    if digest and not _HEX_DIGEST.match(digest):
+        raise DataError(path, pre + "level_sha256", f"must be 64 hex digits, got {shown(digest)}")
+    _unknown(doc, _STAGE_FIELDS, path, pre)
+    return StageRecording(level, seed, settings, inputs, toggles, checkpoints, state_hash, digest, carry, digests)
+
+
+def _parts(doc: dict, path: Path) -> tuple[str, ...]:
+    parts = _field(doc, path, "parts", list, "a list of the state's part names")
+    if not 1 <= len(parts) <= PARTS_MAX or not all(isinstance(p, str) and 0 < len(p) <= 32 for p in parts):
+        raise DataError(path, "parts", f"must be 1 to {PARTS_MAX} names (1-32 characters), got {shown(parts)}")
+    if len(set(parts)) != len(parts):
+        raise DataError(path, "parts", f"names must not repeat, got {shown(parts)}")
+    return tuple(parts)
+
+
 def load_recording(path: str | Path) -> Recording:
     """Parse and check a recording; :class:`DataError` naming the file and field if it is
-    broken, of another format, made by another version of the game, or recorded on a
-    level file that has changed since (when it names a file and kept its digest).
+    broken, of another format, or made by another version of the game.
 
     The file is at most ``RECORDING_MAX_BYTES`` (refused by its size before parsing),
     UTF-8 JSON read by :func:`json.loads`."""
@@ -271,51 +403,20 @@ def load_recording(path: str | Path) -> Recording:
             "version",
             f"must be {FORMAT_VERSION}, got {shown(version) if 'version' in doc else 'nothing (missing)'}",
         )
-    level = _field(doc, path, "level", str, "a level name")
-    if not level:
-        raise DataError(path, "level", "must name a level, got ''")
-    seed = _field(doc, path, "seed", int, "a whole number")
-    if not 0 <= seed < 2**63:
-        raise DataError(path, "seed", f"must lie in [0, 2**63), got {shown(seed)}")
-    hexed = _field(doc, path, "inputs", str, "a hex string")
-    try:
-        inputs = bytes.fromhex(hexed)
-    except ValueError:
-        raise DataError(path, "inputs", "must be a hex string, two digits a frame") from None
-    for i, b in enumerate(inputs):
-        try:
-            decode_input(b)
-        except ValueError as exc:
-            raise DataError(path, "inputs", f"frame {i}: {exc}") from None
-    frames = len(inputs)
-    if "frames" in doc and (not _whole(doc["frames"]) or doc["frames"] != frames):
-        raise DataError(path, "frames", f"must be the number of recorded inputs, {frames}; got {shown(doc['frames'])}")
-    settings = _settings(doc, path)
-    carry = _carry(doc, path)
-    toggles = _toggles(doc, path, frames)
-    checkpoints = _checkpoints(doc, path, frames)
-    state_hash = _field(doc, path, "state_hash", str, "a string", required=False) or ""
-    digest = _field(doc, path, "level_sha256", str, "64 hex digits", required=False) or ""
-    if digest and not _HEX_DIGEST.match(digest):
-        raise DataError(path, "level_sha256", f"must be 64 hex digits, got {shown(digest)}")
     made_by = _field(doc, path, "game_version", str, "a version string")
-    known = {
-        "version",
-        "game_version",
-        "level",
-        "level_sha256",
-        "seed",
-        "settings",
-        "carry",
-        "toggles",
-        "frames",
-        "inputs",
-        "checkpoints",
-        "state_hash",
-    }
-    extra = sorted(set(doc) - known)
-    if extra:
-        raise DataError(path, extra[0], f"unknown field (expected some of {', '.join(sorted(known))})")
+    parts = _parts(doc, path)
+    raw = _field(doc, path, "stages", list, "a list of the run's stages")
+    if not 1 <= len(raw) <= STAGES_MAX:
+        raise DataError(path, "stages", f"must hold 1 to {STAGES_MAX} stages, got {len(raw):,}")
+    stages: list[StageRecording] = []
+    at = 0
+    for i, st in enumerate(raw):
+        stages.append(_stage(st, path, i, at, len(parts)))
+        at += stages[-1].frames
+    if not _whole(doc.get("frames")) or doc["frames"] != at:
+        got = shown(doc["frames"]) if "frames" in doc else "nothing (missing)"
+        raise DataError(path, "frames", f"must be the frames of every stage, {at}; got {got}")
+    _unknown(doc, _RUN_FIELDS, path, "")
     if made_by != __version__:
         raise DataError(
             path,
@@ -323,15 +424,15 @@ def load_recording(path: str | Path) -> Recording:
             f"made by Broadsword {shown(made_by)}; this is {__version__}, whose "
             "game may differ: replay it with the version that made it",
         )
-    return Recording(level, seed, settings, inputs, toggles, checkpoints, state_hash, digest, carry, made_by)
+    return Recording(tuple(stages), parts, made_by)
 
 
-def check_level_digest(rec: Recording, rec_path: str | Path, level_path: str | Path) -> None:
-    """Refuse a recording whose level file has changed since it was made (when it kept the
-    file's digest): a :class:`DataError` naming the recording's ``level_sha256``."""
-    if rec.level_sha256 and file_sha256(level_path) != rec.level_sha256:
+def check_level_digest(stage: StageRecording, index: int, rec_path: str | Path, level_path: str | Path) -> None:
+    """Refuse stage ``index`` of a recording when its level file has changed since it was
+    made (when it kept the file's digest): a :class:`DataError` naming its ``level_sha256``."""
+    if stage.level_sha256 and file_sha256(level_path) != stage.level_sha256:
         raise DataError(
             rec_path,
-            "level_sha256",
+            f"stages[{index}].level_sha256",
             f"the level {level_path} has changed since this was recorded; the replay would be a different game",
         )

@@ -25,15 +25,15 @@ import pygame
 from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
+from ..runner import Runner, Stage
 from ..sim import FIELD, World
-from ..sim.replay import Playback, Recorder
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
 from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
 from .render import Renderer
-from .run import Run, Stage, load_stage, replay_stage
+from .run import Run, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
 from .scenes.play import (
@@ -138,7 +138,7 @@ class App:
         for warning in warnings:
             print(f"broadsword: {warning}", file=sys.stderr)
         self.message = "; ".join(warnings) or None
-        self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
+        self.runner: Runner | None = None  # the run in play (or last played), every stage of it
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -166,14 +166,9 @@ class App:
         play = self.play
         return play.world if play is not None else None
 
-    @property
-    def recorder(self) -> Recorder | None:
-        """The stage in play (or last played), as a :class:`~broadsword.sim.replay.Recorder`; None before any."""
-        return self.recorders[-1] if self.recorders else None
-
-    def recordings(self) -> list[Recording]:
-        """The run in play (or the last one played): one recording a stage, in play order."""
-        return [r.recording() for r in self.recorders]
+    def recording(self) -> Recording | None:
+        """The run in play (or the last one played), every stage in one recording; None before any."""
+        return self.runner.recording() if self.runner is not None else None
 
     @property
     def difficulty(self) -> Difficulty:
@@ -267,36 +262,48 @@ class App:
         one) on the chosen difficulty. Returns False, and shows the title with the error, if
         the level fails to load."""
         run = Run(self.start_index if index is None else index, self.difficulty, self.custom_level)
-        self.recorders = []  # a new run: its stages are recorded afresh
         return self.begin_stage(run)
 
-    def begin_stage(self, run: Run) -> bool:
-        """Load the run's current stage and play it; on failure, the title with the error."""
+    def begin_stage(self, run: Run, go_on: bool = False) -> bool:
+        """Load the run's current stage and play it (``go_on``: as the next stage of the run
+        in play, recorded with it; else as a new run); on failure, the title with the error."""
         try:
             stage = load_stage(run, self.levels, self.bank.armatures, self.seed)
         except DataError as exc:
             self.report(exc)
             self.to_title()
             return False
-        self.play_stage(stage, run)
+        if go_on and self.runner is not None:
+            self.runner.begin_stage(stage)
+            self.play_stage(stage, run, self.runner)
+        else:
+            self.play_stage(stage, run)
         return True
 
-    def play_stage(self, stage: Stage, run: Run | None = None) -> Play:
-        """Play ``stage`` (a world already made) as the only scene."""
+    def play_stage(self, stage: Stage, run: Run | None = None, runner: Runner | None = None) -> Play:
+        """Play ``stage`` (a world already made) as the only scene: in ``runner`` (whose
+        stage in play it is), else as a new run."""
         self.error = None
-        play = Play(self, stage, run or Run(0, stage.world.settings.difficulty))
-        self.recorders.append(play.recorder)
+        self.runner = runner if runner is not None else Runner(stage)
+        play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty))
         self.stack.reset(play)
         return play
 
     def watch_replay(self, rec: Recording, path: str) -> Play:
         """Play recording ``rec`` (read from ``path``) on screen: its inputs and toggles drive
         the world, with pause, single-step and the overlay; at its end, or at the first
-        checkpoint that differs, a message says which. DataError if its level cannot load
-        or has changed since it was recorded."""
-        stage = replay_stage(rec, path, self.bank.armatures)
-        run = Run.of_level(rec.level, self.levels, stage.world.settings.difficulty)  # its stage's music
-        play = Play(self, stage, run, ReplayInput(Playback(rec, stage.world)))
+        frame that differs, a message says which (the frame and the part of the state).
+        DataError if its level cannot load or has changed since it was recorded."""
+        runner = Runner.replaying(rec, path, self.bank.armatures)
+        return self.watch_stage(runner, path)
+
+    def watch_stage(self, runner: Runner, path: str) -> Play:
+        """Watch the stage in play of ``runner`` (a replay's), with its own stage's music."""
+        world = runner.world
+        run = Run.of_level(runner.stage.level_ref, self.levels, world.settings.difficulty)
+        self.error = None
+        self.runner = runner
+        play = Play(self, runner, run, ReplayInput(runner, path))
         self.stack.reset(play)
         return play
 

@@ -1,16 +1,15 @@
 """A play-through: which stage is in play, on which difficulty, and what carries to the next.
 
-Loading a stage (level file -> checked sprites -> :class:`~broadsword.sim.World`) lives here
-too, so the title, the results screen and the replay viewer start stages the same way.
+Where a run's stage starts (:func:`stage_start`) lives here too; the stage is opened by the
+runner (:func:`broadsword.runner.open_stage`), as every other world of the game is.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..data import check_level_sprites, load_level, resolve_level
 from ..data.difficulty import Difficulty
-from ..data.recordings import Recording, check_level_digest, file_sha256
+from ..runner import Stage, StageStart, open_stage
 from ..sim import Carry, Settings, World
 
 
@@ -74,40 +73,18 @@ class Run:
         self.totals = self.totals.plus(world, cleared=True)
 
 
-@dataclass
-class Stage:
-    """A loaded stage: the world and what a recording needs to name it."""
-
-    world: World
-    level_ref: str
-    digest: str
-
-
-def load_stage(run: Run, levels: list[str], armatures, seed: int) -> Stage:
-    """Load the run's current stage into a new world (the seed moves on with each stage).
-    :class:`~broadsword.data.DataError` naming the file and field if it cannot load."""
-    ref = run.level_ref(levels)
-    path = resolve_level(ref)
-    level = load_level(path)
-    check_level_sprites(level, armatures)  # names the field of an unknown sprite
-    world = World(
-        level,
-        armatures,
-        seed=seed + run.level_index,
-        settings=Settings(difficulty=run.difficulty),
-        carry=Carry(run.score, run.lives, run.continues, run.power),
+def stage_start(run: Run, levels: list[str], seed: int) -> StageStart:
+    """Where the run's current stage starts: its level, the run's difficulty and what the
+    stages before carry (the seed moves on with each stage)."""
+    return StageStart(
+        run.level_ref(levels),
+        seed + run.level_index,
+        Settings(difficulty=run.difficulty),
+        Carry(run.score, run.lives, run.continues, run.power),
     )
-    return Stage(world, ref, file_sha256(path))
 
 
-def replay_stage(rec: Recording, rec_path: str, armatures) -> Stage:
-    """The world a recording was played in: its level (checked against the digest it kept),
-    seed, settings and carry. :class:`~broadsword.data.DataError` if the level cannot load
-    or has changed since."""
-    path = resolve_level(rec.level)
-    level = load_level(path)  # its size and kind checked before any digest reads it
-    check_level_digest(rec, rec_path, path)
-    check_level_sprites(level, armatures)
-    settings = Settings(rotation=rec.settings["rotation"], difficulty=rec.settings["difficulty"])
-    carry = Carry(**rec.carry)
-    return Stage(World(level, armatures, rec.seed, settings, carry), rec.level, file_sha256(path))
+def load_stage(run: Run, levels: list[str], armatures: dict, seed: int) -> Stage:
+    """Open the run's current stage (:func:`stage_start`) in a new world.
+    :class:`~broadsword.data.DataError` naming the file and field if it cannot load."""
+    return open_stage(stage_start(run, levels, seed), armatures)

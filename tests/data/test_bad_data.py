@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from broadsword import cli, headless
+from broadsword import cli
 from broadsword.data import (
     DataError,
     data_dir,
@@ -36,6 +36,7 @@ from broadsword.data import (
 from broadsword.data.armatures import FILE_MAX_BYTES, SUFFIX
 from broadsword.data.errors import FIELD_MAX_CHARS, MESSAGE_MAX_CHARS
 from broadsword.data.levels import LEVEL_MAX_BYTES, check_level_sprites
+from broadsword.runner import stages
 
 BAD = Path(__file__).parent / "bad"
 EXPECTED = tomllib.loads((BAD / "EXPECTED.toml").read_text(encoding="utf-8"))
@@ -65,12 +66,11 @@ def ring(n: int, r: float = 100.0) -> str:
 
 
 RECORDING = {
-    "version": 2,
+    "version": 3,
     "game_version": "test",
-    "level": "1-picket",
-    "seed": 9,
-    "settings": {"rotation": "lut", "difficulty": "normal"},
+    "parts": ["player"],
     "frames": 4,
+    "stages": [],  # the size tests below pad "inputs": only the file's size matters there
     "inputs": "05050505",
 }
 
@@ -137,7 +137,7 @@ GENERATED = {
     ),
     ("recordings", "deep-nesting.json"): (lambda: "[" * DEEP + "]" * DEEP, "", "nested too deeply"),
     ("recordings", "giant-number.json"): (
-        lambda: '{"version": 2, "level": "1-picket", "seed": ' + "9" * 5000 + ', "inputs": ""}',
+        lambda: '{"version": 3, "parts": ["player"], "stages": [{"start": 0, "seed": ' + "9" * 5000 + "}]}",
         "",
         "bad JSON",
     ),
@@ -322,7 +322,7 @@ def test_headless_with_a_bad_armature__exit_2_and_the_loader_line(
     shutil.copy(path, assets / "sprites" / path.name)
     # The headless command loads the armatures of data_dir("assets"); point it at a copy
     # of the shipped ones with the bad file added.
-    monkeypatch.setattr(headless, "data_dir", lambda kind: assets if kind == "assets" else data_dir(kind))
+    monkeypatch.setattr(stages, "data_dir", lambda kind: assets if kind == "assets" else data_dir(kind))
     code = cli.main(["--headless", "--level", "1-picket", "--frames", "5"])
     out, err = capsys.readouterr()
     assert code == 2 and out == ""

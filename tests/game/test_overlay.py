@@ -68,13 +68,14 @@ def test_overlay_panel__every_line_fits_the_panel_paused_or_not(monkeypatch):
     """The panel's text is never cut at its right edge (it was: "... (F4)   PAUSED  F2:"), and
     paused, it says so with the step key on a line of its own."""
     from broadsword.game import drawing, overlay
-    from broadsword.headless import make_world
+    from broadsword.runner import Runner, StageStart
     from broadsword.sim import Input, Settings
 
     pygame.init()
-    world, _ = make_world("3-broadsword", 1, Settings(rotation="exact"))
+    runner = Runner.open(StageStart("3-broadsword", 1, Settings(rotation="exact")))
+    world = runner.world
     for _ in range(3):
-        world.step(Input(fire=True))
+        runner.step(Input(fire=True))
     drawn = []
     real_text = drawing.PygameDraw.text
 

@@ -23,19 +23,16 @@ FRAMES = 150
 @pytest.fixture(scope="module")
 def recording():
     """A short autopilot run with a live rotation toggle, recorded headless."""
-    from broadsword.headless import make_world
-    from broadsword.sim import Pilot, Settings
-    from broadsword.sim.replay import Recorder
+    from broadsword.runner import Runner, StageStart
+    from broadsword.sim import Pilot
 
-    world, digest = make_world("1-picket", 5, Settings())
-    rec, pilot = Recorder(world, "1-picket", digest), Pilot()
+    runner, pilot = Runner.open(StageStart("1-picket", 5)), Pilot()
+    world = runner.world
     for f in range(FRAMES):
         if f == 40:
             world.set_rotation("exact" if world.rotation == "lut" else "lut")
-        inp = pilot(world)
-        world.step(inp)
-        rec.stepped(inp)
-    return rec.recording(), world.state_hash()
+        runner.step(pilot(world))
+    return runner.recording(), world.state_hash()
 
 
 @pytest.fixture
@@ -58,7 +55,7 @@ def test_replay_window__plays_the_recording_to_its_end_and_says_it_matches(app, 
     assert isinstance(app.scene, ReplayEnd) and app.scene.ok
     assert app.world.frame == FRAMES and app.world.state_hash() == final_hash
     assert app.world.toggles[0].frame == 40  # the recorded toggle was applied on its frame
-    assert "every checkpoint matched" in " ".join(app.scene.lines)
+    assert "every frame matched" in " ".join(app.scene.lines)
 
 
 def test_replay_window__pause_and_single_step(app, recording):
@@ -86,11 +83,32 @@ def test_replay_window__pause_and_single_step(app, recording):
 
 def test_replay_window__a_different_ending_is_said(app, recording):
     rec, _ = recording
-    app.watch_replay(dataclasses.replace(rec, state_hash="0" * 64), "run.json")
+    st = dataclasses.replace(rec.first, state_hash="0" * 64)
+    app.watch_replay(dataclasses.replace(rec, stages=(st,)), "run.json")
     for _ in range(FRAMES + 5):
         app.frame(DT)
     assert isinstance(app.scene, ReplayEnd) and not app.scene.ok
-    assert "another state" in app.scene.lines[0]
+    assert f"differs at frame {FRAMES}: a checkpoint's hash" in app.scene.lines[0]
+
+
+def test_replay_window__the_first_frame_that_differs_and_its_part_are_said(app, recording):
+    """The banner says what the headless JSON says: the frame and the part; the replay stops there."""
+    from broadsword.sim import Input
+
+    rec, _ = recording
+    raw = bytearray(rec.first.inputs)
+    k = next(i for i, b in enumerate(raw) if i > 20 and Input.from_byte(b).dx != 0)
+    old = Input.from_byte(raw[k])
+    raw[k] = Input(-old.dx, old.dy, old.fire, old.slow).to_byte()
+    st = dataclasses.replace(rec.first, inputs=bytes(raw))
+    app.watch_replay(dataclasses.replace(rec, stages=(st,)), "run.json")
+    for _ in range(FRAMES + 5):
+        app.frame(DT)
+    assert isinstance(app.scene, ReplayEnd) and not app.scene.ok
+    assert app.scene.lines[0] == f"The replay differs at frame {k + 1:,}: the player"
+    assert app.world.frame == k + 1
+    surf = pygame.Surface((480, 640))
+    app.stack.draw(surf)
 
 
 def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
@@ -120,28 +138,27 @@ def test_replay_window__plays_the_recorded_stages_music(app, index):
     on the last stage), not stage 1's."""
     from broadsword.game.music import Track
     from broadsword.game.soundtrack import soundtrack
-    from broadsword.headless import make_world
-    from broadsword.sim import Input, Settings
-    from broadsword.sim.replay import Recorder
+    from broadsword.runner import Runner, StageStart
+    from broadsword.sim import Input
 
     level = app.levels[index]
-    world, digest = make_world(level, 3, Settings())
-    rec = Recorder(world, level, digest)
+    runner = Runner.open(StageStart(level, 3), app.bank.armatures)
     for _ in range(5):
-        inp = Input()
-        world.step(inp)
-        rec.stepped(inp)
-    play = app.watch_replay(rec.recording(), "run.json")
+        runner.step(Input())
+    play = app.watch_replay(runner.recording(), "run.json")
     app.frame(DT)
     assert soundtrack(app) is Track.stage(index + 1)
     assert play.run.has_next(app.levels) == (index + 1 < len(app.levels))
 
 
-def test_record_window__a_run_of_two_stages_saves_one_replayable_recording_a_stage(tmp_path, monkeypatch, capsys):
-    """``--record FILE`` on a windowed run that goes on to stage 2: FILE holds stage 1 and
-    FILE-2-gauntlet.json stage 2 (with the score it started with), each replaying to the
-    state it was left in -- not only the last stage."""
+def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(tmp_path, monkeypatch, capsys):
+    """``--record FILE`` on a windowed run that goes on to stage 2: FILE holds both stages,
+    stage 2 with where it started and the score it started with; the headless replay plays
+    both to the state the run was left in, and so does the window, stage after stage with
+    each stage's music."""
     from broadsword.data.recordings import load_recording
+    from broadsword.game.music import Track
+    from broadsword.game.soundtrack import soundtrack
 
     monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
     ends = []
@@ -150,22 +167,62 @@ def test_record_window__a_run_of_two_stages_saves_one_replayable_recording_a_sta
         for _ in range(30):
             self.frame(DT)
         self.play._cleared()  # stage 1 ends (its results screen), then on to stage 2
+        ends.append(self.world.score.points)
         self.scene.next()
         for _ in range(20):
             self.frame(DT)
-        ends.extend(r.world.state_hash() for r in self.recorders)
-        ends.append(self.recorders[0].world.score.points)
+        ends.append(self.world.state_hash())
 
     monkeypatch.setattr(App, "run", run)
     path = tmp_path / "run.json"
     assert cli.main(["--level", "1-picket", "--autopilot", "--record", str(path), "--mute"]) == 0
     pygame.quit()
-    second = tmp_path / "run-2-gauntlet.json"
-    assert "run-2-gauntlet.json" in capsys.readouterr().err
-    first_rec, second_rec = load_recording(path), load_recording(second)
-    assert (first_rec.level, second_rec.level) == ("1-picket", "2-gauntlet")
-    assert (first_rec.frames, second_rec.frames) == (30, 20)
-    assert second_rec.carry["score"] == ends[-1]  # stage 2 starts with what stage 1 ended with
-    for p, rec, end in zip((path, second), (first_rec, second_rec), ends):
-        summary, _ = run_headless("", rec.frames, 0, False, rec, str(p))
-        assert summary["replay_matches"] is True and summary["state_hash"] == end
+    assert [p.name for p in tmp_path.iterdir() if p.suffix == ".json"] == ["run.json"]  # one file
+    rec = load_recording(path)
+    assert [st.level for st in rec.stages] == ["1-picket", "2-gauntlet"] and rec.starts == [0, 30]
+    assert rec.frames == 50 and rec.stages[1].carry["score"] == ends[0]
+    summary, _ = run_headless("", rec.frames, 0, False, rec, str(path))
+    assert summary["replay_matches"] is True and summary["state_hash"] == ends[1]
+    assert summary["frames"] == 50 and summary["stages"] == 2
+
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"))
+    app.watch_replay(rec, str(path))
+    tracks = set()
+    for _ in range(60):
+        app.frame(DT)
+        tracks.add(soundtrack(app))
+    assert isinstance(app.scene, ReplayEnd) and app.scene.ok, app.scene.lines
+    assert app.world.level.name == "2-gauntlet" and app.world.state_hash() == ends[1]
+    assert {Track.stage(1), Track.stage(2)} <= tracks
+    pygame.quit()
+
+
+@pytest.mark.parametrize("fault", ["truncated", "changed level"])
+def test_replay_window__a_bad_recording_opens_the_title_and_says_why(tmp_path, recording, monkeypatch, capsys, fault):
+    """In a window the game goes on: a broken recording (or one whose level changed) leaves
+    it on the title, the error shown there and said on stderr, exit 0."""
+    from broadsword.game.scenes import Title
+
+    rec, _ = recording
+    path = tmp_path / "run.json"
+    save_recording(path, rec)
+    text = path.read_text()
+    if fault == "truncated":
+        path.write_text(text[: len(text) // 2])
+    else:
+        path.write_text(text.replace(rec.first.level_sha256, "0" * 64))
+    monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
+    seen = []
+
+    def run(self):
+        self.frame(DT)
+        seen.append((type(self.scene), self.error))
+
+    monkeypatch.setattr(App, "run", run)
+    assert cli.main(["--replay", str(path), "--mute"]) == 0
+    pygame.quit()
+    ((scene, error),) = seen
+    assert scene is Title and error is not None and str(path) in error
+    assert ("bad JSON" if fault == "truncated" else "has changed") in error
+    err = capsys.readouterr().err
+    assert err.count(str(path)) == 1 and "Traceback" not in err

@@ -206,7 +206,7 @@ def test_title__up_down_choose_the_difficulty_it_plays_and_remembers(app, tmp_pa
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Play) and app.world.settings.difficulty is Difficulty.HARD
-    assert app.recorder.settings["difficulty"] == "hard"
+    assert app.recording().first.settings["difficulty"] == "hard"
 
 
 def test_title__o_opens_options_and_h_the_high_scores(app):
@@ -247,7 +247,8 @@ def test_results__the_next_stage_keeps_the_power_won(app):
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Play) and app.world is not world
-    assert app.world.player.power == 260 and app.recorder.recording().carry["power"] == 260
+    rec = app.recording()  # one run: both stages, the second starting with the power won
+    assert app.world.player.power == 260 and len(rec.stages) == 2 and rec.stages[1].carry["power"] == 260
 
 
 def test_results__a_missed_bonus_says_why(app):

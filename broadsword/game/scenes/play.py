@@ -1,10 +1,12 @@
 """A stage in play: the world stepping at a fixed rate, driven by the player, the autopilot
 or a recording, drawn with interpolation, the overlay on top when toggled.
 
+The stage runs in the run's :class:`~broadsword.runner.Runner` (which records it, and checks
+a replay frame by frame): :meth:`Play.step` is the runner's step, the one the benchmark times.
 Where its input comes from is an :class:`InputSource`: :class:`PlayerInput` (keys and pad
 through the bindings), :class:`Pilot` (the autopilot) or :class:`ReplayInput` (a recording's
-inputs and live toggles, with its checkpoints checked as it goes). What a stage's end or a
-game over leads to (results, continue, game over) is pushed over this scene.
+inputs and live toggles, every stage of it). What a stage's end or a game over leads to
+(results, continue, game over, the replay's end) is pushed over this scene.
 """
 
 from __future__ import annotations
@@ -13,8 +15,9 @@ from typing import Protocol
 
 import pygame
 
+from ...data import DataError
+from ...runner import Playback, Runner
 from ...sim import DT, Input, Pilot, World
-from ...sim.replay import Playback, Recorder
 from .. import heap
 from ..controls import Action, Controls
 
@@ -65,18 +68,33 @@ class AutopilotInput:
 
 
 class ReplayInput:
-    """A recording's inputs; ``playback`` says where it first differed, if it did."""
+    """A recording's inputs, played by a runner made by :meth:`Runner.replaying` (read from
+    ``path``); its ``playback`` says where it first differed, if it did."""
 
     watched = True
 
-    def __init__(self, playback: Playback):
-        self.playback = playback
+    def __init__(self, runner: Runner, path: str):
+        self.runner, self.path = runner, path
+        self.error: str | None = None  # why the next stage could not open, if it could not
+
+    @property
+    def playback(self) -> Playback:
+        assert self.runner.playback is not None  # a replaying runner has one
+        return self.runner.playback
 
     def next(self, world: World) -> Input | None:
-        return self.playback.next_input()
+        return self.runner.replay_input()
 
     def stepped(self, world: World) -> None:
-        self.playback.stepped()
+        pass
+
+    def next_stage(self, armatures: dict) -> bool:
+        """Go on to the recording's next stage when this one was played to its end."""
+        try:
+            return self.runner.replay_next_stage(self.path, armatures)
+        except DataError as exc:
+            self.error = str(exc)
+            return False
 
 
 class Play:
@@ -85,13 +103,13 @@ class Play:
 
     opaque = True
 
-    def __init__(self, app, stage, run, source: InputSource | None = None):
-        self.app, self.run, self.world = app, run, stage.world
-        self.level_ref = stage.level_ref
+    def __init__(self, app, runner: Runner, run, source: InputSource | None = None):
+        self.app, self.run, self.runner = app, run, runner
+        self.world = runner.world
+        self.level_ref = runner.stage.level_ref
         if source is None:
             source = AutopilotInput() if app.demo else PlayerInput(app.controls)
         self.source = source
-        self.recorder = Recorder(self.world, stage.level_ref, stage.digest)
         self.accumulator = 0.0
         self.slow_motion = False
         self.ended = False  # the stage is over (results, continue, game over or replay end on top)
@@ -137,11 +155,14 @@ class Play:
         """One fixed step: input, world, sounds and effects, then what its end leads to."""
         world = self.world
         inp = self.source.next(world)
-        if inp is None:  # a recording ran out
-            self._end_replay()
+        if inp is None:  # a recording's stage ran out (or ended, or differed)
+            if isinstance(self.source, ReplayInput) and self.source.next_stage(self.app.bank.armatures):
+                self.ended = True
+                self.app.watch_stage(self.runner, self.source.path)  # its next stage, with its music
+            else:
+                self._end_replay()
             return
-        ev = world.step(inp)
-        self.recorder.stepped(inp)
+        ev = self.runner.step(inp)
         self.source.stepped(world)
         self.app.renderer.on_events(ev)
         audio = self.app.audio
@@ -157,21 +178,13 @@ class Play:
             audio.play("big_explosion" if ev.boss_killed else "explosion")
         if isinstance(self.source, ReplayInput):
             playback = self.source.playback
-            if (
-                playback.mismatch is not None
-                or playback.done
-                or world.complete
-                or (world.over and not self._continue_pending(playback))
-            ):
+            if playback.divergence is not None or playback.done:
+                playback.end_stage(world)
                 self._end_replay()
         elif ev.game_over:
             self._game_over()
         elif ev.level_complete:
             self._cleared()
-
-    @staticmethod
-    def _continue_pending(playback: Playback) -> bool:
-        return any(t[1] == "continue" and t[0] >= playback.world.frame for t in playback.rec.toggles)
 
     def _game_over(self) -> None:
         from .continue_screen import Continue

@@ -1,4 +1,5 @@
-"""Over a recording played on screen, when it ends or first differs: what happened.
+"""Over a recording played on screen, when it ends or first differs: what happened (the
+first frame that differs and the part of the state, as the headless JSON says).
 
 The stage stays underneath, frozen at the last frame played; Esc or Enter closes the game
 (the viewer's only job was this recording), F1 still shows the overlay.
@@ -8,6 +9,7 @@ from __future__ import annotations
 
 import pygame
 
+from ...runner import CHECKPOINT
 from .. import ui
 from ..controls import Action
 
@@ -17,29 +19,35 @@ class ReplayEnd:
 
     def __init__(self, app, play):
         self.app, self.play = app, play
-        playback = play.source.playback
+        source = play.source
+        playback = source.playback
         world = play.world
-        final = playback.final_check()
-        if playback.mismatch is not None:
-            m = playback.mismatch
+        d = playback.divergence
+        if d is not None:
             self.ok = False
+            what = "a checkpoint's hash" if d.part == CHECKPOINT else f"the {d.part}"
             self.lines = [
-                f"The replay differs from frame {m.frame:,}",
-                f"recorded {m.expected[:16]}...",
-                f"this run {m.got[:16]}...",
+                f"The replay differs at frame {d.frame:,}: {what}",
+                f"(stage {playback.index + 1}, its frame {world.frame:,}); it stopped there",
             ]
-        elif final is False:
+        elif source.error is not None:
+            self.ok = False
+            self.lines = ["The replay's next stage cannot open:", *app.lines(source.error, 560, 3)]
+        elif not playback.done:
             self.ok = False
             self.lines = [
-                f"The replay ended at frame {world.frame:,} in another state",
-                "than the one recorded (final state hash differs)",
+                f"The replay ended at frame {playback.played:,} of {playback.rec.frames:,}",
+                "the game ended before the recording did",
             ]
         else:
-            self.ok = True
+            self.ok = playback.matches
             what = "cleared" if world.complete else "game over" if world.over else "ended"
+            stages = len(playback.rec.stages)
             self.lines = [
-                f"Replay finished at frame {world.frame:,} ({what})",
-                f"every checkpoint matched; score {world.score.points:,}",
+                f"Replay finished at frame {playback.played:,} ({what})",
+                f"{stages} stage{'s' if stages != 1 else ''}, every frame matched; score {world.score.points:,}"
+                if self.ok
+                else "in another state than the one recorded (final state hash differs)",
             ]
 
     def handle(self, event: pygame.event.Event) -> bool:

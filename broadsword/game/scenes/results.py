@@ -76,7 +76,7 @@ class Results:
         run.carry_from(w)
         if run.has_next(self.app.levels):
             run.level_index += 1
-            self.app.begin_stage(run)
+            self.app.begin_stage(run, go_on=True)
         else:
             self.app.stack.replace(GameOver(self.app, self.play, victory=True))
 

@@ -1,0 +1,70 @@
+"""Recording a run as it is played: every stage's start, inputs, live toggles, each frame's
+state digests by part, and a checkpoint hash every ``CHECKPOINT_EVERY`` frames."""
+
+from __future__ import annotations
+
+from ..data.recordings import CHECKPOINT_EVERY, Recording, StageRecording
+from ..sim import Input
+from ..sim.hashing import Part
+from .stages import Stage
+
+#: The names of the state's parts, in the order of each frame's digests.
+PARTS = tuple(p.value for p in Part)
+
+
+class _StageTape:
+    """One stage being recorded."""
+
+    def __init__(self, stage: Stage):
+        world = stage.world
+        self.world, self.level_ref, self.level_sha256 = world, stage.level_ref, stage.digest
+        self.settings = {"rotation": world.rotation, "difficulty": world.settings.difficulty.value}
+        self.inputs = bytearray()
+        self.digests = bytearray()
+        self.checkpoints: list[tuple[int, str]] = []
+
+    def stepped(self, inp: Input, digests: bytes) -> None:
+        self.inputs.append(inp.to_byte())
+        self.digests += digests
+        if self.world.frame % CHECKPOINT_EVERY == 0:
+            self.checkpoints.append((self.world.frame, self.world.state_hash()))
+
+    def recording(self) -> StageRecording:
+        w = self.world
+        toggles = tuple((t.frame, t.toggle.value, t.value) for t in w.toggles)
+        c = w.carry
+        return StageRecording(
+            self.level_ref,
+            w.seed,
+            dict(self.settings),
+            bytes(self.inputs),
+            toggles,
+            tuple(self.checkpoints),
+            w.state_hash(),
+            self.level_sha256,
+            carry={"score": c.score, "lives": c.lives, "continues": c.continues, "power": c.power},
+            digests=bytes(self.digests),
+        )
+
+
+class Recorder:
+    """Keeps a run's stages: :meth:`begin` when a stage starts (its settings are read then),
+    :meth:`stepped` after every step of it with the step's input and the state's
+    :func:`~broadsword.sim.hashing.part_digests`; :meth:`recording` at any time."""
+
+    def __init__(self):
+        self._tapes: list[_StageTape] = []
+
+    def begin(self, stage: Stage) -> None:
+        self._tapes.append(_StageTape(stage))
+
+    def stepped(self, inp: Input, digests: bytes) -> None:
+        self._tapes[-1].stepped(inp, digests)
+
+    @property
+    def stages(self) -> int:
+        return len(self._tapes)
+
+    def recording(self) -> Recording:
+        """The run so far: every stage begun, in order."""
+        return Recording(tuple(t.recording() for t in self._tapes), PARTS)
