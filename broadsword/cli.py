@@ -36,9 +36,9 @@ from dataclasses import dataclass
 
 from . import __version__
 from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, frame_list, lab_size, natural, nonempty, seed
-from .data import DataError, list_levels, load_level, resolve_level
+from .data import DataError, list_levels, load_level, recordings, resolve_level
 from .data.difficulty import Difficulty
-from .data.recordings import Recording, load_recording, save_recording
+from .data.recordings import Recording, load_recording
 from .fileio import check_writable
 
 
@@ -296,7 +296,7 @@ def _save_recording(dest: str, recording: Recording) -> bool:
     in the data directory's ``recordings`` folder instead and say where: a run is never
     lost. Returns whether they went to ``dest``; says so on stderr when they did not."""
     try:
-        save_recording(dest, recording)
+        recordings.save_recording(dest, recording)
     except OSError as exc:
         from .game.userdata import user_data_dir
 
@@ -304,7 +304,7 @@ def _save_recording(dest: str, recording: Recording) -> bool:
         stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
         rescue = user_data_dir() / "recordings" / f"run-{stamp}-{os.getpid()}.json"
         try:
-            save_recording(rescue, recording)
+            recordings.save_recording(rescue, recording)
         except OSError as again:
             print(
                 f"broadsword: --record {dest}: cannot write ({why}), nor in {rescue.parent} "

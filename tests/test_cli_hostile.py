@@ -156,7 +156,7 @@ def test_replay__a_huge_level_file_is_refused_by_its_size_before_any_digest(tmp_
 
     from broadsword.data import DataError, data_dir, load_armatures
     from broadsword.data.recordings import load_recording
-    from broadsword.game.run import replay_stage
+    from broadsword.runner import open_recorded
 
     dest = tmp_path / "run.json"
     assert main(["--headless", "--frames", "10", "--record", str(dest)]) == 0
@@ -165,13 +165,13 @@ def test_replay__a_huge_level_file_is_refused_by_its_size_before_any_digest(tmp_
     with open(huge, "wb") as fh:  # sparse: 4 GiB on paper, nothing on disk
         fh.truncate(4 << 30)
     doc = json.loads(dest.read_text())
-    doc["level"] = str(huge)
+    doc["stages"][0]["level"] = str(huge)
     dest.write_text(json.dumps(doc))
     rec = load_recording(dest)
     digests = []
     monkeypatch.setattr(hashlib, "sha256", lambda *a: digests.append(a) or hashlib.new("sha256", *a))
     with pytest.raises(DataError, match=r"huge.toml: is 4,294,967,296 bytes; a level file is at most 1,048,576"):
-        replay_stage(rec, str(dest), load_armatures(data_dir("assets") / "sprites"))
+        open_recorded(rec.first, 0, str(dest), load_armatures(data_dir("assets") / "sprites"))
     assert digests == []
 
 

@@ -124,30 +124,31 @@ def game_bomb(level: str = "3-broadsword", frames: int = 1500, seed: int = 3, me
     (both the numpy grid), interleaved, for up to ``measure`` frames while the bomb lasts."""
     import copy
 
-    from ..data import data_dir, load_armatures, load_level, resolve_level
-    from ..sim import Input, Pilot, World
+    from ..runner import Runner, Stage, StageStart
+    from ..sim import Input, Pilot
 
-    world = World(load_level(resolve_level(level)), load_armatures(data_dir("assets") / "sprites"), seed)
+    runner = Runner.open(StageStart(level, seed))
     pilot = Pilot()
     for _ in range(frames):
-        world.step(pilot(world))
-        if world.over or world.complete:
+        runner.step(pilot(runner.world))
+        if runner.world.over or runner.world.complete:
             break
-    world.step(Input(bomb=True))
+    runner.step(Input(bomb=True))
+    world = runner.world
     worlds = {"before (old rule)": world, "after": copy.deepcopy(world)}
     grid = worlds["after"].collide.pipeline.broad_phase
     assert isinstance(grid, BinGrid), "the level's first tier must be bins"
     field = grid.field
     worlds["before (old rule)"].collide.pipeline.broad_phase = _OldRuleGrid(None, field)
     worlds["after"].collide.pipeline.broad_phase = BinGrid(None, field)
+    runners = {name: Runner(Stage(w, level)) for name, w in worlds.items()}
     kept: dict[str, list] = {name: [] for name in worlds}
     for f in range(measure):
         if not worlds["after"].bomb.active:
             break
         for name in list(worlds)[:: 1 if f % 2 else -1]:
-            w = worlds[name]
-            w.step(Input())
-            record = w.collision
+            runners[name].step(Input())
+            record = worlds[name].collision
             assert record is not None and isinstance(record.result.broad.layout, GridLayout)
             tiers = {s.name: s for s in record.result.stats}
             bins = tiers["bins"]

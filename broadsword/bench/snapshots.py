@@ -23,8 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..data import check_level_sprites, data_dir, list_levels, load_armatures, load_level, resolve_level
+from ..data import list_levels, load_level, resolve_level
 from ..data.levels import Level
+from ..runner import Runner, Stage, StageStart, open_level, shipped_armatures
 from ..sim import Input, Pilot, World
 from ..sim.seek import SNAPSHOT_EVERY, Seeker
 from ..sim.snapshot import Snapshots
@@ -37,9 +38,8 @@ PEAK_STEPS = 3240
 def _opener(level: str | Path, seed: int) -> Callable[[], World]:
     """Makes fresh worlds of ``level`` (loaded once) with the shipped armatures."""
     spec: Level = load_level(resolve_level(str(level)))
-    armatures = load_armatures(data_dir("assets") / "sprites")
-    check_level_sprites(spec, armatures)
-    return lambda: World(spec, armatures, seed)
+    armatures = shipped_armatures()
+    return lambda: open_level(spec, armatures, StageStart(str(level), seed)).world
 
 
 def measure(world: World, other: World, repeats: int) -> dict:
@@ -78,9 +78,10 @@ def run_snapshots(quick: bool = False, seed: int = 0) -> list[dict]:
     scenes.append((str(STRESS_LEVELS[count]), count, 900))
     for level, bullets, steps in scenes:
         make = _opener(level, seed)
-        world, pilot = make(), Pilot()
+        runner, pilot = Runner(Stage(make(), str(level))), Pilot()
+        world = runner.world
         while world.frame < steps and (bullets is None or world.enemy_bullets.n < bullets) and not world.over:
-            world.step(pilot(world))
+            runner.step(pilot(world))
         entry = measure(world, make(), 5 if quick else 20)
         entry["scene"] = Path(level).stem
         entry["where"] = (
@@ -95,7 +96,8 @@ def run_snapshots(quick: bool = False, seed: int = 0) -> list[dict]:
 def _record(make: Callable[[], World], frames: int) -> tuple[list[Input], list, list[str]]:
     """An autopilot run of at most ``frames`` steps (continuing after each game over while it
     may): its inputs, toggles and the state hash after every step."""
-    world, pilot = make(), Pilot()
+    runner, pilot = Runner(Stage(make(), "")), Pilot()
+    world = runner.world
     inputs: list[Input] = []
     hashes: list[str] = []
     while len(inputs) < frames and not world.complete:
@@ -104,7 +106,7 @@ def _record(make: Callable[[], World], frames: int) -> tuple[list[Input], list, 
                 break
             world.continue_game()
         inputs.append(pilot(world))
-        world.step(inputs[-1])
+        runner.step(inputs[-1])
         hashes.append(world.state_hash())
     return inputs, list(world.toggles), hashes
 
