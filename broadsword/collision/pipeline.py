@@ -109,11 +109,10 @@ class Pipeline:
             raise arguments.ArgumentTypeError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
         if rotation not in ROTATION_MODES:
             raise ValueError(f"rotation must be one of {ROTATION_MODES}, got {rotation!r}")
+        names = arguments.sequence(tiers, "tiers", "tier names")
         try:
-            self.tiers = check_tiers(arguments.names(tiers, "tiers", "tier names"))
-        except arguments.ArgumentTypeError:
-            raise
-        except ValueError as exc:
+            self.tiers = check_tiers(names)
+        except ValueError as exc:  # the level loader says the same after its own "scene.tiers: "
             raise ValueError(f"tiers: {exc}") from None
         self.rotation = rotation
         self.keep_tier_pairs = arguments.flag(keep_tier_pairs, "keep_tier_pairs")
