@@ -30,6 +30,17 @@ def _rank(text: str) -> float:
     return value
 
 
+#: Most frames ``--frames`` may ask (about 28 minutes of play at 60 frames a second).
+MAX_FRAMES = 100_000
+
+
+def _frames(text: str) -> int:
+    value = positive(text)
+    if value > MAX_FRAMES:
+        raise argparse.ArgumentTypeError(f"must be at most {MAX_FRAMES:,}, got {value}")
+    return value
+
+
 def _params(text: str) -> tuple[float, ...]:
     try:
         values = tuple(float(v) for v in text.split(",")) if text.strip() else ()
@@ -49,7 +60,9 @@ def _parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
     check = sub.add_parser("check", help="validate files and report bullets fired, peak live bullets, duration")
     check.add_argument("files", nargs="+", metavar="FILE")
-    check.add_argument("--frames", type=positive, default=1200, help="frames to run each pattern (default 1200)")
+    check.add_argument(
+        "--frames", type=_frames, default=1200, help=f"frames to run each pattern, 1..{MAX_FRAMES:,} (default 1200)"
+    )
     check.add_argument("--rank", type=_rank, default=0.5, help="$rank, 0..1 (default 0.5)")
     check.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions, e.g. 2.5,3,30,60,0")
     view = sub.add_parser("view", help="watch a pattern fire (target at the mouse)")
@@ -57,7 +70,7 @@ def _parser() -> argparse.ArgumentParser:
     view.add_argument("--rank", type=_rank, default=0.5, help="starting $rank, 0..1 (default 0.5)")
     view.add_argument("--seed", type=seed, default=0, help="the $rand stream's seed (default 0)")
     view.add_argument("--params", type=_params, default=(), help="$1,$2,... for the top actions")
-    view.add_argument("--frames", type=positive, default=None, help="quit after this many frames (for tests)")
+    view.add_argument("--frames", type=_frames, default=None, help="quit after this many frames (for tests)")
     view.add_argument("--screenshot", metavar="PNG", help="save the last frame to this PNG file")
     return ap
 

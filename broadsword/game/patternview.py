@@ -10,6 +10,8 @@ actions running, bullets fired and hits on the target.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pygame
 
@@ -178,6 +180,10 @@ def view(
     except ValueError as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 1
+    problem = _screenshot_problem(screenshot) if screenshot else ""
+    if problem:
+        print(f"broadsword: --screenshot {screenshot}: cannot write there ({problem})", file=sys.stderr)
+        return 1
     for warning in viewer.pattern.warnings:
         print(f"{path}: warning: {warning}", file=sys.stderr)
     pygame.init()
@@ -200,7 +206,40 @@ def view(
         pygame.display.flip()
         shown += 1
         clock.tick(60)
+    status = 0
     if screenshot:
-        pygame.image.save(screen, screenshot)
+        status = _save(screen, screenshot)
     pygame.quit()
+    return status
+
+
+def _screenshot_problem(path: str) -> str:
+    """Why ``path`` cannot take the screenshot ("" if it can), checked before the run."""
+    folder = os.path.dirname(path) or "."
+    if os.path.isdir(path):
+        return "it is a directory"
+    if os.path.exists(path) and not os.path.isfile(path):
+        return "it is not a regular file"
+    if not os.path.isdir(folder):
+        return f"no folder {folder}"
+    if not os.access(folder, os.W_OK):
+        return f"folder {folder} is not writable"
+    return ""
+
+
+def _save(screen: pygame.Surface, path: str) -> int:
+    """Save ``screen`` as a PNG at ``path`` atomically (a temporary file beside it, then a
+    rename); 1 with one line on stderr if it cannot."""
+    import sys
+
+    folder, base = os.path.split(path)
+    tmp = os.path.join(folder, f".{base}.{os.getpid()}.tmp.png")
+    try:
+        pygame.image.save(screen, tmp)
+        os.replace(tmp, path)
+    except (OSError, pygame.error) as exc:
+        print(f"broadsword: --screenshot {path}: cannot write it ({exc})", file=sys.stderr)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        return 1
     return 0
