@@ -216,8 +216,8 @@ class Engine:
         self._resume[which] = 0
         self.budget = self.max_steps
         start = movers.n  # rows added from here on were fired in this part
-        wake, runner = movers._data["wake"], movers._data["runner"]
         while len(due):
+            wake, runner = movers._data["wake"], movers._data["runner"]  # a flush may have grown them
             for row in due.tolist():
                 if self.budget <= 0:
                     self._resume[which] = row
