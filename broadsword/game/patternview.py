@@ -10,12 +10,15 @@ actions running, bullets fired and hits on the target.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pygame
 
 from ..collision import FrameResult, LayerTable, Pipeline
 from ..collision.debugdraw import posed_polygons
 from ..data import data_dir, load_armatures
+from ..fileio import check_writable
 from ..patterns import bulletml
 from ..patterns.bulletml.check import missing_params
 from ..sim.bullets import EnemyBullets
@@ -178,6 +181,10 @@ def view(
     except ValueError as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 1
+    problem = check_writable(screenshot) if screenshot else None
+    if problem:
+        print(f"broadsword: --screenshot {screenshot}: cannot write there ({problem})", file=sys.stderr)
+        return 1
     for warning in viewer.pattern.warnings:
         print(f"{path}: warning: {warning}", file=sys.stderr)
     pygame.init()
@@ -202,10 +209,24 @@ def view(
         clock.tick(60)
     status = 0
     if screenshot:
-        try:
-            pygame.image.save(screen, screenshot)
-        except (pygame.error, OSError) as exc:  # checked before the window opened; changed since
-            print(f"broadsword: --screenshot {screenshot}: cannot write ({exc})", file=sys.stderr)
-            status = 1
+        status = _save(screen, screenshot)
     pygame.quit()
     return status
+
+
+def _save(screen: pygame.Surface, path: str) -> int:
+    """Save ``screen`` as a PNG at ``path`` atomically (a temporary file beside it, then a
+    rename); 1 with one line on stderr if it cannot."""
+    import sys
+
+    folder, base = os.path.split(path)
+    tmp = os.path.join(folder, f".{base}.{os.getpid()}.tmp.png")
+    try:
+        pygame.image.save(screen, tmp)
+        os.replace(tmp, path)
+    except (OSError, pygame.error) as exc:
+        print(f"broadsword: --screenshot {path}: cannot write it ({exc})", file=sys.stderr)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        return 1
+    return 0

@@ -91,3 +91,13 @@ def test_view__a_file_that_needs_parameters_is_refused_without_them(capsys):
     assert main(["pattern", "view", ring, "--params", "2,3", "--frames", "1"]) == 1
     assert "(only 2 given)" in capsys.readouterr().err
     assert main(["pattern", "view", ring, "--params", "2.5,12,10,30,0", "--frames", "2"]) == 0
+
+
+def test_view__an_unwritable_screenshot_path_is_refused_before_the_run(tmp_path, capsys):
+    flower = str(PATTERNS / "flower.xml")
+    for bad, why in ((tmp_path / "none" / "v.png", "no folder"), (tmp_path, "it is a directory")):
+        assert main(["pattern", "view", flower, "--frames", "1", "--screenshot", str(bad)]) == 1
+        assert f"broadsword: --screenshot {bad}: cannot write there ({why}" in capsys.readouterr().err
+    shot = tmp_path / "ok.png"
+    assert main(["pattern", "view", flower, "--frames", "1", "--screenshot", str(shot)]) == 0
+    assert shot.is_file() and [p.name for p in tmp_path.iterdir()] == ["ok.png"]  # no temporary left

@@ -77,3 +77,20 @@ def test_same_frame__a_new_bullets_changes_start_on_the_frame_it_is_fired():
     frames = run(p, 4)
     # B is fired at frame 1 and starts its change then: speed 1 at frame 2, 0 from frame 3
     assert [f[1, 1] for f in frames[1:]] == pytest.approx([0.0, 1.0, 1.0])
+
+
+def test_same_frame__a_store_that_grows_mid_frame_keeps_every_runner():
+    # a chain fired in the bullets' part: A fires 150 B, each B a C, each C a plain bullet; the
+    # store (256 rows at first) grows before the Cs run, and each still runs (fires) at once
+    p = top(
+        fire(absolute(90), speed(1), '<bulletRef label="a"/>'),
+        '<bullet label="a"><action><repeat><times>150</times><action>'
+        + fire(absolute(180), speed(1), '<bulletRef label="b"/>')
+        + '</action></repeat></action></bullet><bullet label="b"><action>'
+        + fire(absolute(270), speed(1), '<bulletRef label="c"/>')
+        + '</action></bullet><bullet label="c"><action>'
+        + fire(absolute(0), speed(1))
+        + "</action></bullet>",
+    )
+    frames = run(p, 2)
+    assert len(frames[1]) == 1 + 150 + 150 + 150

@@ -133,6 +133,7 @@ class Engine:
         """Fire one bullet from ``row``: it is queued and joins the store, with every bullet
         fired in the same batch, at :meth:`_flush` (one vectorised add, not a call per
         bullet). Past the store's limit it is refused and counted."""
+        self.budget -= FIRE_STEPS  # a refused fire cost its evaluations all the same
         data = movers._data
         if data["mute"][row]:
             return
@@ -140,7 +141,6 @@ class Engine:
         if b.limit is not None and b.n + len(new[0]) >= b.limit:
             b.refused += 1
             return
-        self.budget -= FIRE_STEPS
         runner = Runner([Thread(pattern, actions, params)]) if actions else None
         p = data["pos"][row]
         new[0].append(p[0])
@@ -216,8 +216,8 @@ class Engine:
         self._resume[which] = 0
         self.budget = self.max_steps
         start = movers.n  # rows added from here on were fired in this part
-        wake, runner = movers._data["wake"], movers._data["runner"]
         while len(due):
+            wake, runner = movers._data["wake"], movers._data["runner"]  # a flush may have grown them
             for row in due.tolist():
                 if self.budget <= 0:
                     self._resume[which] = row
