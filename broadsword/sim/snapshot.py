@@ -266,8 +266,9 @@ def _live_columns(cols: Columns) -> Iterator[tuple[str, np.ndarray]]:
 
 
 def _has_runner(col: np.ndarray) -> np.ndarray:
-    """(n,) bool: the rows of a runner column (n,) object that hold a runner."""
-    return np.fromiter((x is not None for x in col), dtype=bool, count=len(col))
+    """(n,) bool: the rows of a runner column (n,) object that hold a runner (a Runner is
+    truthy, None is not; ``astype`` asks each in C)."""
+    return col.astype(bool)
 
 
 def _put_columns(w: Writer, cols: Columns, table: NodeTable | None = None) -> None:
