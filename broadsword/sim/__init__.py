@@ -5,7 +5,8 @@
 sends), :mod:`.boss`, :mod:`.emitters` (enemy volleys), :mod:`.collide` (the one pipeline
 call a frame, and its typed record), :mod:`.combat` (applying hits), :mod:`.scoring`;
 with :mod:`.layers`, :mod:`.kinds`, :mod:`.events`, :mod:`.settings`, :mod:`.hashing`,
-:mod:`.field`, :mod:`.input`, :mod:`.pool` and the :mod:`.autopilot`.
+:mod:`.field`, :mod:`.input`, :mod:`.pool` and the :mod:`.autopilot`. :mod:`.snapshot`
+saves and restores the whole state exactly; :mod:`.seek` reaches any frame of a run by it.
 """
 
 from .autopilot import Pilot
@@ -15,7 +16,9 @@ from .field import DT, FIELD, SPAWN
 from .input import IDLE, Input
 from .layers import GameLayer, LayerIds
 from .pool import Pool
+from .seek import Seeker
 from .settings import Carry, Settings, Toggle, ToggleEvent
+from .snapshot import Snapshots
 from .world import World
 
 __all__ = [
@@ -31,7 +34,9 @@ __all__ = [
     "Input",
     "LayerIds",
     "Pool",
+    "Seeker",
     "Settings",
+    "Snapshots",
     "Toggle",
     "ToggleEvent",
     "Pilot",

@@ -18,9 +18,9 @@ from .settings import Toggle, ToggleEvent
 from .snapshot import Snapshots
 from .world import World
 
-#: Frames between kept snapshots (a third of a second): a seek steps at most 19 frames, about
-#: 0.1 s where the game is busiest; a 5-minute run keeps 900, some 20 MB compressed.
-SNAPSHOT_EVERY = 20
+#: Frames between kept snapshots (a sixth of a second): a seek restores one and steps at most
+#: 9 frames; a 5-minute run keeps 1,800, some 14 MB compressed (docs/PERFORMANCE.md).
+SNAPSHOT_EVERY = 10
 
 
 class Seeker:

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import weakref
 import zlib
 from collections.abc import Callable, Iterator
 from enum import Enum
@@ -114,12 +115,18 @@ def _canon(obj: Any, out: list[str]) -> None:
         raise TypeError(f"no canonical form for {type(obj).__name__}")
 
 
-def content_digest(world: World) -> bytes:
-    """SHA-256 (32 bytes) of what a snapshot does not hold but needs: the level's data (its
-    patterns included) and the armature kinds' names, frames and vertices."""
+def level_digest(level: Level) -> bytes:
+    """SHA-256 of the level's data, its patterns included (its file's path left out)."""
     text: list[str] = []
-    _canon(world.level, text)
-    h = hashlib.sha256("\x1f".join(text).encode("utf-8"))
+    _canon(level, text)
+    return hashlib.sha256("\x1f".join(text).encode("utf-8")).digest()
+
+
+def content_digest(world: World, level_part: bytes | None = None) -> bytes:
+    """SHA-256 (32 bytes) of what a snapshot does not hold but needs: the level's data
+    (:func:`level_digest`, or ``level_part`` if already known) and the armature kinds'
+    names, frames and vertices."""
+    h = hashlib.sha256(level_part or level_digest(world.level))
     kinds = world.kinds
     h.update("\x1f".join(kinds.names).encode("utf-8"))
     h.update(kinds.frame.astype("<i8").tobytes())
@@ -266,8 +273,9 @@ def _live_columns(cols: Columns) -> Iterator[tuple[str, np.ndarray]]:
 
 
 def _has_runner(col: np.ndarray) -> np.ndarray:
-    """(n,) bool: the rows of a runner column (n,) object that hold a runner."""
-    return np.fromiter((x is not None for x in col), dtype=bool, count=len(col))
+    """(n,) bool: the rows of a runner column (n,) object that hold a runner (a Runner is
+    truthy, None is not; ``astype`` asks each in C)."""
+    return col.astype(bool)
 
 
 def _put_columns(w: Writer, cols: Columns, table: NodeTable | None = None) -> None:
@@ -376,8 +384,8 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
 
 # ---------------------------------------------------------------------------- the codec
 class Snapshots:
-    """Saves and restores the state of worlds of one level (the pattern numbering and the
-    content digest are worked out once, here).
+    """Saves and restores the state of worlds (the level's pattern numbering and the content
+    digest are worked out once per level and world, here, not at every save).
 
     >>> snaps = Snapshots(world)          # doctest: +SKIP
     >>> data = snaps.save(world)          # bytes
@@ -385,20 +393,27 @@ class Snapshots:
     """
 
     def __init__(self, world: World):
-        self.level = world.level
-        self.table = NodeTable(level_patterns(world.level))
-        self.digest = content_digest(world)
+        self._level = world.level
+        self._table = NodeTable(level_patterns(world.level))
+        self._level_digest = level_digest(world.level)
+        self._worlds: weakref.WeakKeyDictionary[World, bytes] = weakref.WeakKeyDictionary()
 
-    def _check_world(self, world: World) -> None:
-        if world.level is not self.level:
-            raise ValueError(
-                f"these Snapshots are for level {self.level.name!r} as loaded once; make a Snapshots for this world"
-            )
+    def _for(self, world: World) -> tuple[NodeTable, bytes]:
+        """The pattern numbering of ``world``'s level and its content digest."""
+        if world.level is not self._level:  # another level, or the same one loaded again
+            self._level = world.level
+            self._table = NodeTable(level_patterns(world.level))
+            self._level_digest = level_digest(world.level)
+            self._worlds = weakref.WeakKeyDictionary()
+        digest = self._worlds.get(world)
+        if digest is None:
+            digest = self._worlds[world] = content_digest(world, self._level_digest)
+        return self._table, digest
 
     # ------------------------------------------------------------------ saving
     def save(self, world: World) -> bytes:
         """The whole state of ``world`` (between steps) as bytes (docs/FORMATS.md)."""
-        self._check_world(world)
+        table, digest = self._for(world)
         w = Writer()
         w.raw(MAGIC)
         w.i64(FORMAT_VERSION)
@@ -408,7 +423,7 @@ class Snapshots:
         w.i64(world.seed)
         w.text(world.settings.difficulty.value)
         w.text(world.settings.rotation or "")
-        w.raw(self.digest)
+        w.raw(digest)
         with w.section("world"):
             _put_fields(w, world, WORLD_FIELDS)
             w.text(world.rotation)
@@ -449,7 +464,7 @@ class Snapshots:
                 _put_fields(w, boss, BOSS_FIELDS)
             _put_columns(w, world.parts)
         with w.section("enemy_bullets"):
-            _put_columns(w, world.enemy_bullets, self.table)
+            _put_columns(w, world.enemy_bullets, table)
         with w.section("player_bullets"):
             _put_columns(w, world.player_bullets)
         with w.section("items"):
@@ -467,7 +482,7 @@ class Snapshots:
             for row in resume_rows(eng):
                 w.i64(row)
             _put_rng(w, eng.scope.rng)
-            _put_columns(w, eng.emitters, self.table)
+            _put_columns(w, eng.emitters, table)
         w.parts[at_length] = (w.size() + 4).to_bytes(8, "little", signed=True)
         crc = 0
         for part in w.parts:
@@ -480,9 +495,9 @@ class Snapshots:
         """Put the state ``data`` (from :meth:`save`) into ``world``, a world of the same
         level, armatures, seed and settings. Everything is read and checked before anything
         is set: a ``ValueError`` leaves ``world`` as it was."""
-        self._check_world(world)
+        table, digest = self._for(world)
         r = Reader(data)
-        self._header(r, world, data)
+        self._header(r, world, data, digest)
         apply: list[Callable[[], None]] = []  # what to set, once everything has been read
         with r.section("world") as s:
             top = _get_fields(s, world, WORLD_FIELDS)
@@ -549,7 +564,7 @@ class Snapshots:
             _check_index(s, parts[2], "part", len(boss.spec.parts) if boss is not None else 0)
             apply.append(partial(_fill, world.parts, parts))
         with r.section("enemy_bullets") as s:
-            eb = _get_columns(s, world.enemy_bullets, self.table)
+            eb = _get_columns(s, world.enemy_bullets, table)
             _check_index(s, eb[2], "arm", kinds)
             apply.append(partial(_fill, world.enemy_bullets, eb))
         with r.section("player_bullets") as s:
@@ -571,7 +586,7 @@ class Snapshots:
             evalues = _get_fields(s, eng, ENGINE_FIELDS)
             resume = [s.i64(f"resume {k}", 0, INT_MAX) for k in ("emitters", "bullets")]
             erng = _get_rng(s, eng.scope.rng, "pattern rng")
-            emitters = _get_columns(s, eng.emitters, self.table)
+            emitters = _get_columns(s, eng.emitters, table)
 
             def guns_part() -> None:
                 _set(guns, gvalues)
@@ -586,7 +601,7 @@ class Snapshots:
         for part in apply:
             part()
 
-    def _header(self, r: Reader, world: World, data: bytes) -> None:
+    def _header(self, r: Reader, world: World, data: bytes, digest: bytes) -> None:
         if len(data) < len(MAGIC) + 16 or bytes(r.take(len(MAGIC), "magic")) != MAGIC:
             raise ValueError("snapshot: not a Broadsword snapshot (it does not start with the snapshot magic bytes)")
         version = r.i64("format version")
@@ -609,7 +624,7 @@ class Snapshots:
         ):
             if theirs != ours:
                 raise ValueError(f"snapshot: it is of {what} {theirs!r}, but this world has {what} {ours!r}")
-        if bytes(r.take(32, "content digest")) != self.digest:
+        if bytes(r.take(32, "content digest")) != digest:
             raise ValueError(
                 f"snapshot: level {level!r}'s data or the armatures differ from those the snapshot was made with"
             )

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 from broadsword.collision import ROTATION_MODES
 from broadsword.collision._kernel import Kernel, numba_available
-from broadsword.data import list_levels
+from broadsword.data import list_levels, load_level, resolve_level
 from broadsword.data.difficulty import Difficulty
 from broadsword.patterns import bulletml
 from broadsword.patterns.bulletml.machine import Runner, Thread, _Rep, _Seq
@@ -406,3 +406,18 @@ def test_refused__saving_a_pattern_the_level_cannot_run():
     w.guns.engine.add_emitter(extra, (100.0, 100.0))
     with pytest.raises(ValueError, match=r"a running pattern is not one the level can run \(by-hand\)"):
         Snapshots(w).save(w)
+
+
+def test_restore__into_a_level_loaded_again_and_refused_with_other_armatures():
+    """One Snapshots serves a world of the same level file loaded again; a world whose
+    armatures differ is refused, even with the very same level object."""
+    data = _sample()
+    snaps = Snapshots(_fresh("3-broadsword"))
+    again = World(load_level(resolve_level("3-broadsword")), shipped.armatures(), SEED, Settings(rotation="lut"))
+    snaps.restore(again, data)
+    assert snaps.save(again) == data
+    arms = dict(shipped.armatures())
+    arms["shot"] = arms["player"]  # the shot's shape changed
+    other = World(shipped.level("3-broadsword"), arms, SEED, Settings(rotation="lut"))
+    with pytest.raises(ValueError, match="data or the armatures differ"):
+        snaps.restore(other, data)

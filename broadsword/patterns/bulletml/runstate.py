@@ -89,11 +89,6 @@ class NodeTable:
         # FireRef, BulletRef and the plain commands hold no action of their own: what they
         # name is walked from the pattern's tables.
 
-    def node(self, k: int, where: str) -> Action | ActionRef:
-        if not 0 <= k < len(self.nodes):
-            raise ValueError(f"{where}: node {k} is not one of the {len(self.nodes)} pattern nodes")
-        return self.nodes[k]
-
 
 def encode_runners(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
     """The ``runners`` of a store's ``rows`` (increasing; the rows with no runner left out)
@@ -138,32 +133,25 @@ def _encode(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) ->
 
 
 class _Cursor:
-    """Reads the two streams in order, with bounds checks."""
+    """Reads the two streams in order, with bounds checks (messages name the field only:
+    :func:`decode_runners` adds where)."""
 
-    def __init__(self, ints: np.ndarray, floats: np.ndarray, where: str):
+    def __init__(self, ints: np.ndarray, floats: np.ndarray):
         self.ints, self.floats = ints.tolist(), floats.tolist()
         self.i = self.f = 0
-        self.where = where
 
     def whole(self, what: str, lo: int = 0, hi: int | None = None) -> int:
         if self.i >= len(self.ints):
-            raise ValueError(f"{self.where}: {what}: the runner stream ends early")
+            raise ValueError(f"{what}: the runner stream ends early")
         v = self.ints[self.i]
         self.i += 1
         if v < lo or (hi is not None and v > hi):
-            raise ValueError(f"{self.where}: {what}: {v} is out of range [{lo}, {hi}]")
-        return v
-
-    def double(self, what: str) -> float:
-        if self.f >= len(self.floats):
-            raise ValueError(f"{self.where}: {what}: the runner float stream ends early")
-        v = self.floats[self.f]
-        self.f += 1
+            raise ValueError(f"{what}: {v} is out of range [{lo}, {hi}]")
         return v
 
     def params(self, k: int, what: str) -> tuple[float, ...]:
         if self.f + k > len(self.floats):
-            raise ValueError(f"{self.where}: {what}: the runner float stream ends early")
+            raise ValueError(f"{what}: the runner float stream ends early")
         out = tuple(self.floats[self.f : self.f + k])
         self.f += k
         return out
@@ -173,56 +161,68 @@ def decode_runners(
     table: NodeTable, ints: np.ndarray, floats: np.ndarray, rows: int, where: str
 ) -> list[Runner | None]:
     """The runners of ``rows`` rows from :func:`encode_runners`' streams. ``ValueError``
-    (starting with ``where``) for an index out of range, a count past the streams' end, a
-    row out of order, or values left over."""
+    (starting with ``where``, then the row) for an index out of range, a count past the
+    streams' end, a row out of order, or values left over."""
     out: list[Runner | None] = [None] * rows
-    c = _Cursor(ints, floats, where)
-    nodes, last = table.nodes, -1
-    big = len(c.ints) + len(c.floats)  # no count can exceed what the streams hold
+    c = _Cursor(ints, floats)
+    last = -1
     while c.i < len(c.ints):
-        row = c.whole("runner row", last + 1, rows - 1)
+        try:
+            row = c.whole("runner row", last + 1, rows - 1)
+        except ValueError as e:
+            raise ValueError(f"{where}: {e}") from None
         last = row
-        w = f"runner of row {row}"
-        gone = bool(c.whole(f"{w}: gone", 0, 1))
-        threads = []
-        for _ in range(c.whole(f"{w}: threads", 1, big)):
-            pattern = table.patterns[c.whole(f"{w}: pattern", 0, len(table.patterns) - 1)]
-            k = c.whole(f"{w}: nodes", 0, big)
-            tnodes = tuple(nodes[c.whole(f"{w}: node", 0, len(nodes) - 1)] for _ in range(k))
-            next_node = c.whole(f"{w}: next_node", 0, k)
-            has_turn = c.whole(f"{w}: has act_turn", 0, 1)
-            act_turn = c.whole(f"{w}: act_turn", -(1 << 62), 1 << 62)
-            due = c.whole(f"{w}: due", -(1 << 62), NEVER)
-            cut = bool(c.whole(f"{w}: cut", 0, 1))
-            has_dir, has_spd = c.whole(f"{w}: has prev_dir", 0, 1), c.whole(f"{w}: has prev_spd", 0, 1)
-            nparams = c.whole(f"{w}: params", 0, big)
-            t = Thread(pattern, tnodes, ())
-            t.next_node, t.act_turn = next_node, act_turn if has_turn else None
-            t.due, t.cut = due, cut
-            t.prev_dir = c.double(f"{w}: prev_dir") if has_dir else None
-            t.prev_spd = c.double(f"{w}: prev_spd") if has_spd else None
-            t.params = c.params(nparams, f"{w}: params")
-            for _ in range(c.whole(f"{w}: stack", 0, big)):
-                kind = c.whole(f"{w}: stack entry kind", SEQ, REP)
-                node = table.node(c.whole(f"{w}: stack node", 0, len(nodes) - 1), w)
-                count = c.whole(f"{w}: stack counter", 0, MAX_REPEAT if kind == REP else None)
-                params = c.params(c.whole(f"{w}: stack params", 0, big), f"{w}: stack params")
-                if kind == REP:
-                    t.stack.append(_Rep(node, count, params))
-                elif type(node) is not Action:
-                    raise ValueError(f"{where}: {w}: a command list's node {table.index[id(node)]} is not an action")
-                elif count > len(node.commands):
-                    raise ValueError(f"{where}: {w}: command {count} is past the action's {len(node.commands)}")
-                else:
-                    t.stack.append(_Seq(node.commands, params))
-                    t.stack[-1].i = count
-            threads.append(t)
-        runner = Runner(threads)
-        runner.gone = gone
-        out[row] = runner
+        try:
+            out[row] = _runner(table, c)
+        except ValueError as e:
+            raise ValueError(f"{where}: runner of row {row}: {e}") from None
     if c.f != len(c.floats):
         raise ValueError(f"{where}: {len(c.floats) - c.f} runner floats left over")
     return out
+
+
+def _runner(table: NodeTable, c: _Cursor) -> Runner:
+    """One runner from the streams (after its row number)."""
+    nodes, n_nodes = table.nodes, len(table.nodes) - 1
+    big = len(c.ints) + len(c.floats)  # no count can exceed what the streams hold
+    gone = bool(c.whole("gone", 0, 1))
+    threads = []
+    for _ in range(c.whole("threads", 1, big)):
+        pattern = table.patterns[c.whole("pattern", 0, len(table.patterns) - 1)]
+        k = c.whole("nodes", 0, big)
+        tnodes = tuple(nodes[c.whole("node", 0, n_nodes)] for _ in range(k))
+        next_node = c.whole("next_node", 0, k)
+        has_turn = c.whole("has act_turn", 0, 1)
+        act_turn = c.whole("act_turn", -(1 << 62), 1 << 62)
+        due = c.whole("due", -(1 << 62), NEVER)
+        cut = bool(c.whole("cut", 0, 1))
+        has_dir, has_spd = c.whole("has prev_dir", 0, 1), c.whole("has prev_spd", 0, 1)
+        nparams = c.whole("params", 0, big)
+        t = Thread(pattern, tnodes, ())
+        t.next_node, t.act_turn = next_node, act_turn if has_turn else None
+        t.due, t.cut = due, cut
+        t.prev_dir = c.params(1, "prev_dir")[0] if has_dir else None
+        t.prev_spd = c.params(1, "prev_spd")[0] if has_spd else None
+        t.params = c.params(nparams, "params")
+        for _ in range(c.whole("stack", 0, big)):
+            kind = c.whole("stack entry kind", SEQ, REP)
+            node = nodes[c.whole("stack node", 0, n_nodes)]
+            count = c.whole("stack counter", 0, MAX_REPEAT if kind == REP else None)
+            params = c.params(c.whole("stack params", 0, big), "stack params")
+            if kind == REP:
+                t.stack.append(_Rep(node, count, params))
+            elif type(node) is not Action:
+                raise ValueError(f"a command list's node {table.index[id(node)]} is not an action")
+            elif count > len(node.commands):
+                raise ValueError(f"command {count} is past the action's {len(node.commands)}")
+            else:
+                seq = _Seq(node.commands, params)
+                seq.i = count
+                t.stack.append(seq)
+        threads.append(t)
+    runner = Runner(threads)
+    runner.gone = gone
+    return runner
 
 
 #: The engine's counters a snapshot keeps (its ``rank`` and ``max_steps`` are settings).
