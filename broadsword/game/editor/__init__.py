@@ -55,7 +55,8 @@ screen mapping), ``drawing`` and ``panel`` (what is drawn), ``theme`` (sizes and
 huge PNG, is refused with one line naming the file.
 """
 
-from .command import main, open_document
+from .command import main
+from .documents import open_document
 from .editor import Editor
 from .theme import HANDLE_FILL, PROBE_CLEAR, PROBE_HIT, WINDOW_SIZE
 

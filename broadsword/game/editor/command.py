@@ -4,18 +4,11 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 import pygame
 
-from ...authoring import document
 from ...data import DataError
-from ..images import read_alpha
-
-
-def open_document(path: str | Path, frames: int = 1) -> document.ArmatureDocument:
-    """:func:`broadsword.authoring.document.open_document`, reading the sprite with pygame."""
-    return document.open_document(path, read_alpha, frames)
+from .documents import open_document
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -36,7 +29,7 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .editor import Editor
+    from .editor import Editor  # the window, imported when a command opens one
 
     args = _parser().parse_args(argv)
     try:

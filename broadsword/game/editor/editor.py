@@ -12,8 +12,8 @@ from ...authoring.editing import EditSession
 from ...authoring.picking import Hover
 from ...authoring.probe import Probe
 from ..images import load_image
-from .command import open_document
 from .controller import Controller
+from .documents import open_document
 from .drawing import SpriteView
 from .panel import Panel
 from .theme import BACKGROUND, WINDOW_SIZE, shape_colours
