@@ -25,10 +25,11 @@ import pygame
 from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
-from ..sim import FIELD, World
+from ..sim import World
 from ..sim.replay import Playback, Recorder
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
+from .feedback import Feedback
 from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
@@ -42,6 +43,7 @@ from .scenes.play import (
 )
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
+from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, draw_panel
 from .soundtrack import follow
 from .sprites import SpriteBank
 from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
@@ -105,15 +107,15 @@ class App:
         if difficulty is not None:  # --difficulty: this session's, not saved
             self.options = dataclasses.replace(self.options, difficulty=Difficulty(difficulty))
         bindings, bindings_warning = load_bindings(self.data / "controls.json")
-        self.window = Window((int(FIELD[0] * scale), int(FIELD[1] * scale)), TITLE, self.options.fullscreen)
+        self.window = Window((int(FRAME[0] * scale), int(FRAME[1] * scale)), TITLE, self.options.fullscreen)
         pygame.init()
-        self.screen = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
-        self.painter = Painter(self.screen)
+        self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
         self.renderer = Renderer(self.bank, seed)
         self.overlay = Overlay()
         self.audio = Audio(enabled=audio)
+        self.feedback = Feedback(self.renderer, self.audio)  # each step's events, seen and heard
         self.scores = (scores or HighScores()).load()
         self.controls = Controls(bindings)
         self.levels = list_levels()
@@ -259,7 +261,23 @@ class App:
         self.stack.draw(self.screen)
         if self.audio.muted:
             draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
-        self.window.present(self.screen)
+        if self.screen.get_parent() is self.canvas:  # the field beside the side panel
+            self.draw_panel()
+        self.window.present(self.canvas)
+
+    def draw_panel(self) -> None:
+        """The side panel beside the field: the stage's numbers in play, else the best score."""
+        self.panel_painter.drawn.clear()
+        draw_panel(self.panel_surface, self.panel_painter, self.world, self.panel_info(), self.renderer.life_icon)
+
+    def panel_info(self) -> PanelInfo:
+        """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
+        recording plays, "DEMO" while the autopilot does, none while the player plays."""
+        play = self.play
+        mark = None
+        if play is not None and play.watched:
+            mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
+        return PanelInfo(max((e.score for e in self.scores.entries), default=0), mark)
 
     # ------------------------------------------------------------------ runs and stages
     def start_run(self, index: int | None = None) -> bool:
@@ -301,9 +319,17 @@ class App:
         return play
 
     def use_screen(self, size: tuple[int, int] | None = None) -> None:
-        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on;
-        ``None``: the field again. The window shows it scaled in, as it does the field."""
-        self.screen = pygame.Surface(size or (int(FIELD[0]), int(FIELD[1])))
+        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on,
+        alone in the window; ``None``: the field again, beside the side panel
+        (:mod:`.sidebar`). ``canvas`` is what the window shows, scaled in; ``screen`` is
+        where the scenes draw (the field: a subsurface of ``canvas``)."""
+        if size is None:
+            self.canvas = pygame.Surface(FRAME)
+            self.screen = self.canvas.subsurface(FIELD_RECT)
+            self.panel_surface = self.canvas.subsurface(PANEL_RECT)
+            self.panel_painter = Painter(self.panel_surface)
+        else:
+            self.canvas = self.screen = pygame.Surface(size)
         self.painter = Painter(self.screen)
 
     def to_title(self) -> None:

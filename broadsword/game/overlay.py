@@ -86,14 +86,20 @@ def panel_lines(
 
 def pointer_on(surf: pygame.Surface) -> tuple[float, float] | None:
     """The mouse pointer's position on ``surf`` (the field, scaled into the window as the
-    game presents it), or ``None`` when it is outside the window or the field."""
+    game presents it: alone, or as a subsurface of the surface presented, the field beside
+    the side panel), or ``None`` when it is outside the window or the field."""
     win = pygame.display.get_surface()
     if win is None or not pygame.mouse.get_focused():
         return None
     if surf is win:
         x, y = pygame.mouse.get_pos()
         return float(x), float(y)
-    return to_surface(pygame.mouse.get_pos(), win.get_size(), surf.get_size())
+    shown, (ox, oy) = surf.get_abs_parent(), surf.get_abs_offset()
+    at = to_surface(pygame.mouse.get_pos(), win.get_size(), shown.get_size())
+    if at is None:
+        return None
+    fx, fy = at[0] - ox, at[1] - oy
+    return (fx, fy) if 0 <= fx < surf.get_width() and 0 <= fy < surf.get_height() else None
 
 
 def player_of(result: FrameResult) -> tuple[float, float] | None:

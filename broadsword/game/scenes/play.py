@@ -143,18 +143,7 @@ class Play:
         ev = world.step(inp)
         self.recorder.stepped(inp)
         self.source.stepped(world)
-        self.app.renderer.on_events(ev)
-        audio = self.app.audio
-        for happened, sound in (
-            (ev.shots, "shot"),
-            (ev.grazes, "graze"),
-            (ev.damaged, "hit"),
-            (ev.player_hit, "player_hit"),
-        ):
-            if happened:
-                audio.play(sound)
-        if ev.kills:
-            audio.play("big_explosion" if ev.boss_killed else "explosion")
+        self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
         if isinstance(self.source, ReplayInput):
             playback = self.source.playback
             if (
