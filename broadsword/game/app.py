@@ -106,9 +106,10 @@ class App:
         self.saved_difficulty = self.options.difficulty  # what options.json keeps, whatever --difficulty says
         if difficulty is not None:  # --difficulty: this session's, not saved
             self.options = dataclasses.replace(self.options, difficulty=Difficulty(difficulty))
-        bindings, bindings_warning = load_bindings(self.data / "controls.json")
         self.window = Window((int(FRAME[0] * scale), int(FRAME[1] * scale)), TITLE, self.options.fullscreen)
         pygame.init()
+        # After pygame.init(): key names are read through SDL, which warns on stderr before it
+        bindings, bindings_warning = load_bindings(self.data / "controls.json")
         self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
@@ -257,7 +258,7 @@ class App:
             self.stack.push(Pause(self, top))
 
     def render(self) -> None:
-        self.painter.drawn.clear()
+        self.painter.forget()
         self.stack.draw(self.screen)
         if self.audio.muted:
             draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
@@ -267,7 +268,7 @@ class App:
 
     def draw_panel(self) -> None:
         """The side panel beside the field: the stage's numbers in play, else the best score."""
-        self.panel_painter.drawn.clear()
+        self.panel_painter.forget()
         draw_panel(self.panel_surface, self.panel_painter, self.world, self.panel_info(), self.renderer.life_icon)
 
     def panel_info(self) -> PanelInfo:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import pygame
 import pytest
@@ -307,6 +308,35 @@ def test_continue__play_on_with_the_score_counting_continues(app):
     assert world.toggles[-1].toggle.value == "continue"
 
 
+def test_continue__names_the_fire_keys_bound_now(app):
+    """After Fire is rebound to J, the continue screen says J, not Z (issue 22)."""
+    app.controls.bindings.bind_key(Action.FIRE, pygame.K_j, replace=True)
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, Continue)
+    assert "Enter or J: continue   Esc: end the run" in app.painter.said
+    key(pygame.K_j)
+    frames(app, 3)
+    assert isinstance(app.scene, Play) and not world.over
+
+
+def test_launch__a_custom_binding_says_nothing_on_stderr(tmp_path, capfd):
+    """controls.json naming keys was read before pygame.init(): pygame warned ("pygame.init()
+    has not been called") on stderr at every launch."""
+    pygame.quit()
+    (tmp_path / "controls.json").write_text('{"version": 1, "keys": {"slow": ["c"], "fire": ["j"]}}')
+    capfd.readouterr()
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        a = App(audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
+    try:
+        assert a.controls.bindings.keys[Action.SLOW] == (pygame.K_c,) and a.message is None
+        assert [str(w.message) for w in said] == [] and capfd.readouterr().err == ""
+    finally:
+        pygame.quit()
+
+
 def test_continue__declined_or_timed_out_ends_the_run(app):
     world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
     world.score.points = 5000
@@ -344,11 +374,22 @@ def test_options__rebind_fire_by_pressing_a_key_and_it_is_saved(app, tmp_path):
     assert app.scene.waiting is Action.FIRE and "fixed" in app.scene.note
     key(pygame.K_c, "c")
     frames(app)
-    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (pygame.K_c,)
-    assert '"fire": [\n   "c"\n  ]' in (tmp_path / "controls.json").read_text()
+    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (
+        pygame.K_z,
+        pygame.K_SPACE,
+        pygame.K_c,
+    )
+    assert '"fire": [\n   "z",\n   "space",\n   "c"\n  ]' in (tmp_path / "controls.json").read_text()
+    key(pygame.K_BACKSPACE)  # Backspace, then a key: that key alone
+    key(pygame.K_j, "j")
+    frames(app)
+    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (pygame.K_j,)
+    assert '"fire": [\n   "j"\n  ]' in (tmp_path / "controls.json").read_text()
     key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, Title)
+    app.render()
+    assert any(line.startswith("Enter or J play") for line in app.painter.said)  # the real Fire key
 
 
 def test_options__volumes_hitbox_and_difficulty_change_and_are_saved(app, tmp_path):

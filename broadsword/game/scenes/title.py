@@ -11,7 +11,7 @@ import pygame
 from ...data.difficulty import Difficulty
 from ...sim import FIELD
 from .. import ui
-from ..controls import DEFAULT_KEYS, Action, Bindings, key_label
+from ..controls import DEFAULT_KEYS, Action, Bindings, confirm_label, key_label, keys_label
 
 ERROR_LINES = 7  # at most this many wrapped lines of a load error (the rest: "...")
 ERROR_TEXT = (255, 214, 200)
@@ -26,8 +26,7 @@ def controls_list(b: Bindings) -> list[tuple[str, str]]:
     """(keys, what) rows of the title's key table, from the bindings in use."""
 
     def keys(a: Action) -> str:
-        labels = [key_label(k).removeprefix("Left ").removeprefix("Right ") for k in b.keys.get(a, ())]
-        return " / ".join(dict.fromkeys(labels)) or "(none)"  # Left Shift / Right Shift: Shift
+        return keys_label(b, a)
 
     move = (
         "Arrows / WASD"
@@ -112,7 +111,11 @@ class Title:
             name = "..." + name[4:]  # a long file name loses its start, keeps its end
         p.text(f"Stage: {name}   {hint}", 258, colour=ui.CREAM)
         p.text(f"Difficulty: < {app.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
-        p.text("Enter or Z play   O options   H scores   E edit hit shapes   Esc quit", 310, colour=ui.DIM)
+        p.text(
+            f"{confirm_label(app.controls.bindings)} play   O options   H scores   E edit hit shapes   Esc quit",
+            310,
+            colour=ui.DIM,
+        )
         if app.error:
             self._draw_error()
         else:
