@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pygame
 
-from ..data import DataError, list_levels, resolve_level
+from ..data import DataError, list_levels, load_level, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..sim import World
@@ -37,6 +37,7 @@ from .render import Renderer
 from .run import Run, Stage, load_stage, replay_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
+from .scenes.how_to_play import draw_first_run_hint
 from .scenes.play import (
     MAX_CATCH_UP,  # noqa: F401  (the loop's limit, named where the app is)
     ReplayInput,
@@ -142,6 +143,8 @@ class App:
             print(f"broadsword: {warning}", file=sys.stderr)
         self.message = "; ".join(warnings) or None
         self.recorders: list[Recorder] = []  # the run in play (or last played): a Recorder a stage, in order
+        self.hint = False  # the first run's hint shows over its first stage
+        self._titles: dict[str, str] = {}  # shipped level name -> its title, read once (stage_title)
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -262,6 +265,9 @@ class App:
         self.stack.draw(self.screen)
         if self.audio.muted:
             draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
+        play = self.play
+        if self.hint and play is not None and self.stack.top is play and not play.watched:
+            draw_first_run_hint(self.painter, self.controls.bindings, play.world.time)
         if self.screen.get_parent() is self.canvas:  # the field beside the side panel
             self.draw_panel()
         self.window.present(self.canvas)
@@ -287,6 +293,9 @@ class App:
         the level fails to load."""
         run = Run(self.start_index if index is None else index, self.difficulty, self.custom_level)
         self.recorders = []  # a new run: its stages are recorded afresh
+        self.hint = not self.options.played and not self.demo  # the first run here: its hint, once
+        if self.hint:
+            self.set_options(played=True)
         return self.begin_stage(run)
 
     def begin_stage(self, run: Run) -> bool:
@@ -332,6 +341,15 @@ class App:
         else:
             self.canvas = self.screen = pygame.Surface(size)
         self.painter = Painter(self.screen)
+
+    def stage_title(self, name: str) -> str:
+        """Shipped level ``name``'s title ("I. Outer Picket"), or ``name`` if it cannot be read."""
+        if name not in self._titles:
+            try:
+                self._titles[name] = load_level(resolve_level(name)).title
+            except DataError:
+                self._titles[name] = name
+        return self._titles[name]
 
     def to_title(self) -> None:
         self.stack.reset(Title(self))

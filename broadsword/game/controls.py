@@ -217,6 +217,15 @@ def keys_label(bindings: Bindings, action: Action) -> str:
     return " / ".join(dict.fromkeys(labels)) or "(none)"
 
 
+def move_label(bindings: Bindings) -> str:
+    """The movement keys: "Arrows / WASD" while they are the defaults, else the four keys
+    (left, right, up, down), each action's first."""
+    moves = (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN)
+    if all(bindings.keys.get(a) == DEFAULT_KEYS[a] for a in moves):
+        return "Arrows / WASD"
+    return " ".join(key_label(bindings.keys[a][0]) for a in moves if bindings.keys.get(a))
+
+
 def confirm_label(bindings: Bindings) -> str:
     """What confirms on a menu, for its help line: "Enter or Z / Space" (Enter and the Fire keys)."""
     fire = keys_label(bindings, Action.FIRE)

@@ -1,4 +1,5 @@
-"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape.
+"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape (and
+whether a stage has been played here yet, for the first run's hints).
 
 Kept as ``options.json`` in the user's data directory (beside the high scores and the
 controls), written atomically. A file that cannot be read or makes no sense falls back to
@@ -31,6 +32,7 @@ class Options:
     sound: int = 8
     fullscreen: bool = False
     always_hitbox: bool = False
+    played: bool = False  # a stage has been played here: the first run's hints are not shown again
 
     def __post_init__(self):
         object.__setattr__(self, "difficulty", Difficulty(self.difficulty))
@@ -38,7 +40,7 @@ class Options:
             v = getattr(self, name)
             if type(v) is not int or not 0 <= v <= VOLUME_STEPS:
                 raise ValueError(f"{name}: must be a whole number in [0, {VOLUME_STEPS}], got {v!r}")
-        for name in ("fullscreen", "always_hitbox"):
+        for name in ("fullscreen", "always_hitbox", "played"):
             if type(getattr(self, name)) is not bool:
                 raise ValueError(f"{name}: must be true or false, got {getattr(self, name)!r}")
 

@@ -266,9 +266,24 @@ def test_results__the_last_stage_leads_to_the_final_results_and_the_name(app):
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, GameOver) and app.scene.victory and app.scene.score == world.score.points
+    app.render()  # a one-stage run (started at the last stage) cleared only that stage
+    assert "STAGE CLEARED" in app.painter.said and not any("Every stage" in line for line in app.painter.said)
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, NameEntry) and app.scene.score == world.score.points
+
+
+def test_final_results__every_stage_cleared_only_when_the_run_cleared_them_all(app):
+    empty_stage(app, Run(len(app.levels) - 1))
+    frames(app, 2)
+    key(pygame.K_RETURN)
+    frames(app)
+    over = app.scene
+    assert over.victory_lines()[0] == "STAGE CLEARED"
+    over.totals = dataclasses.replace(over.totals, stages=2)
+    assert over.victory_lines() == ("STAGES CLEARED", f"2 of {len(app.levels)} stages, to I. Outer Picket, on Normal")
+    over.totals = dataclasses.replace(over.totals, stages=len(app.levels))
+    assert over.victory_lines() == ("BROADSWORD FALLS", "Every stage cleared on Normal")
 
 
 def test_final_results__the_runs_totals_add_every_stage_cleared(app):
@@ -293,6 +308,7 @@ def test_final_results__the_runs_totals_add_every_stage_cleared(app):
     assert t.seconds == first.time + last.time
     rows = dict(over.rows())
     assert rows["Stages cleared"] == "2" and rows["Misses"] == "3" and rows["Grazes"] == "42"
+    assert over.victory_lines()[0] == "STAGES CLEARED"  # two of five, not every stage
 
 
 # --------------------------------------------------------------------------- continues
@@ -572,3 +588,46 @@ def test_play__slow_motion_and_a_rotation_switch_are_said_on_screen(app):
     drawn.clear()
     frames(app)
     assert not any("SLOW" in s or "rotation" in s for s in drawn)
+
+
+# --------------------------------------------------------------------------- how to play, first run
+def test_how_to_play__from_the_title_three_pages_naming_the_keys_bound(app):
+    from broadsword.game.scenes.how_to_play import PAGES, HowToPlay
+
+    app.controls.bindings.bind_key(Action.BOMB, pygame.K_v, replace=True)
+    key(pygame.K_i)
+    frames(app)
+    assert isinstance(app.scene, HowToPlay)
+    text = []
+    for _ in PAGES:
+        app.render()
+        text.append(" ".join(app.painter.said))
+        key(pygame.K_RIGHT)
+        frames(app)
+    body = " ".join(text)
+    for topic in ("precise mode", "hit shape", "Graze", "Death-save", "P (red)", "Point", "Star", "continues", "bonus"):
+        assert topic in body, topic
+    assert "press V within" in body and "press X" not in body  # the bomb key bound now
+    key(pygame.K_ESCAPE)
+    frames(app)
+    assert isinstance(app.scene, Title)
+
+
+def test_first_run__the_title_and_the_first_stage_hint_then_never_again(app, tmp_path):
+    assert not app.options.played
+    app.render()
+    assert any("how to play" in line for line in app.painter.said)
+    app.start_run()
+    frames(app)
+    assert app.hint and app.options.played and '"played": true' in (tmp_path / "options.json").read_text()
+    assert any(line.startswith("Hold Z / Space: fire") for line in app.painter.said)
+    app.to_title()
+    app.start_run()  # the second run: no hint
+    frames(app)
+    assert not app.hint and not any(line.startswith("Hold Z") for line in app.painter.said)
+
+
+def test_title__names_the_stage_by_its_title(app):
+    app.render()
+    assert any(line.startswith("Stage: I. Outer Picket") for line in app.painter.said)
+    assert not any("1-picket" in line for line in app.painter.said)
