@@ -25,7 +25,7 @@ import pygame
 from ..data import DataError, list_levels, load_level, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
-from ..sim import World
+from ..sim import Input, World
 from ..sim.replay import Playback, Recorder
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
@@ -284,7 +284,12 @@ class App:
         mark = None
         if play is not None and play.watched:
             mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
-        return PanelInfo(max((e.score for e in self.scores.entries), default=0), mark)
+        difficulty = self.world.settings.difficulty if self.world is not None else self.difficulty
+        held = None
+        if play is not None and self.options.input_display:
+            inputs = play.recorder.inputs  # every step's input, as recorded: the player's, the autopilot's, a replay's
+            held = Input.from_byte(inputs[-1]) if inputs else Input()
+        return PanelInfo(max((e.score for e in self.scores.of(difficulty)), default=0), mark, held)
 
     # ------------------------------------------------------------------ runs and stages
     def start_run(self, index: int | None = None) -> bool:

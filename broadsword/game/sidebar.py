@@ -17,7 +17,7 @@ from enum import Enum
 import pygame
 
 from ..data.difficulty import Difficulty
-from ..sim import FIELD, World
+from ..sim import FIELD, Input, World
 from ..sim.items import COLLECT_LINE, point_value
 from ..sim.player import POWER_MAX
 from . import ui
@@ -57,6 +57,7 @@ class PanelInfo:
 
     best: int
     mark: Mark | None = None
+    held: Input | None = None  # the input display: the last step's input (None: off)
 
 
 def draw_panel(
@@ -116,6 +117,8 @@ def draw_panel(
         painter.text(value, y, 22, VALUE, x=w - PAD, anchor="midright", width=VALUE_ROOM)
         y += 26
     _boss(painter, world, y + 14, w)
+    if info.held is not None:
+        _input_display(surf, painter, info.held, surf.get_height() - 110)
     if info.mark is not None:
         painter.text(info.mark.value, surf.get_height() - 40, ui.HEADING, (255, 120, 120))
 
@@ -149,6 +152,23 @@ def _bomb_mark(surf: pygame.Surface, at: tuple[float, float]) -> None:
 def _stars(surf: pygame.Surface, painter: ui.Painter, n: int, y: float) -> None:
     """``n`` bomb marks on the row at ``y``."""
     _marks(surf, painter, n, y, 20, _bomb_mark)
+
+
+#: The input display's arrow keys: (dx, dy) -> the key's offset from the cross's centre, px.
+ARROWS = {(-1, 0): (-22, 0), (1, 0): (22, 0), (0, -1): (0, -22), (0, 1): (0, 22)}
+ON, OFF = (255, 230, 150), (50, 56, 90)
+
+
+def _input_display(surf: pygame.Surface, painter: ui.Painter, held: Input, y: float) -> None:
+    """The input held on the last step: four arrow keys, and FIRE, SLOW, BOMB lit when held."""
+    cx = PAD + 30
+    for (dx, dy), (ox, oy) in ARROWS.items():
+        lit = (held.dx == dx and dx) or (held.dy == dy and dy)
+        pygame.draw.rect(surf, ON if lit else OFF, (cx + ox - 9, y + oy - 9, 18, 18), border_radius=3)
+    for i, (label, on) in enumerate((("FIRE", held.fire), ("SLOW", held.slow), ("BOMB", held.bomb))):
+        rect = pygame.Rect(cx + 50, y - 30 + 21 * i, 80, 18)
+        pygame.draw.rect(surf, ON if on else OFF, rect, border_radius=3)
+        painter.text(label, rect.centery, 16, BACK if on else LABEL, x=rect.centerx)
 
 
 def _boss(painter: ui.Painter, world: World, y: float, w: int) -> None:

@@ -631,3 +631,35 @@ def test_title__names_the_stage_by_its_title(app):
     app.render()
     assert any(line.startswith("Stage: I. Outer Picket") for line in app.painter.said)
     assert not any("1-picket" in line for line in app.painter.said)
+
+
+def test_high_scores__one_table_a_difficulty_with_the_stages_title(app):
+    app.scores.add(Entry("EASY", 5000, "I. Outer Picket", "2026-11-27", Difficulty.EASY))
+    app.scores.add(Entry("HARD", 900, "IV. Ion Storm", "2026-11-27", Difficulty.HARD))
+    app.stack.reset(HighScoresScene(app, Difficulty.EASY))
+    frames(app)
+    app.render()
+    assert "EASY" in app.painter.said and "I. Outer Picket" in app.painter.said and "HARD" not in app.painter.said
+    key(pygame.K_RIGHT)  # Normal: empty
+    frames(app)
+    assert "none yet" in app.painter.said
+    key(pygame.K_RIGHT)
+    frames(app)
+    assert "HARD" in app.painter.said and "IV. Ion Storm" in app.painter.said and "EASY" not in app.painter.said
+
+
+def test_game_over__a_score_enters_its_difficultys_table_with_the_stages_title(app):
+    app.set_options(difficulty=Difficulty.HARD)
+    world = empty_stage(app, Run(0, Difficulty.HARD), waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.progress.continues_used = 3
+    world.score.points = 12_340
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, GameOver) and app.scene.qualifies
+    key(pygame.K_RETURN)
+    frames(app)
+    key(pygame.K_a, "a")
+    key(pygame.K_RETURN)
+    frames(app)
+    (entry,) = app.scores.entries
+    assert (entry.name, entry.level, entry.difficulty) == ("A", "I. Outer Picket", Difficulty.HARD)

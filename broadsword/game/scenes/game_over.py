@@ -16,7 +16,8 @@ class GameOver:
         self.app, self.play, self.victory = app, play, victory
         world = play.world
         self.score = world.score.points
-        self.level = world.level.name
+        self.level = world.level.title  # the table shows the stage's title
+        self.difficulty = play.run.difficulty
         self.continues = world.progress.continues_used
         run = play.run
         # A cleared run's last stage is already in its totals (the results screen added it).
@@ -24,7 +25,7 @@ class GameOver:
 
     @property
     def qualifies(self) -> bool:
-        return not self.play.watched and self.score > 0 and self.app.scores.qualifies(self.score)
+        return not self.play.watched and self.score > 0 and self.app.scores.qualifies(self.score, self.difficulty)
 
     def handle(self, event: pygame.event.Event) -> bool:
         if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:
@@ -36,7 +37,7 @@ class GameOver:
         from .name_entry import NameEntry
 
         if self.qualifies:
-            self.app.stack.replace(NameEntry(self.app, self.score, self.level))
+            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty))
         else:
             self.app.to_title()
 

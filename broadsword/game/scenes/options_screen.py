@@ -1,5 +1,6 @@
 """The options: difficulty, music and sound volumes, fullscreen, always showing the hit
-shape, and rebinding every gameplay action to a key and a pad button.
+shape, the game speed (50-100 %: the wall clock only, so replays stay exact), the input
+display, and rebinding every gameplay action to a key and a pad button.
 
 Up/Down choose a row, Left/Right change it; on an action's row, Enter adds a key or pad button
 to the ones it has and Backspace replaces them all (then press the key or button; Esc
@@ -16,7 +17,7 @@ import pygame
 from ...data.difficulty import Difficulty
 from .. import ui
 from ..controls import FIXED_KEYS, REBINDABLE, Action, Bindings, key_label
-from ..options import VOLUME_STEPS
+from ..options import SPEED_MIN, SPEED_STEP, VOLUME_STEPS
 
 DIFFICULTIES = list(Difficulty)
 #: On an action's row, these keys start a rebinding that replaces its keys (Enter adds one).
@@ -38,10 +39,16 @@ ROWS = (
         Row("Sound volume", "sound"),
         Row("Fullscreen (F11)", "fullscreen"),
         Row("Always show hit shape", "always_hitbox"),
+        Row("Game speed", "speed"),
+        Row("Input display", "input_display"),
     ]
     + [Row(a.title, action=a) for a in REBINDABLE]
     + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")]
 )
+
+
+#: The rows of options (the rebindable actions follow them).
+OPTION_ROWS = sum(1 for r in ROWS if r.option)
 
 
 class OptionsScene:
@@ -82,6 +89,8 @@ class OptionsScene:
             value = DIFFICULTIES[(DIFFICULTIES.index(o.difficulty) + step) % len(DIFFICULTIES)]
         elif option in ("music", "sound"):
             value = max(0, min(VOLUME_STEPS, getattr(o, option) + step))
+        elif option == "speed":
+            value = max(SPEED_MIN, min(100, o.speed + SPEED_STEP * step))
         else:
             value = not getattr(o, option)
         if option == "fullscreen":
@@ -136,6 +145,8 @@ class OptionsScene:
         o = self.app.options
         if row.option == "difficulty":
             return f"< {o.difficulty.title} >"
+        if row.option == "speed":
+            return f"< {o.speed}% >" + ("  (replays stay exact)" if o.speed < 100 else "")
         if row.option in ("music", "sound"):
             v = getattr(o, row.option)
             return f"< {'#' * v}{'.' * (VOLUME_STEPS - v)} {v * 100 // VOLUME_STEPS}% >"
@@ -152,7 +163,7 @@ class OptionsScene:
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
         for i, row in enumerate(ROWS):
-            y = 118 + 26 * i + (10 if i >= 5 else 0) + (10 if i >= 5 + len(REBINDABLE) else 0)
+            y = 110 + 26 * i + (10 if i >= OPTION_ROWS else 0) + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
             chosen = i == self.row
             if chosen:
                 pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))

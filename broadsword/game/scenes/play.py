@@ -121,7 +121,8 @@ class Play:
 
     # ------------------------------------------------------------------ stepping
     def update(self, dt: float) -> int:
-        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0)
+        # the game speed option scales the wall clock only: the same steps, fewer a second
+        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0) * self.app.options.speed / 100
         steps = 0
         while self.accumulator >= DT and steps < MAX_CATCH_UP and not self.ended:
             self.step()

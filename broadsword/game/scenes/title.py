@@ -103,7 +103,7 @@ class Title:
         p.text("BROADSWORD", 110, ui.BIG, ui.GOLD)
         p.text("polygon-armature shoot-'em-up", 150, colour=(160, 180, 220))
         ship = pygame.transform.scale_by(app.bank.images["player"], 2)
-        surf.blit(ship, ship.get_rect(center=(w / 2, 196)))
+        surf.blit(ship, ship.get_rect(center=(w / 2, 190)))
         if not app.options.played:  # the first run: point at the help, pulsing
             glow = 200 + int(55 * ((app.renderer.tick // 20) % 2))
             p.text("New here? Press I for how to play", HINT_Y, 24, (255, glow, 120))
@@ -127,9 +127,9 @@ class Title:
             self._draw_error()
         else:
             self._draw_controls()
-        if app.scores.entries:
-            best = app.scores.entries[0]
-            p.text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
+        table = app.scores.of(app.difficulty)
+        if table:
+            p.text(f"High score on {app.difficulty.title}: {table[0].score:,}  {table[0].name}", 570, colour=ui.GOOD)
         if app.message:  # below the high score: up to MESSAGE_LINES small lines
             message = app.message.replace(str(app.data / "_")[:-1], "")  # files in the data dir by name
             for i, line in enumerate(p.lines(message, w - 20, MESSAGE_LINES, MESSAGE_SIZE)):
