@@ -44,7 +44,7 @@ from .scenes.play import (
 )
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
-from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, draw_panel
+from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, draw_panel, panel_state
 from .soundtrack import follow
 from .sprites import SpriteBank
 from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
@@ -111,6 +111,7 @@ class App:
         pygame.init()
         # After pygame.init(): key names are read through SDL, which warns on stderr before it
         bindings, bindings_warning = load_bindings(self.data / "controls.json")
+        self._panel_state: tuple | None = None  # what the panel shows now (None: not drawn yet)
         self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
@@ -274,8 +275,13 @@ class App:
 
     def draw_panel(self) -> None:
         """The side panel beside the field: the stage's numbers in play, else the best score."""
+        world, info = self.world, self.panel_info()
+        state = panel_state(world, info)
+        if state == self._panel_state:
+            return  # the panel's pixels are as they were: nothing else draws there
+        self._panel_state = state
         self.panel_painter.forget()
-        draw_panel(self.panel_surface, self.panel_painter, self.world, self.panel_info(), self.renderer.life_icon)
+        draw_panel(self.panel_surface, self.panel_painter, world, info, self.renderer.life_icon)
 
     def panel_info(self) -> PanelInfo:
         """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
@@ -343,6 +349,7 @@ class App:
             self.screen = self.canvas.subsurface(FIELD_RECT)
             self.panel_surface = self.canvas.subsurface(PANEL_RECT)
             self.panel_painter = Painter(self.panel_surface)
+            self._panel_state = None  # a new panel: drawn on the next frame
         else:
             self.canvas = self.screen = pygame.Surface(size)
         self.painter = Painter(self.screen)

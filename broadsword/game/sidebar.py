@@ -60,6 +60,28 @@ class PanelInfo:
     held: Input | None = None  # the input display: the last step's input (None: off)
 
 
+def panel_state(world: World | None, info: PanelInfo) -> tuple:
+    """Everything the panel shows, as a value: the panel is drawn again only when it changes
+    (drawing it costs as much as the field; most frames change nothing on it)."""
+    if world is None:
+        return (info,)
+    p, boss, mid = world.player, world.boss, world.ships.midboss()
+    fight = (boss.phase, boss.spec.name) if boss is not None and boss.fighting else None
+    return (
+        info,
+        world.level.title,
+        world.settings.difficulty,
+        world.score.points,
+        world.score.grazes,
+        world.score.items,
+        p.lives - (1 if p.alive else 0),
+        p.bombs,
+        p.power,
+        fight,
+        mid.name if mid is not None and fight is None else None,
+    )
+
+
 def draw_panel(
     surf: pygame.Surface, painter: ui.Painter, world: World | None, info: PanelInfo, icon: pygame.Surface
 ) -> None:

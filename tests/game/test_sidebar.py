@@ -58,3 +58,22 @@ def test_sidebar__huge_numbers_stay_inside_the_panel(make_app):
     assert not any(a.colliderect(b) for a in labels for b in values)  # no count overwrites its label
     field = pygame.surfarray.array3d(app.screen)
     assert np.any(field)
+
+
+def test_sidebar__drawn_again_only_when_what_it_shows_changes(make_app):
+    """Drawing the panel costs about as much as the field (3.7 ms against 4.1 here, loaded):
+    frames that change nothing on it leave its pixels as they are."""
+    app = make_app()
+    app.start_run()
+    app.frame(DT)
+    drawn = []
+    real = app.panel_painter.forget
+    app.panel_painter.forget = lambda: drawn.append(1) or real()
+    app.world.player.invulnerable = 1e9
+    for _ in range(5):
+        app.render()
+    assert drawn == []
+    before = pygame.surfarray.array3d(app.panel_surface).copy()
+    app.world.score.points += 1230
+    app.render()
+    assert drawn == [1] and (pygame.surfarray.array3d(app.panel_surface) != before).any()
