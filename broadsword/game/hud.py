@@ -59,6 +59,7 @@ def draw_boss_bar(surf: pygame.Surface, boss, font: pygame.font.Font) -> None:
         return
     fw, fh = surf.get_size()
     x0, y = BAR_MARGIN, fh - BAR_BOTTOM - BAR_HEIGHT
+    _backing(surf, x0, y)
     n = len(boss.phase_hp)
     for i, (x, w) in enumerate(segments(fw - 2 * BAR_MARGIN, n)):
         rect = pygame.Rect(round(x0 + x), y, max(1, round(w)), BAR_HEIGHT)
@@ -75,12 +76,21 @@ def draw_boss_bar(surf: pygame.Surface, boss, font: pygame.font.Font) -> None:
     surf.blit(timer, timer.get_rect(midright=(fw - x0, y - 10)))
 
 
+def _backing(surf: pygame.Surface, x0: int, y: int) -> None:
+    """A dark translucent strip under the bar and its caption, so they read over bullets."""
+    w = surf.get_width() - 2 * x0 + 16
+    strip = pygame.Surface((w, BAR_HEIGHT + 28), pygame.SRCALPHA)
+    strip.fill((0, 0, 0, 130))
+    surf.blit(strip, (x0 - 8, y - 22))
+
+
 def draw_midboss_bar(surf: pygame.Surface, mid, font: pygame.font.Font) -> None:
     """Draw mid-boss ``mid``'s bar and name (a :class:`broadsword.sim.waves.MidBoss`, or None: nothing)."""
     if mid is None:
         return
     fw, fh = surf.get_size()
     x0, y = BAR_MARGIN, fh - BAR_BOTTOM - BAR_HEIGHT
+    _backing(surf, x0, y)
     rect = pygame.Rect(x0, y, fw - 2 * BAR_MARGIN, BAR_HEIGHT)
     pygame.draw.rect(surf, SPENT, rect)
     frac = max(mid.hp, 0) / mid.max_hp
