@@ -75,7 +75,7 @@ def run_game_frames(
     pilot = Pilot()
     steps, peak, peak_step = 0, 0, 0
     while steps < warmup and (bullets is None or world.enemy_bullets.n < bullets) and not world.over:
-        renderer.on_events(runner.step(pilot(world)))
+        renderer.on_events(runner.step(pilot(world)), world)
         steps += 1
         if world.enemy_bullets.n > peak:
             peak, peak_step = world.enemy_bullets.n, steps
@@ -90,7 +90,7 @@ def run_game_frames(
         t0 = clock()
         pilots.append((t0 - tp) * 1e3)
         ev = runner.step(action)  # the play scene's own step (Play.step): world, recording, digests
-        renderer.on_events(ev)
+        renderer.on_events(ev, world)
         t1 = clock()
         renderer.draw(screen, world, 1.0)
         t2 = clock()

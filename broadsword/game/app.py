@@ -22,13 +22,14 @@ from pathlib import Path
 
 import pygame
 
-from ..data import DataError, list_levels, resolve_level
+from ..data import DataError, list_levels, load_level, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..runner import Runner, Stage
-from ..sim import FIELD, World
+from ..sim import Input, World
 from .audio import Audio
 from .controls import Action, Controls, load_bindings, save_bindings
+from .feedback import Feedback
 from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
@@ -36,12 +37,14 @@ from .render import Renderer
 from .run import Run, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
+from .scenes.how_to_play import draw_first_run_hint
 from .scenes.play import (
     MAX_CATCH_UP,  # noqa: F401  (the loop's limit, named where the app is)
     ReplayInput,
 )
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
+from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, draw_panel, panel_state
 from .soundtrack import follow
 from .sprites import SpriteBank
 from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
@@ -104,16 +107,18 @@ class App:
         self.saved_difficulty = self.options.difficulty  # what options.json keeps, whatever --difficulty says
         if difficulty is not None:  # --difficulty: this session's, not saved
             self.options = dataclasses.replace(self.options, difficulty=Difficulty(difficulty))
-        bindings, bindings_warning = load_bindings(self.data / "controls.json")
-        self.window = Window((int(FIELD[0] * scale), int(FIELD[1] * scale)), TITLE, self.options.fullscreen)
+        self.window = Window((int(FRAME[0] * scale), int(FRAME[1] * scale)), TITLE, self.options.fullscreen)
         pygame.init()
-        self.screen = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
-        self.painter = Painter(self.screen)
+        # After pygame.init(): key names are read through SDL, which warns on stderr before it
+        bindings, bindings_warning = load_bindings(self.data / "controls.json")
+        self._panel_state: tuple | None = None  # what the panel shows now (None: not drawn yet)
+        self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
         self.renderer = Renderer(self.bank, seed)
         self.overlay = Overlay()
         self.audio = Audio(enabled=audio)
+        self.feedback = Feedback(self.renderer, self.audio)  # each step's events, seen and heard
         self.scores = (scores or HighScores()).load()
         self.controls = Controls(bindings)
         self.levels = list_levels()
@@ -139,6 +144,8 @@ class App:
             print(f"broadsword: {warning}", file=sys.stderr)
         self.message = "; ".join(warnings) or None
         self.runner: Runner | None = None  # the run in play (or last played), every stage of it
+        self.hint = False  # the first run's hint shows over its first stage
+        self._titles: dict[str, str] = {}  # shipped level name -> its title, read once (stage_title)
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -250,11 +257,40 @@ class App:
             self.stack.push(Pause(self, top))
 
     def render(self) -> None:
-        self.painter.drawn.clear()
+        self.painter.forget()
         self.stack.draw(self.screen)
         if self.audio.muted:
             draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
-        self.window.present(self.screen)
+        play = self.play
+        if self.hint and play is not None and self.stack.top is play and not play.watched:
+            draw_first_run_hint(self.painter, self.controls.bindings, play.world.time)
+        if self.screen.get_parent() is self.canvas:  # the field beside the side panel
+            self.draw_panel()
+        self.window.present(self.canvas)
+
+    def draw_panel(self) -> None:
+        """The side panel beside the field: the stage's numbers in play, else the best score."""
+        world, info = self.world, self.panel_info()
+        state = panel_state(world, info)
+        if state == self._panel_state:
+            return  # the panel's pixels are as they were: nothing else draws there
+        self._panel_state = state
+        self.panel_painter.forget()
+        draw_panel(self.panel_surface, self.panel_painter, world, info, self.renderer.life_icon)
+
+    def panel_info(self) -> PanelInfo:
+        """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
+        recording plays, "DEMO" while the autopilot does, none while the player plays."""
+        play = self.play
+        mark = None
+        if play is not None and play.watched:
+            mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
+        difficulty = self.world.settings.difficulty if self.world is not None else self.difficulty
+        held = None
+        if play is not None and self.options.input_display:
+            # the last step's input, as recorded: the player's, the autopilot's, a replay's
+            held = play.runner.recorder.last_input or Input()
+        return PanelInfo(max((e.score for e in self.scores.of(difficulty)), default=0), mark, held)
 
     # ------------------------------------------------------------------ runs and stages
     def start_run(self, index: int | None = None) -> bool:
@@ -262,6 +298,9 @@ class App:
         one) on the chosen difficulty. Returns False, and shows the title with the error, if
         the level fails to load."""
         run = Run(self.start_index if index is None else index, self.difficulty, self.custom_level)
+        self.hint = not self.options.played and not self.demo  # the first run here: its hint, once
+        if self.hint:
+            self.set_options(played=True)
         return self.begin_stage(run)
 
     def begin_stage(self, run: Run, go_on: bool = False) -> bool:
@@ -308,10 +347,28 @@ class App:
         return play
 
     def use_screen(self, size: tuple[int, int] | None = None) -> None:
-        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on;
-        ``None``: the field again. The window shows it scaled in, as it does the field."""
-        self.screen = pygame.Surface(size or (int(FIELD[0]), int(FIELD[1])))
+        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on,
+        alone in the window; ``None``: the field again, beside the side panel
+        (:mod:`.sidebar`). ``canvas`` is what the window shows, scaled in; ``screen`` is
+        where the scenes draw (the field: a subsurface of ``canvas``)."""
+        if size is None:
+            self.canvas = pygame.Surface(FRAME)
+            self.screen = self.canvas.subsurface(FIELD_RECT)
+            self.panel_surface = self.canvas.subsurface(PANEL_RECT)
+            self.panel_painter = Painter(self.panel_surface)
+            self._panel_state = None  # a new panel: drawn on the next frame
+        else:
+            self.canvas = self.screen = pygame.Surface(size)
         self.painter = Painter(self.screen)
+
+    def stage_title(self, name: str) -> str:
+        """Shipped level ``name``'s title ("I. Outer Picket"), or ``name`` if it cannot be read."""
+        if name not in self._titles:
+            try:
+                self._titles[name] = load_level(resolve_level(name)).title
+            except DataError:
+                self._titles[name] = name
+        return self._titles[name]
 
     def to_title(self) -> None:
         self.stack.reset(Title(self))

@@ -40,6 +40,11 @@ NAMES: tuple[str, ...] = (
     "player_hit",
     "select",
     "pause",
+    "bonus",
+    "extend",
+    "warning",
+    "phase",
+    "bomb",
 )
 
 _MIN_RATE = 8000
@@ -173,6 +178,52 @@ def _pause(rate: int) -> np.ndarray:
     return _finish(x * np.exp(-t / 0.05), rate, 0.30, attack=0.008, release=0.030)
 
 
+def _chime(rate: int, notes: tuple[float, ...], step: float, tau: float, peak: float) -> np.ndarray:
+    """Bell-like notes ``step`` s apart, each decaying with ``tau`` s (bonus, extend)."""
+    t = times(step * len(notes) + 4 * tau, rate)
+    x = np.zeros_like(t)
+    for i, f in enumerate(notes):
+        local = np.maximum(t - i * step, 0.0)
+        note = sum(
+            a * np.sin(2.0 * np.pi * float(_cap(k * f, rate)) * local) for k, a in ((1, 1.0), (2, 0.3), (4, 0.1))
+        )
+        x += np.where(t >= i * step, note * np.exp(-local / tau), 0.0)
+    return _finish(x, rate, peak, attack=0.002, release=0.040)
+
+
+def _bonus(rate: int) -> np.ndarray:
+    return _chime(rate, (1046.5, 1318.5, 1568.0, 2093.0), 0.06, 0.08, 0.40)
+
+
+def _extend(rate: int) -> np.ndarray:
+    return _chime(rate, (784.0, 1046.5, 1318.5, 1568.0, 2093.0, 2637.0), 0.07, 0.12, 0.50)
+
+
+def _warning(rate: int) -> np.ndarray:
+    """A two-tone siren, three times: the boss is coming."""
+    t = times(1.05, rate)
+    freq = np.where(np.mod(t, 0.35) < 0.175, 660.0, 440.0)
+    ph = _phase(freq, rate)
+    x = np.sign(np.sin(ph)) * 0.6 + np.sin(ph)
+    x = fft_filter(x, rate, high=min(3000.0, 0.4 * rate))
+    return _finish(x, rate, 0.45, attack=0.010, release=0.060)
+
+
+def _phase_end(rate: int) -> np.ndarray:
+    """A falling shimmer: a boss phase is over."""
+    t = times(0.40, rate)
+    ph = _phase(_cap(1800.0 * np.exp(-t / 0.25) + 400.0, rate), rate)
+    x = np.sin(ph) + 0.4 * np.sin(1.5 * ph)
+    return _finish(x * np.exp(-t / 0.15), rate, 0.40, attack=0.003, release=0.050)
+
+
+def _bomb(rate: int) -> np.ndarray:
+    """A rising whoosh over a low boom."""
+    x, t = _boom("bomb", rate, 0.80, 3000.0, 300.0, 0.20, 0.30, (40.0, 40.0, 0.10, 0.25))
+    rise = np.sin(_phase(_cap(200.0 + 1400.0 * t / t[-1], rate), rate)) * np.exp(-t / 0.3)
+    return _finish(np.tanh(x + 0.5 * rise), rate, 0.60, attack=0.010, release=0.150)
+
+
 _BUILDERS: Mapping[str, Callable[[int], np.ndarray]] = MappingProxyType(
     {
         "shot": _shot,
@@ -183,6 +234,11 @@ _BUILDERS: Mapping[str, Callable[[int], np.ndarray]] = MappingProxyType(
         "player_hit": _player_hit,
         "select": _select,
         "pause": _pause,
+        "bonus": _bonus,
+        "extend": _extend,
+        "warning": _warning,
+        "phase": _phase_end,
+        "bomb": _bomb,
     }
 )
 
@@ -238,6 +294,11 @@ class Audio:
             "player_hit": 0.150,
             "select": 0.040,
             "pause": 0.100,
+            "bonus": 0.200,
+            "extend": 0.500,
+            "warning": 1.000,
+            "phase": 0.300,
+            "bomb": 0.300,
         }
     )
 

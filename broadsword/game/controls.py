@@ -34,6 +34,8 @@ from .settingsfile import SettingsUnreadable, keep_copy, merged_for_save, one_li
 #: The file's format, and its largest sensible size (anything bigger is not a bindings file).
 FORMAT_VERSION = 1
 FILE_MAX_BYTES = 64 << 10
+#: At most this many keys (and as many pad buttons) press one action (the file's limit too).
+BOUND_MAX = 8
 #: A stick pushed further than this (of 1.0) counts as a direction.
 STICK_DEAD_ZONE = 0.35
 
@@ -136,19 +138,16 @@ class Bindings:
     keys: dict[Action, tuple[int, ...]] = field(default_factory=lambda: dict(DEFAULT_KEYS))
     buttons: dict[Action, tuple[int, ...]] = field(default_factory=lambda: dict(DEFAULT_BUTTONS))
 
-    def bind_key(self, action: Action, key: int) -> None:
-        """``key`` alone now presses ``action``; no other rebindable action keeps it."""
+    def bind_key(self, action: Action, key: int, replace: bool = False) -> None:
+        """``key`` now presses ``action``, besides its other keys (the oldest dropped past
+        ``BOUND_MAX``), or instead of them if ``replace``; no other rebindable action keeps it."""
         self._check(action)
-        for a in REBINDABLE:
-            self.keys[a] = tuple(k for k in self.keys.get(a, ()) if k != key)
-        self.keys[action] = (key,)
+        self.keys = _bind(self.keys, action, key, replace)
 
-    def bind_button(self, action: Action, button: int) -> None:
-        """``button`` alone now presses ``action``; no other rebindable action keeps it."""
+    def bind_button(self, action: Action, button: int, replace: bool = False) -> None:
+        """``button`` now presses ``action``, as :meth:`bind_key` binds a key."""
         self._check(action)
-        for a in REBINDABLE:
-            self.buttons[a] = tuple(b for b in self.buttons.get(a, ()) if b != button)
-        self.buttons[action] = (int(button),)
+        self.buttons = _bind(self.buttons, action, int(button), replace)
 
     @staticmethod
     def _check(action: Action) -> None:
@@ -219,8 +218,8 @@ class Bindings:
                             f"{where}: not an action (rebindable: {', '.join(a.value for a in REBINDABLE)})"
                         )
                     continue
-                if action not in REBINDABLE or not isinstance(values, list) or len(values) > 8:
-                    problems.append(f"{where}: must be a list of at most 8 names of a rebindable action")
+                if action not in REBINDABLE or not isinstance(values, list) or len(values) > BOUND_MAX:
+                    problems.append(f"{where}: must be a list of at most {BOUND_MAX} names of a rebindable action")
                     continue
                 codes = []
                 for value in values:
@@ -243,6 +242,36 @@ class Bindings:
                 elif action in table:
                     table[action] = tuple(c for c in table[action] if c not in taken)
         return b, [one_line(p) for p in problems]
+
+
+def _bind(table: dict[Action, tuple[int, ...]], action: Action, code: int, replace: bool) -> dict:
+    """``table`` with ``code`` bound to ``action`` (added last, or alone if ``replace``) and
+    taken from every other rebindable action; at most ``BOUND_MAX`` codes an action."""
+    out = {a: tuple(c for c in table.get(a, ()) if c != code) for a in REBINDABLE}
+    out[action] = ((code,) if replace else (*out[action], code))[-BOUND_MAX:]
+    return out
+
+
+def keys_label(bindings: Bindings, action: Action) -> str:
+    """The keys that press ``action``, as a player reads them: "Z / Space", "Shift" (both
+    Shifts are one word), "(none)"."""
+    labels = [key_label(k).removeprefix("Left ").removeprefix("Right ") for k in bindings.keys.get(action, ())]
+    return " / ".join(dict.fromkeys(labels)) or "(none)"
+
+
+def move_label(bindings: Bindings) -> str:
+    """The movement keys: "Arrows / WASD" while they are the defaults, else the four keys
+    (left, right, up, down), each action's first."""
+    moves = (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN)
+    if all(bindings.keys.get(a) == DEFAULT_KEYS[a] for a in moves):
+        return "Arrows / WASD"
+    return " ".join(key_label(bindings.keys[a][0]) for a in moves if bindings.keys.get(a))
+
+
+def confirm_label(bindings: Bindings) -> str:
+    """What confirms on a menu, for its help line: "Enter or Z / Space" (Enter and the Fire keys)."""
+    fire = keys_label(bindings, Action.FIRE)
+    return "Enter" if fire == "(none)" else f"Enter or {fire}"
 
 
 def _button_name(b: int) -> str:

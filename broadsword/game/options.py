@@ -1,4 +1,5 @@
-"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape.
+"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape (and
+whether a stage has been played here yet, for the first run's hints).
 
 Kept as ``options.json`` in the user's data directory (beside the high scores and the
 controls), written atomically (:mod:`.settingsfile`). Read value by value: a bad value (a
@@ -25,6 +26,9 @@ FORMAT_VERSION = 1
 FILE_MAX_BYTES = 64 << 10
 #: Volumes run from 0 to VOLUME_STEPS (shown as 0-100 %); a step on the options screen is one.
 VOLUME_STEPS = 10
+#: The game speed, % of real time: SPEED_MIN to 100 in steps of SPEED_STEP. It scales only the
+#: wall-clock time fed to the fixed-step loop, so the world takes the same steps, slower.
+SPEED_MIN, SPEED_STEP = 50, 10
 
 
 @dataclass(frozen=True)
@@ -36,6 +40,9 @@ class Options:
     sound: int = 8
     fullscreen: bool = False
     always_hitbox: bool = False
+    played: bool = False  # a stage has been played here: the first run's hints are not shown again
+    speed: int = 100  # the game speed, % (SPEED_MIN..100)
+    input_display: bool = False  # show the input held (arrows, fire, slow, bomb) on the side panel
 
     def __post_init__(self):
         object.__setattr__(self, "difficulty", Difficulty(self.difficulty))
@@ -43,7 +50,9 @@ class Options:
             v = getattr(self, name)
             if type(v) is not int or not 0 <= v <= VOLUME_STEPS:
                 raise ValueError(f"{name}: must be a whole number in [0, {VOLUME_STEPS}], got {v!r}")
-        for name in ("fullscreen", "always_hitbox"):
+        if type(self.speed) is not int or not SPEED_MIN <= self.speed <= 100 or self.speed % SPEED_STEP:
+            raise ValueError(f"speed: must be {SPEED_MIN} to 100 in steps of {SPEED_STEP}, got {self.speed!r}")
+        for name in ("fullscreen", "always_hitbox", "played", "input_display"):
             if type(getattr(self, name)) is not bool:
                 raise ValueError(f"{name}: must be true or false, got {getattr(self, name)!r}")
 

@@ -33,8 +33,11 @@ from .overlay_dense import crosses, heat_map, marks, stacked_graph
 from .render import LAYER_COLOURS
 from .window import to_surface
 
-PANEL_WIDTH = 250
-PANEL_TOP = 60  # px: a top panel sits below the HUD (score, graze and power left; lives and bombs right)
+PANEL_WIDTH = 270
+PANEL_TOP = 60  # px: a top panel sits below the field's live-mode note (slow motion, rotation)
+#: The right edges of the panel's number columns (pairs in, pairs out, ms), px from its left;
+#: the funnel's bars take the rest of the width.
+COLUMNS = (112, 164, 212)
 LINE_HEIGHT = 16
 LENS_RADIUS = 90.0  # px around the pointer (or the player) where full armatures are drawn
 HISTORY = 240  # frames in the frame-time graph (4 s at 60 steps a second)
@@ -86,14 +89,20 @@ def panel_lines(
 
 def pointer_on(surf: pygame.Surface) -> tuple[float, float] | None:
     """The mouse pointer's position on ``surf`` (the field, scaled into the window as the
-    game presents it), or ``None`` when it is outside the window or the field."""
+    game presents it: alone, or as a subsurface of the surface presented, the field beside
+    the side panel), or ``None`` when it is outside the window or the field."""
     win = pygame.display.get_surface()
     if win is None or not pygame.mouse.get_focused():
         return None
     if surf is win:
         x, y = pygame.mouse.get_pos()
         return float(x), float(y)
-    return to_surface(pygame.mouse.get_pos(), win.get_size(), surf.get_size())
+    shown, (ox, oy) = surf.get_abs_parent(), surf.get_abs_offset()
+    at = to_surface(pygame.mouse.get_pos(), win.get_size(), shown.get_size())
+    if at is None:
+        return None
+    fx, fy = at[0] - ox, at[1] - oy
+    return (fx, fy) if 0 <= fx < surf.get_width() and 0 <= fy < surf.get_height() else None
 
 
 def player_of(result: FrameResult) -> tuple[float, float] | None:
@@ -258,6 +267,14 @@ class Overlay:
         top = PANEL_TOP if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.TOP_LEFT) else h - height - 40
         return pygame.Rect(left, top, PANEL_WIDTH, height)
 
+    def _row(self, surf: pygame.Surface, left: float, y: float, cells: tuple[str, str, str, str], colour) -> None:
+        """One tier row: its name from the panel's left, the three numbers right-aligned at
+        ``COLUMNS`` (the font is proportional: padding with spaces would not line up)."""
+        surf.blit(self.font.render(cells[0], True, colour), (left + 6, y))
+        for cell, right in zip(cells[1:], COLUMNS):
+            img = self.font.render(cell, True, colour)
+            surf.blit(img, img.get_rect(topright=(left + right, y)))
+
     def _panel(self, surf, draw, record: FrameResult, fps: float, paused: bool) -> None:
         lines = panel_lines(record, fps, paused, self.step_key, self.rotation_key)[: HEADER_LINES + paused]
         rows = [s for s in record.stats if s.name != "layers"]
@@ -267,23 +284,25 @@ class Overlay:
         for text in lines:
             draw.text((left + 6, y), text, TEXT)
             y += LINE_HEIGHT
-        draw.text((left + 6, y), f"{'tier':<9}{'in':>8}{'out':>8}{'ms':>7}   funnel", TEXT)
+        self._row(surf, left, y, ("tier", "in", "out", "ms"), TEXT)
+        draw.text((left + COLUMNS[-1] + 4, y), "funnel", TEXT)
         y += LINE_HEIGHT
         top_pairs = max([max(s.pairs_in, s.pairs_out) for s in rows] + [1])
         scale = np.log10(top_pairs + 1)
+        x0, room = left + COLUMNS[-1] + 6, PANEL_WIDTH - COLUMNS[-1] - 12  # the funnel's bars, inside the panel
         for k, s in enumerate(rows):
             colour = TIER_COLOURS[k % len(TIER_COLOURS)]
-            draw.text((left + 6, y), f"{s.name:<9}{s.pairs_in:>8}{s.pairs_out:>8}{s.ms:>7.2f}", colour)
-            bar_in = 60 * np.log10(s.pairs_in + 1) / scale
-            bar_out = 60 * np.log10(s.pairs_out + 1) / scale
-            x0 = left + PANEL_WIDTH - 66
+            self._row(surf, left, y, (s.name, compact(s.pairs_in), compact(s.pairs_out), _ms(s.ms)), colour)
+            bar_in = room * np.log10(s.pairs_in + 1) / scale
+            bar_out = room * np.log10(s.pairs_out + 1) / scale
             draw.boxes(
                 np.array([[x0, y + 3, x0 + bar_in, y + 6], [x0, y + 8, x0 + bar_out, y + 11]]),
                 [_dim(colour), colour],
                 width=0,
             )
             y += LINE_HEIGHT
-        draw.text((left + 6, y), f"total {record.ms:.2f} ms, {record.objects.n} objects; last {HISTORY // 60} s:", TEXT)
+        total = f"total {record.ms:.2f} ms, {compact(record.objects.n)} objects; last {HISTORY // 60} s:"
+        draw.text((left + 6, y), total, TEXT)
         y += LINE_HEIGHT + 2
         hist = np.array(self.history) if self.history else np.zeros((0, len(rows)))
         top_ms = float(np.percentile(hist.sum(axis=1), 95)) * 1.2 if len(hist) else 1.0
@@ -295,6 +314,21 @@ class Overlay:
         )
         surf.blit(graph, (left + 6, y))
         draw.text((left + 8, y + 1), f"{top_ms:.1f} ms", TEXT)
+
+
+def compact(n: int) -> str:
+    """A count in at most six characters: ``99999``, ``698k``, ``12.3M``, ``100M``, ``12.3G``."""
+    if n < 100_000:
+        return str(n)
+    if n < 1_000_000:
+        return f"{n // 1000}k"
+    value, unit = (n / 1e6, "M") if n < 1_000_000_000 else (n / 1e9, "G")
+    return f"{value:.1f}{unit}" if value < 100 else f"{value:.0f}{unit}"
+
+
+def _ms(ms: float) -> str:
+    """Milliseconds in at most six characters (two decimals below 100, none above)."""
+    return f"{ms:.2f}" if ms < 100 else f"{ms:.0f}"
 
 
 def _dim(c) -> tuple[int, int, int]:

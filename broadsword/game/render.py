@@ -1,4 +1,4 @@
-"""Drawing the world: starfield, ships, bullets, effects and the HUD.
+"""Drawing the world: starfield, ships, bullets, effects, the boss bar and the title card.
 
 Positions are interpolated between the last two simulation steps by ``alpha`` (Game
 Programming Patterns, "Game Loop"), so motion is smooth at any display rate. Effects
@@ -9,7 +9,9 @@ events and never feed back into the simulation.
 from __future__ import annotations
 
 import math
+import random
 from dataclasses import dataclass
+from enum import Enum
 
 import pygame
 
@@ -18,7 +20,7 @@ from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .backdrop import Backdrop
 from .bullets import BulletSprites
-from .hud import draw_boss_bar, draw_midboss_bar
+from .hud import boss_name, draw_boss_bar, draw_midboss_bar, warning_due
 from .sprites import SpriteBank
 
 LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
@@ -30,13 +32,44 @@ LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
 }
 
 
+#: Graze sparks a step's grazes throw off the ship (at most), and how long one flies (render frames).
+GRAZE_SPARKS, GRAZE_SPARK_LIFE = 6, 12
+#: A caption stays this many steps (fading over its last third), rising CAPTION_RISE px.
+CAPTION_STEPS, CAPTION_RISE = 100, 30
+
+
 @dataclass
 class Effect:
     x: float
     y: float
     born: int  # render frame
-    kind: str  # "explosion", "big", "spark", "flash"
+    kind: str  # "explosion", "big", "spark", "graze"
     size: float = 1.0
+    angle: float = 0.0  # radians: a graze spark's direction
+
+
+class CaptionKind(Enum):
+    """A caption's look: its colour and size."""
+
+    BONUS = "bonus"
+    EXTEND = "extend"
+    PHASE = "phase"
+
+
+CAPTION_STYLE = {
+    CaptionKind.BONUS: ((255, 230, 140), 30),
+    CaptionKind.EXTEND: ((140, 255, 190), 44),
+    CaptionKind.PHASE: ((255, 170, 200), 30),
+}
+
+
+@dataclass
+class Caption:
+    """Short event text on the field (a bonus, an extend, a phase's end), born at world step ``born``."""
+
+    text: str
+    born: int
+    kind: CaptionKind
 
 
 class Renderer:
@@ -50,11 +83,14 @@ class Renderer:
         self.tick = 0
         self.font = pygame.font.Font(None, 22)
         self.big = pygame.font.Font(None, 44)
+        self.caption_font = pygame.font.Font(None, 30)
         self.flash = 0  # frames of white flash left (player hit)
         self.strip = self._explosion_frames()
         self.life_icon = pygame.transform.scale_by(bank.images["player"], 0.5)
         self._scaled: dict[tuple[int, float], pygame.Surface] = {}  # explosion frames, grown
         self._sprites: BulletSprites | None = None  # the bullets' rotation tables, for the level's kinds
+        self.captions: list[Caption] = []
+        self.cosmetic = random.Random(seed)  # sparks' directions: never the game's generator
 
     def _explosion_frames(self) -> list[pygame.Surface]:
         strip = self.bank.images.get("explosion")
@@ -64,7 +100,12 @@ class Renderer:
         return [strip.subsurface((i * size, 0, size, size)) for i in range(strip.get_width() // size)]
 
     # ------------------------------------------------------------- events -> effects
-    def on_events(self, ev) -> None:
+    def on_events(self, ev, world: World) -> None:
+        """Effects for step events ``ev`` of ``world`` (which they never change)."""
+        if ev.grazes and world.player.alive:
+            x, y = world.player.pos.tolist()
+            for _ in range(min(GRAZE_SPARKS, 2 + ev.grazes)):
+                self.effects.append(Effect(x, y, self.tick, "graze", angle=self.cosmetic.uniform(0.0, math.tau)))
         for x, y, kind in ev.kills:
             big = kind in ("boss", "gunship", "player")
             self.effects.append(Effect(x, y, self.tick, "big" if big else "explosion", 2.0 if kind == "boss" else 1.0))
@@ -72,6 +113,10 @@ class Renderer:
             self.effects.append(Effect(x, y, self.tick, "spark"))
         if ev.player_hit:
             self.flash = 6
+
+    def caption(self, world: World, text: str, kind: str) -> None:
+        """Show ``text`` on the field for a moment (``kind``: a :class:`CaptionKind` value)."""
+        self.captions.append(Caption(text, world.frame, CaptionKind(kind)))
 
     # ------------------------------------------------------------- drawing
     def draw(
@@ -177,6 +222,13 @@ class Renderer:
                         img = self._scaled[key]
                     surf.blit(img, img.get_rect(center=(fx.x, fx.y)), special_flags=pygame.BLEND_RGBA_ADD)
                     keep.append(fx)
+            elif fx.kind == "graze" and age < GRAZE_SPARK_LIFE:
+                r0, r1 = 10 + age * 3.0, 14 + age * 4.0
+                c, s_ = math.cos(fx.angle), math.sin(fx.angle)
+                fade = 1.0 - age / GRAZE_SPARK_LIFE
+                colour = (int(150 * fade) + 60, int(190 * fade) + 50, 255)
+                pygame.draw.line(surf, colour, (fx.x + r0 * c, fx.y + r0 * s_), (fx.x + r1 * c, fx.y + r1 * s_), 2)
+                keep.append(fx)
             elif fx.kind == "spark" and age < 8:
                 spark = self.bank.images.get("spark")
                 if spark is not None:
@@ -192,22 +244,43 @@ class Renderer:
         self.effects = keep
 
     def _hud(self, surf, world: World, title_card: bool = True) -> None:
-        text = self.font.render(f"SCORE {world.score.points:>9,}", True, (235, 240, 255))
-        surf.blit(text, (10, 8))
-        graze = self.font.render(f"GRAZE {world.score.grazes}", True, (150, 180, 255))
-        surf.blit(graze, (10, 28))
-        icon = self.life_icon
-        for i in range(max(world.player.lives - (1 if world.player.alive else 0), 0)):
-            surf.blit(icon, (FIELD[0] - 22 - i * (icon.get_width() + 4), 8))
-        bombs = self.font.render(f"BOMB {'*' * world.player.bombs}", True, (140, 220, 255))
-        surf.blit(bombs, bombs.get_rect(topright=(FIELD[0] - 10, 30)))
-        power = self.font.render(f"POWER {world.player.power / 100:.2f}", True, (255, 150, 140))
-        surf.blit(power, (10, 48))
-        draw_boss_bar(surf, world.boss, self.font)  # one segment per phase, and the phase's timer
+        """What stays on the field: the boss's bar and the stage's title card (the numbers are
+        on the side panel, :mod:`.sidebar`)."""
+        draw_boss_bar(surf, world.boss, self.font)  # one segment per phase, names and the phase's timer
         if world.boss is None or not world.boss.fighting:
             draw_midboss_bar(surf, world.ships.midboss(), self.font)
+        self._warning(surf, world)
+        self._captions(surf, world)
         if title_card and world.time < 3.0:  # the level's title fades in and out
             fade = min(1.0, world.time, 3.0 - world.time)
             title = self.big.render(world.level.title, True, (255, 230, 170))
             title.set_alpha(int(255 * max(fade, 0.0)))
             surf.blit(title, title.get_rect(center=(FIELD[0] / 2, FIELD[1] * 0.38)))
+
+    def _warning(self, surf, world: World) -> None:
+        """The "WARNING" band and the boss's name, blinking, while it is on its way (:func:`.hud.warning_due`)."""
+        if not warning_due(world) or (world.frame // 15) % 4 == 3:
+            return
+        assert world.boss is not None  # warning_due says so
+        y = FIELD[1] * 0.3
+        band = pygame.Surface((int(FIELD[0]), 76), pygame.SRCALPHA)
+        band.fill((120, 0, 20, 110))
+        surf.blit(band, (0, y - 38))
+        for dy in (-38, 36):
+            pygame.draw.line(surf, (255, 80, 90), (0, y + dy), (FIELD[0], y + dy), 2)
+        text = self.big.render("WARNING", True, (255, 90, 100))
+        surf.blit(text, text.get_rect(center=(FIELD[0] / 2, y - 10)))
+        name = self.font.render(f"{boss_name(world.boss)} APPROACHING", True, (255, 210, 215))
+        surf.blit(name, name.get_rect(center=(FIELD[0] / 2, y + 20)))
+
+    def _captions(self, surf, world: World) -> None:
+        """The captions of the last ``CAPTION_STEPS`` steps, newest lowest, rising as they fade."""
+        self.captions = [c for c in self.captions if 0 <= world.frame - c.born < CAPTION_STEPS]
+        for i, c in enumerate(self.captions):
+            age = world.frame - c.born
+            colour, size = CAPTION_STYLE[c.kind]
+            font = self.big if size > 36 else self.caption_font
+            img = font.render(c.text, True, colour)
+            img.set_alpha(int(255 * min(1.0, 3.0 * (1.0 - age / CAPTION_STEPS))))
+            y = FIELD[1] * 0.45 + 34 * (i - len(self.captions) + 1) - CAPTION_RISE * age / CAPTION_STEPS
+            surf.blit(img, img.get_rect(center=(FIELD[0] / 2, y)))

@@ -1,8 +1,13 @@
 """The high-score table, kept as a small JSON file in the user's data directory.
 
-File format (``version`` 1)::
+File format (``version`` 2)::
 
-    {"version": 1, "scores": [{"name": str, "score": int, "level": str, "date": "YYYY-MM-DD"}, ...]}
+    {"version": 2, "scores": [{"name": str, "score": int, "level": str, "date": "YYYY-MM-DD",
+                               "difficulty": "easy" | "normal" | "hard" | "lunatic"}, ...]}
+
+A version-1 file (the same without ``difficulty``) is read as Normal's scores and written
+back as version 2 at the next save. The table keeps each difficulty apart: the best ``MAX``
+scores of each.
 
 Rules an entry must meet, both on load and after :meth:`HighScores.add`:
 
@@ -10,7 +15,8 @@ Rules an entry must meet, both on load and after :meth:`HighScores.add`:
   trailing whitespace (exactly what :func:`sanitise_name` leaves unchanged);
 * ``score``: an ``int`` (not bool, not float), ``>= 0``;
 * ``level``: a printable ``str`` of at most ``LEVEL_MAX`` (64) characters;
-* ``date``: a real calendar date written exactly ``YYYY-MM-DD``.
+* ``date``: a real calendar date written exactly ``YYYY-MM-DD``;
+* ``difficulty`` (version 2): one of :class:`~broadsword.data.difficulty.Difficulty`'s values.
 
 What survives what:
 
@@ -44,12 +50,15 @@ from datetime import UTC, datetime
 from datetime import date as _date
 from pathlib import Path
 
+from ..data.difficulty import Difficulty
 from ..fileio import FileTooLarge, locked, read_capped, remove_stale_temps, write_atomic
 from .userdata import user_data_dir
 
 __all__ = ["Entry", "HighScores", "data_home", "sanitise_name", "FORMAT_VERSION", "NAME_MAX"]
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+#: The versions this game reads (1: before the difficulty was kept; its scores count as Normal's).
+READ_VERSIONS = (1, 2)
 NAME_MAX = 12
 LEVEL_MAX = 64
 #: Files larger than this are not high-score tables; they are set aside unread.
@@ -65,8 +74,9 @@ class Entry:
 
     name: str
     score: int
-    level: str
+    level: str  # the stage's title when it was made (older tables: its level name or file)
     date: str
+    difficulty: Difficulty = Difficulty.NORMAL
 
 
 def data_home() -> Path:
@@ -88,13 +98,13 @@ def _one_line(text: str) -> str:
     return " ".join(str(text).split())
 
 
-def _problem(raw: object, index: int) -> str | None:
-    """Why the decoded JSON object ``raw`` is not a valid entry (None if it is)."""
+def _problem(raw: object, index: int, version: int) -> str | None:
+    """Why the decoded JSON object ``raw`` is not a valid entry of a ``version`` file (None if it is)."""
     where = f"scores[{index}]"
     if not isinstance(raw, dict):
         return f"{where} is {type(raw).__name__}, not an object"
     keys = set(raw)
-    expected = {"name", "score", "level", "date"}
+    expected = {"name", "score", "level", "date"} | ({"difficulty"} if version >= 2 else set())
     if keys != expected:
         missing, extra = sorted(expected - keys), sorted(keys - expected)
         parts = ([f"missing {', '.join(missing)}"] if missing else []) + (
@@ -122,6 +132,8 @@ def _problem(raw: object, index: int) -> str | None:
         _date.fromisoformat(day)
     except ValueError:
         return f"{where}.date {day!r} is not a real date"
+    if version >= 2 and raw["difficulty"] not in {d.value for d in Difficulty}:
+        return f"{where}.difficulty {raw['difficulty']!r} is not one of {', '.join(d.value for d in Difficulty)}"
     return None
 
 
@@ -142,16 +154,17 @@ def _parse(blob: bytes) -> tuple[list[Entry] | None, str]:
     if set(doc) != {"version", "scores"}:
         return None, f"top-level keys are {sorted(map(str, doc))}, expected ['scores', 'version']"
     version = doc["version"]
-    if isinstance(version, bool) or version != FORMAT_VERSION:
-        return None, f"unsupported version {version!r} (this game reads {FORMAT_VERSION})"
+    if isinstance(version, bool) or version not in READ_VERSIONS:
+        return None, f"unsupported version {version!r} (this game reads {' and '.join(map(str, READ_VERSIONS))})"
     if not isinstance(doc["scores"], list):
         return None, f"'scores' is {type(doc['scores']).__name__}, not a list"
     entries = []
     for i, raw in enumerate(doc["scores"]):
-        why = _problem(raw, i)
+        why = _problem(raw, i, version)
         if why is not None:
             return None, why
-        entries.append(Entry(raw["name"], raw["score"], raw["level"], raw["date"]))
+        difficulty = Difficulty(raw["difficulty"]) if version >= 2 else Difficulty.NORMAL
+        entries.append(Entry(raw["name"], raw["score"], raw["level"], raw["date"], difficulty))
     return entries, ""
 
 
@@ -261,8 +274,19 @@ class HighScores:
     # ------------------------------------------------------------------ queries and updates
 
     def _ranked(self, entries: list[Entry]) -> list[Entry]:
-        # sorted() is stable: among equal scores the earlier entry stays ahead
-        return sorted(entries, key=lambda e: -e.score)[: self.MAX]
+        """The best ``MAX`` of each difficulty, best first. sorted() is stable: among equal
+        scores the earlier entry stays ahead."""
+        kept: dict[Difficulty, int] = {}
+        out = []
+        for e in sorted(entries, key=lambda e: -e.score):
+            if kept.get(e.difficulty, 0) < self.MAX:
+                kept[e.difficulty] = kept.get(e.difficulty, 0) + 1
+                out.append(e)
+        return out
+
+    def of(self, difficulty: Difficulty) -> list[Entry]:
+        """``difficulty``'s table: its entries, best first (at most ``MAX``)."""
+        return [e for e in self.entries if e.difficulty is difficulty]
 
     @staticmethod
     def _check_score(score: object) -> int:
@@ -277,18 +301,19 @@ class HighScores:
             raise ValueError(f"score must be >= 0, got {score}")
         return score
 
-    def qualifies(self, score: int) -> bool:
-        """Would ``score`` enter the table? True while it has fewer than ``MAX`` entries,
-        otherwise only if strictly greater than the last entry (ties go to the holder).
-        Any integer type is accepted (numpy's too); TypeError for bool/float/str,
+    def qualifies(self, score: int, difficulty: Difficulty = Difficulty.NORMAL) -> bool:
+        """Would ``score`` enter ``difficulty``'s table? True while it has fewer than ``MAX``
+        entries, otherwise only if strictly greater than its last entry (ties go to the
+        holder). Any integer type is accepted (numpy's too); TypeError for bool/float/str,
         ValueError for a negative score."""
         score = self._check_score(score)
-        return len(self.entries) < self.MAX or score > self.entries[-1].score
+        table = self.of(Difficulty(difficulty))
+        return len(table) < self.MAX or score > table[-1].score
 
     def add(self, entry: Entry) -> int | None:
         """Insert ``entry`` (name sanitised) and return its 0-based rank, or None if it did
-        not make the table. Ties rank below existing equal scores. TypeError/ValueError for
-        a non-integer or negative score, a non-string level or a date that is not YYYY-MM-DD."""
+        not make its difficulty's table (the rank is in that table). Ties rank below existing
+        equal scores. TypeError/ValueError for a non-integer or negative score, a non-string level or a date that is not YYYY-MM-DD."""
         score = self._check_score(entry.score)
         if not isinstance(entry.level, str):
             raise TypeError(f"level must be a string, got {type(entry.level).__name__}")
@@ -296,12 +321,15 @@ class HighScores:
         if not isinstance(entry.date, str) or not _DATE_RE.match(entry.date):
             raise ValueError(f"date must be YYYY-MM-DD, got {entry.date!r}")
         _date.fromisoformat(entry.date)  # ValueError for e.g. 2024-02-30
-        if not self.qualifies(score):
+        difficulty = Difficulty(entry.difficulty)
+        if not self.qualifies(score, difficulty):
             return None
-        clean = Entry(sanitise_name(entry.name), score, level, entry.date)
-        rank = next((i for i, e in enumerate(self.entries) if e.score < score), len(self.entries))
-        self.entries.insert(rank, clean)
-        del self.entries[self.MAX :]
+        clean = Entry(sanitise_name(entry.name), score, level, entry.date, difficulty)
+        table = self.of(difficulty)
+        rank = next((i for i, e in enumerate(table) if e.score < score), len(table))
+        at = next((i for i, e in enumerate(self.entries) if e.score < score), len(self.entries))
+        self.entries.insert(at, clean)
+        self.entries = self._ranked(self.entries)
         # the best MAX of this session's adds are all that can reach the merged table
         self._added = self._ranked(self._added + [clean])
         return rank
@@ -370,6 +398,9 @@ def _encode(entries: list[Entry]) -> bytes:
     """The file's bytes for ``entries``: UTF-8 JSON, 2-space indent, trailing newline."""
     doc = {
         "version": FORMAT_VERSION,
-        "scores": [{"name": e.name, "score": e.score, "level": e.level, "date": e.date} for e in entries],
+        "scores": [
+            {"name": e.name, "score": e.score, "level": e.level, "date": e.date, "difficulty": e.difficulty.value}
+            for e in entries
+        ],
     }
     return (json.dumps(doc, indent=2, ensure_ascii=False) + "\n").encode("utf-8")

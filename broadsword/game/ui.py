@@ -30,7 +30,13 @@ class Painter:
     def __init__(self, surface: pygame.Surface):
         self.surface = surface
         self._fonts: dict[int, pygame.font.Font] = {}
-        self.drawn: list[pygame.Rect] = []  # every text rect drawn since the last clear (for tests)
+        self.drawn: list[pygame.Rect] = []  # every text rect drawn since the last forget() (for tests)
+        self.said: list[str] = []  # and every line's text, as drawn (cut with "..." if it was)
+
+    def forget(self) -> None:
+        """Start a new frame's record of ``drawn`` and ``said``."""
+        self.drawn.clear()
+        self.said.clear()
 
     def font(self, size: int = BODY) -> pygame.font.Font:
         if size not in self._fonts:
@@ -72,6 +78,7 @@ class Painter:
         rect = img.get_rect(**{anchor: (x, y)})
         self.surface.blit(img, rect)
         self.drawn.append(rect)
+        self.said.append(text)
         return rect
 
     def lines(self, text: str, width: int, limit: int, size: int = BODY) -> list[str]:

@@ -65,6 +65,13 @@ class Recorder:
     def stages(self) -> int:
         return len(self._tapes)
 
+    @property
+    def last_input(self) -> Input | None:
+        """The input of the last step recorded in the stage in play (None before its first)."""
+        if not self._tapes or not self._tapes[-1].inputs:
+            return None
+        return Input.from_byte(self._tapes[-1].inputs[-1])
+
     def recording(self) -> Recording:
         """The run so far: every stage begun, in order."""
         return Recording(tuple(t.recording() for t in self._tapes), PARTS)

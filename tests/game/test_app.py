@@ -16,6 +16,7 @@ from broadsword.game.run import Run, Stage
 from broadsword.game.scenes import Pause, Play, Title
 from broadsword.game.scenes.lab import LabScene
 from broadsword.game.scores import HighScores
+from broadsword.game.sidebar import FRAME
 from broadsword.sim import DT, World
 from broadsword.sim.bombs import DEATHBOMB_FRAMES
 
@@ -202,8 +203,9 @@ def test_app__window_resize_keeps_aspect(app):
     pygame.display.set_mode((900, 500), pygame.RESIZABLE)
     frames(app, 1)
     win = pygame.surfarray.array3d(pygame.display.get_surface())
-    # Scaled to 375 x 500 (the 3:4 playfield), centred: black bars left and right.
-    left, right = (900 - 375) // 2, (900 - 375) // 2 + 375
+    # The field beside the side panel (FRAME, 720 x 640) scaled to 562 x 500, centred: black bars left and right.
+    shown = int(FRAME[0] * 500 / FRAME[1])
+    left, right = (900 - shown) // 2, (900 - shown) // 2 + shown
     assert (win[: left - 1] == 0).all() and (win[right + 1 :] == 0).all()
     column = win[left + 5, 60:].astype(int)  # inside the field, below the HUD: the stage's dark sky
     assert (column.sum(axis=1) > 0).mean() > 0.9 and column.mean() < 60  # drawn (not a bar), and dark

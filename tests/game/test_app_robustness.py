@@ -304,13 +304,13 @@ def test_frame__nonsense_dt_counts_as_zero(app, dt):
     assert app.frame(dt) == 0 and app.world.frame == frame and app.play.accumulator == 0.0
 
 
-def test_render__a_1x1_window_gets_the_field_scaled_to_one_pixel(app):
+def test_render__a_1x1_window_gets_the_frame_scaled_to_one_pixel(app):
     app.start_run()
     pygame.display.set_mode((1, 1), pygame.RESIZABLE)
     frames(app, 3)
     win = pygame.display.get_surface()
     assert win.get_size() == (1, 1)
-    expected = pygame.transform.scale(app.screen, (1, 1)).get_at((0, 0))
+    expected = pygame.transform.scale(app.canvas, (1, 1)).get_at((0, 0))  # the field and the side panel
     assert win.get_at((0, 0)) == expected
     pygame.display.set_mode((600, 800), pygame.RESIZABLE)  # and back to full size
     frames(app)

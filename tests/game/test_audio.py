@@ -64,7 +64,21 @@ class Clock:
 
 
 def test_names__match_spec():
-    assert NAMES == ("shot", "hit", "explosion", "big_explosion", "graze", "player_hit", "select", "pause")
+    assert NAMES == (
+        "shot",
+        "hit",
+        "explosion",
+        "big_explosion",
+        "graze",
+        "player_hit",
+        "select",
+        "pause",
+        "bonus",
+        "extend",
+        "warning",
+        "phase",
+        "bomb",
+    )
     assert set(Audio.MIN_INTERVAL) == set(NAMES)
     assert Audio.MIN_INTERVAL["shot"] >= 0.060  # 60 Hz fire rate must not stack
 

@@ -9,6 +9,7 @@ import pygame
 import pytest
 
 from broadsword.game.controls import (
+    BOUND_MAX,
     DEFAULT_KEYS,
     FIXED_KEYS,
     REBINDABLE,
@@ -16,6 +17,8 @@ from broadsword.game.controls import (
     Bindings,
     Controls,
     PadButton,
+    confirm_label,
+    keys_label,
     load_bindings,
     save_bindings,
 )
@@ -91,10 +94,10 @@ def test_actions__one_table_for_menus_and_toggles():
     assert c.actions(hat) == {Action.LEFT, Action.UP}
 
 
-def test_rebind__the_new_key_alone_presses_the_action_and_leaves_the_others():
+def test_rebind__a_replacing_key_alone_presses_the_action_and_leaves_the_others():
     b = Bindings()
-    b.bind_key(Action.FIRE, pygame.K_c)
-    b.bind_key(Action.BOMB, pygame.K_LEFT)  # taken from LEFT
+    b.bind_key(Action.FIRE, pygame.K_c, replace=True)
+    b.bind_key(Action.BOMB, pygame.K_LEFT, replace=True)  # taken from LEFT
     c = Controls(b)
     c.pad = None
     c.held = {pygame.K_c, pygame.K_LEFT}
@@ -104,7 +107,7 @@ def test_rebind__the_new_key_alone_presses_the_action_and_leaves_the_others():
     assert b.keys[Action.LEFT] == (pygame.K_a,)
     # arrows still move through menus, whatever movement is bound to
     assert Action.LEFT in c.actions(keydown(pygame.K_LEFT))
-    b.bind_button(Action.BOMB, PadButton.Y)
+    b.bind_button(Action.BOMB, PadButton.Y, replace=True)
     c.held, c.pad = set(), StubPad(PadButton.Y, PadButton.X)
     assert c.input() == Input(bomb=True)
     c.pad = StubPad(PadButton.X)
@@ -113,11 +116,37 @@ def test_rebind__the_new_key_alone_presses_the_action_and_leaves_the_others():
         b.bind_key(Action.MUTE, pygame.K_q)
 
 
+def test_rebind__an_added_key_keeps_the_others():
+    """Slow -> C adds C: both Shifts still slow (issue 22: it silently dropped them)."""
+    b = Bindings()
+    b.bind_key(Action.SLOW, pygame.K_c)
+    assert b.keys[Action.SLOW] == (pygame.K_LSHIFT, pygame.K_RSHIFT, pygame.K_c)
+    b.bind_key(Action.SLOW, pygame.K_c)  # again: still once
+    assert b.keys[Action.SLOW] == (pygame.K_LSHIFT, pygame.K_RSHIFT, pygame.K_c)
+    b.bind_key(Action.BOMB, pygame.K_c)  # taken by another action: gone from Slow
+    assert b.keys[Action.SLOW] == (pygame.K_LSHIFT, pygame.K_RSHIFT) and b.keys[Action.BOMB] == (pygame.K_x, pygame.K_c)
+    b.bind_button(Action.FIRE, PadButton.Y)
+    assert b.buttons[Action.FIRE] == (PadButton.A, PadButton.Y)
+    for k in range(pygame.K_a, pygame.K_a + 12):  # at most BOUND_MAX: the oldest go
+        b.bind_key(Action.PAUSE, k)
+    assert b.keys[Action.PAUSE] == tuple(range(pygame.K_a + 12 - BOUND_MAX, pygame.K_a + 12))
+
+
+def test_keys_label__names_the_bound_keys():
+    b = Bindings()
+    assert confirm_label(b) == "Enter or Z / Space"
+    assert keys_label(b, Action.SLOW) == "Shift"
+    b.bind_key(Action.FIRE, pygame.K_j, replace=True)
+    assert confirm_label(b) == "Enter or J"
+    b.keys[Action.FIRE] = ()
+    assert confirm_label(b) == "Enter" and keys_label(b, Action.FIRE) == "(none)"
+
+
 def test_bindings_file__round_trip_is_atomic_and_readable(tmp_path):
     path = tmp_path / "d" / "controls.json"
     b = Bindings()
-    b.bind_key(Action.BOMB, pygame.K_v)
-    b.bind_button(Action.SLOW, PadButton.RB)
+    b.bind_key(Action.BOMB, pygame.K_v, replace=True)
+    b.bind_button(Action.SLOW, PadButton.RB, replace=True)
     save_bindings(b, path)
     assert sorted(p.name for p in path.parent.iterdir()) == ["controls.json"]  # no temporaries left
     doc = json.loads(path.read_text())

@@ -113,3 +113,25 @@ def test_overlay_panel__clear_of_the_pause_screens_heading(tmp_path):
     assert panel.colliderect(pygame.Rect(0, 0, *app.screen.get_size()))
     assert panel.bottom <= heading.top, (panel, heading)
     pygame.quit()
+
+
+def test_overlay_panel__lab_counts_fit_their_columns():
+    """At lab densities (--lab 1000,200000: 100,101,000 pairs into bins) the 7-9 digit counts
+    overwrote each other and the funnel bars; counts are compact and columns right-aligned."""
+    from broadsword.game.overlay import COLUMNS, PANEL_WIDTH, _ms, compact
+
+    pygame.init()
+    assert [compact(n) for n in (0, 99_999, 698_473, 100_101_000, 12_345_678_901)] == [
+        "0",
+        "99999",
+        "698k",
+        "100M",
+        "12.3G",
+    ]
+    assert all(len(compact(10**k - 1)) <= 6 for k in range(1, 13)) and _ms(1582.4) == "1582"
+    font = Overlay().font
+    cells = ("armature", compact(100_101_000), compact(999_999), _ms(99.99))
+    lefts = [6] + [right - font.size(c)[0] for c, right in zip(cells[1:], COLUMNS)]
+    rights = [6 + font.size(cells[0])[0], *COLUMNS]
+    assert all(rights[i] + 4 <= lefts[i + 1] for i in range(3)), (lefts, rights)  # a gap between cells
+    assert COLUMNS[-1] + 6 + 30 <= PANEL_WIDTH - 6  # room for the funnel's bars inside the panel

@@ -24,7 +24,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOLS = ("Xvfb", "xdotool", "xwd")
-SCALE = 1.25  # the window's default scale (broadsword.game.app.DEFAULT_SCALE): 600 x 800
+SCALE = 1.25  # the window's default scale (broadsword.game.app.DEFAULT_SCALE): 900 x 800
+FIELD_W, FRAME_W = 480, 720  # the field, and the field with the side panel (broadsword.game.sidebar.FRAME)
 
 # Exact colours drawn by the game (nearest-neighbour scaling keeps them exact in the window).
 TITLE_GOLD = (255, 220, 140)  # "BROADSWORD" and the controls' key names: the title only
@@ -218,13 +219,13 @@ def session(tmp_path):
 
 def test_real_window__title_play_move_fire_pause(session):
     s = session
-    width, height = int(480 * SCALE), int(640 * SCALE)
+    width, height, field_w = int(FRAME_W * SCALE), int(640 * SCALE), int(FIELD_W * SCALE)
     title = s.wait_for("title screen", lambda img: count(img, TITLE_GOLD) > 300)
     assert title.shape == (height, width, 3)
     s.save(title, "title")
     s.run("xdotool", "windowfocus", "--sync", s.window)
     s.run("xdotool", "key", "Return")
-    hud = (0, 0, int(200 * SCALE), int(30 * SCALE))  # "SCORE" at the field's top left
+    hud = (field_w, int(80 * SCALE), width, int(400 * SCALE))  # the side panel's numbers (score, graze...)
     play = s.wait_for("playfield", lambda img: count(img, TITLE_GOLD) == 0 and count(img, HUD_WHITE, hud) > 30)
     s.save(play, "play")
     assert dark(play) > 0.5 * width * height  # mostly the night sky (the stage's theme: clouds, stars)
@@ -250,5 +251,5 @@ def test_real_window__title_play_move_fire_pause(session):
     paused = s.wait_for("pause screen", lambda img: count(img, PAUSED_WHITE, band) > 150)
     s.save(paused, "paused")
     outside = np.r_[0 : band[1], band[3] : height]  # rows away from the pause screen's text
-    assert paused[outside].mean() < 0.75 * play[outside].mean()  # the field is veiled
+    assert paused[outside, :field_w].mean() < 0.75 * play[outside, :field_w].mean()  # the field is veiled
     assert s.game.poll() is None  # still running

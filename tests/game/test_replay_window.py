@@ -14,6 +14,7 @@ from broadsword.game.app import App
 from broadsword.game.scenes import Pause, Play
 from broadsword.game.scenes.replay_end import ReplayEnd
 from broadsword.game.scores import HighScores
+from broadsword.game.sidebar import Mark
 from broadsword.headless import run_headless
 from broadsword.sim import DT
 
@@ -49,7 +50,7 @@ def key(k):
 def test_replay_window__plays_the_recording_to_its_end_and_says_it_matches(app, recording):
     rec, final_hash = recording
     play = app.watch_replay(rec, "run.json")
-    assert play.watched
+    assert play.watched and app.panel_info().mark is Mark.REPLAY  # the side panel says so
     for _ in range(FRAMES + 5):
         app.frame(DT)
     assert isinstance(app.scene, ReplayEnd) and app.scene.ok

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import pygame
 import pytest
@@ -266,9 +267,24 @@ def test_results__the_last_stage_leads_to_the_final_results_and_the_name(app):
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, GameOver) and app.scene.victory and app.scene.score == world.score.points
+    app.render()  # a one-stage run (started at the last stage) cleared only that stage
+    assert "STAGE CLEARED" in app.painter.said and not any("Every stage" in line for line in app.painter.said)
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, NameEntry) and app.scene.score == world.score.points
+
+
+def test_final_results__every_stage_cleared_only_when_the_run_cleared_them_all(app):
+    empty_stage(app, Run(len(app.levels) - 1))
+    frames(app, 2)
+    key(pygame.K_RETURN)
+    frames(app)
+    over = app.scene
+    assert over.victory_lines()[0] == "STAGE CLEARED"
+    over.totals = dataclasses.replace(over.totals, stages=2)
+    assert over.victory_lines() == ("STAGES CLEARED", f"2 of {len(app.levels)} stages, to I. Outer Picket, on Normal")
+    over.totals = dataclasses.replace(over.totals, stages=len(app.levels))
+    assert over.victory_lines() == ("BROADSWORD FALLS", "Every stage cleared on Normal")
 
 
 def test_final_results__the_runs_totals_add_every_stage_cleared(app):
@@ -293,6 +309,7 @@ def test_final_results__the_runs_totals_add_every_stage_cleared(app):
     assert t.seconds == first.time + last.time
     rows = dict(over.rows())
     assert rows["Stages cleared"] == "2" and rows["Misses"] == "3" and rows["Grazes"] == "42"
+    assert over.victory_lines()[0] == "STAGES CLEARED"  # two of five, not every stage
 
 
 # --------------------------------------------------------------------------- continues
@@ -306,6 +323,35 @@ def test_continue__play_on_with_the_score_counting_continues(app):
     frames(app, 3)
     assert isinstance(app.scene, Play) and not world.over and world.score.points % 10 == 1
     assert world.toggles[-1].toggle.value == "continue"
+
+
+def test_continue__names_the_fire_keys_bound_now(app):
+    """After Fire is rebound to J, the continue screen says J, not Z (issue 22)."""
+    app.controls.bindings.bind_key(Action.FIRE, pygame.K_j, replace=True)
+    world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, Continue)
+    assert "Enter or J: continue   Esc: end the run" in app.painter.said
+    key(pygame.K_j)
+    frames(app, 3)
+    assert isinstance(app.scene, Play) and not world.over
+
+
+def test_launch__a_custom_binding_says_nothing_on_stderr(tmp_path, capfd):
+    """controls.json naming keys was read before pygame.init(): pygame warned ("pygame.init()
+    has not been called") on stderr at every launch."""
+    pygame.quit()
+    (tmp_path / "controls.json").write_text('{"version": 1, "keys": {"slow": ["c"], "fire": ["j"]}}')
+    capfd.readouterr()
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        a = App(audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
+    try:
+        assert a.controls.bindings.keys[Action.SLOW] == (pygame.K_c,) and a.message is None
+        assert [str(w.message) for w in said] == [] and capfd.readouterr().err == ""
+    finally:
+        pygame.quit()
 
 
 def test_continue__declined_or_timed_out_ends_the_run(app):
@@ -345,11 +391,22 @@ def test_options__rebind_fire_by_pressing_a_key_and_it_is_saved(app, tmp_path):
     assert app.scene.waiting is Action.FIRE and "fixed" in app.scene.note
     key(pygame.K_c, "c")
     frames(app)
-    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (pygame.K_c,)
-    assert '"fire": [\n   "c"\n  ]' in (tmp_path / "controls.json").read_text()
+    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (
+        pygame.K_z,
+        pygame.K_SPACE,
+        pygame.K_c,
+    )
+    assert '"fire": [\n   "z",\n   "space",\n   "c"\n  ]' in (tmp_path / "controls.json").read_text()
+    key(pygame.K_BACKSPACE)  # Backspace, then a key: that key alone
+    key(pygame.K_j, "j")
+    frames(app)
+    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (pygame.K_j,)
+    assert '"fire": [\n   "j"\n  ]' in (tmp_path / "controls.json").read_text()
     key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, Title)
+    app.render()
+    assert any(line.startswith("Enter or J play") for line in app.painter.said)  # the real Fire key
 
 
 def test_options__volumes_hitbox_and_difficulty_change_and_are_saved(app, tmp_path):
@@ -532,3 +589,78 @@ def test_play__slow_motion_and_a_rotation_switch_are_said_on_screen(app):
     drawn.clear()
     frames(app)
     assert not any("SLOW" in s or "rotation" in s for s in drawn)
+
+
+# --------------------------------------------------------------------------- how to play, first run
+def test_how_to_play__from_the_title_three_pages_naming_the_keys_bound(app):
+    from broadsword.game.scenes.how_to_play import PAGES, HowToPlay
+
+    app.controls.bindings.bind_key(Action.BOMB, pygame.K_v, replace=True)
+    key(pygame.K_i)
+    frames(app)
+    assert isinstance(app.scene, HowToPlay)
+    text = []
+    for _ in PAGES:
+        app.render()
+        text.append(" ".join(app.painter.said))
+        key(pygame.K_RIGHT)
+        frames(app)
+    body = " ".join(text)
+    for topic in ("precise mode", "hit shape", "Graze", "Death-save", "P (red)", "Point", "Star", "continues", "bonus"):
+        assert topic in body, topic
+    assert "press V within" in body and "press X" not in body  # the bomb key bound now
+    key(pygame.K_ESCAPE)
+    frames(app)
+    assert isinstance(app.scene, Title)
+
+
+def test_first_run__the_title_and_the_first_stage_hint_then_never_again(app, tmp_path):
+    assert not app.options.played
+    app.render()
+    assert any("how to play" in line for line in app.painter.said)
+    app.start_run()
+    frames(app)
+    assert app.hint and app.options.played and '"played": true' in (tmp_path / "options.json").read_text()
+    assert any(line.startswith("Hold Z / Space: fire") for line in app.painter.said)
+    app.to_title()
+    app.start_run()  # the second run: no hint
+    frames(app)
+    assert not app.hint and not any(line.startswith("Hold Z") for line in app.painter.said)
+
+
+def test_title__names_the_stage_by_its_title(app):
+    app.render()
+    assert any(line.startswith("Stage: I. Outer Picket") for line in app.painter.said)
+    assert not any("1-picket" in line for line in app.painter.said)
+
+
+def test_high_scores__one_table_a_difficulty_with_the_stages_title(app):
+    app.scores.add(Entry("EASY", 5000, "I. Outer Picket", "2026-11-27", Difficulty.EASY))
+    app.scores.add(Entry("HARD", 900, "IV. Ion Storm", "2026-11-27", Difficulty.HARD))
+    app.stack.reset(HighScoresScene(app, Difficulty.EASY))
+    frames(app)
+    app.render()
+    assert "EASY" in app.painter.said and "I. Outer Picket" in app.painter.said and "HARD" not in app.painter.said
+    key(pygame.K_RIGHT)  # Normal: empty
+    frames(app)
+    assert "none yet" in app.painter.said
+    key(pygame.K_RIGHT)
+    frames(app)
+    assert "HARD" in app.painter.said and "IV. Ion Storm" in app.painter.said and "EASY" not in app.painter.said
+
+
+def test_game_over__a_score_enters_its_difficultys_table_with_the_stages_title(app):
+    app.set_options(difficulty=Difficulty.HARD)
+    world = empty_stage(app, Run(0, Difficulty.HARD), waves=load_level(resolve_level("1-picket")).waves[:1])
+    world.progress.continues_used = 3
+    world.score.points = 12_340
+    lose_every_life(world)
+    frames(app, 2)
+    assert isinstance(app.scene, GameOver) and app.scene.qualifies
+    key(pygame.K_RETURN)
+    frames(app)
+    key(pygame.K_a, "a")
+    key(pygame.K_RETURN)
+    frames(app)
+    (entry,) = app.scores.entries
+    assert (entry.name, entry.level, entry.difficulty) == ("A", "I. Outer Picket", Difficulty.HARD)

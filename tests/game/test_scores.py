@@ -31,6 +31,7 @@ from pathlib import Path
 import pytest
 from score_rows import DAY, entry
 
+from broadsword.data.difficulty import Difficulty
 from broadsword.game import scores as scores_mod
 from broadsword.game.scores import Entry, HighScores, sanitise_name
 
@@ -72,7 +73,42 @@ def test_roundtrip__file_format_is_versioned_json(tmp_path):
     table.add(entry(name="Zoë", score=42, level="2-gauntlet", date="2023-12-31"))
     table.save()
     doc = json.loads(path.read_text(encoding="utf-8"))
-    assert doc == {"version": 1, "scores": [row("Zoë", 42, "2-gauntlet", "2023-12-31")]}
+    assert doc == {"version": 2, "scores": [dict(row("Zoë", 42, "2-gauntlet", "2023-12-31"), difficulty="normal")]}
+
+
+def test_difficulties__each_keeps_its_own_table(tmp_path):
+    """Easy's scores never push Lunatic's out, and each ranks on its own (issue 22)."""
+    path = tmp_path / "highscores.json"
+    table = HighScores(path)
+    for i in range(HighScores.MAX + 3):
+        assert table.add(Entry(f"E{i}", 10_000 + i, "I. Outer Picket", DAY, Difficulty.EASY)) is not None
+    assert table.add(Entry("L", 50, "V. The Citadel", DAY, Difficulty.LUNATIC)) == 0  # first of its table
+    assert not table.qualifies(10_000, Difficulty.EASY) and table.qualifies(1, Difficulty.LUNATIC)
+    assert table.qualifies(1)  # Normal's table is empty
+    table.save()
+    again = HighScores(path).load()
+    assert [e.name for e in again.of(Difficulty.LUNATIC)] == ["L"]
+    easy = again.of(Difficulty.EASY)
+    assert len(easy) == HighScores.MAX and easy[0].score == 10_000 + HighScores.MAX + 2
+    assert again.of(Difficulty.NORMAL) == [] and len(again.entries) == HighScores.MAX + 1
+
+
+def test_difficulties__a_version_1_table_is_normals(tmp_path):
+    path = tmp_path / "highscores.json"
+    path.write_text(json.dumps({"version": 1, "scores": [row("OLD", 900)]}))
+    table = HighScores(path).load()
+    assert table.warning is None and [(e.name, e.difficulty) for e in table.entries] == [("OLD", Difficulty.NORMAL)]
+    table.add(Entry("NEW", 5, "II. The Gauntlet", DAY, Difficulty.HARD))
+    table.save()
+    doc = json.loads(path.read_text())
+    assert doc["version"] == 2 and [r["difficulty"] for r in doc["scores"]] == ["normal", "hard"]
+
+
+def test_difficulties__an_unknown_one_is_a_corrupt_file(tmp_path):
+    path = tmp_path / "highscores.json"
+    path.write_text(json.dumps({"version": 2, "scores": [dict(row(), difficulty="nightmare")]}))
+    table = HighScores(path).load()
+    assert table.entries == [] and "difficulty" in table.warning and "nightmare" in table.warning
 
 
 def test_roundtrip__empty_table_saves_and_loads(tmp_path):
@@ -314,7 +350,7 @@ CORRUPT = {
     "truncated_json": b'{"version": 1, "scores": [{"name": "A',
     "not_utf8": b'{"version": 1, "scores": [{"name": "\xff\xfe"}]}',
     "top_level_list": b"[1, 2, 3]",
-    "wrong_version": b'{"version": 2, "scores": []}',
+    "wrong_version": b'{"version": 3, "scores": []}',
     "version_as_bool": b'{"version": true, "scores": []}',
     "missing_scores": b'{"version": 1}',
     "extra_top_key": b'{"version": 1, "scores": [], "cheat": 1}',

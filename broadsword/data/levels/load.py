@@ -231,6 +231,7 @@ def _phases(t: Table, parts: int) -> tuple[BossPhaseSpec, ...]:
                 p.num("time", d.time, 5, 600),
                 p.int("bonus", d.bonus, 0, 10**8),
                 _phase_fire(p, parts),
+                p.str("name", ""),
             )
         )
         p.done()
@@ -373,6 +374,7 @@ def load_level(path: str | Path) -> Level:
             tuple(parts),
             phases,
             _drops(t, BOSS_DROPS),
+            t.str("name", ""),
         )
         t.done()
     difficulty = _difficulty(top.raw("difficulty", {}), path)

@@ -183,6 +183,7 @@ class BossPhaseSpec:
     time: float = 40.0
     bonus: int = 10_000
     fire: tuple[tuple[int, FireSpec], ...] = ()
+    name: str = ""  # shown on the boss bar while the phase lasts ("": "phase N")
 
 
 @dataclass(frozen=True)
@@ -195,6 +196,7 @@ class BossSpec:
     parts: tuple[BossPart, ...]
     phases: tuple[BossPhaseSpec, ...] = ()  # () : one phase of ``hp``
     drops: Drops = field(default_factory=lambda: BOSS_DROPS)
+    name: str = ""  # shown on the boss bar and the side panel ("": "BOSS")
 
     def __post_init__(self):
         if not self.phases:  # the flat form: one phase with all the hit points and no hurry

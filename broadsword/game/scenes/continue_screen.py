@@ -11,7 +11,7 @@ import pygame
 
 from ...sim.progress import CONTINUES
 from .. import ui
-from ..controls import Action
+from ..controls import Action, confirm_label
 
 #: Seconds to decide before the run ends by itself.
 COUNTDOWN = 10.0
@@ -60,4 +60,4 @@ class Continue:
         p.text(
             f"{CONTINUES - used} of {CONTINUES} continues left; the score restarts at {used + 1}", 360, colour=ui.DIM
         )
-        p.text("Enter or Z: continue   Esc: end the run", 390, colour=ui.DIM)
+        p.text(f"{confirm_label(self.app.controls.bindings)}: continue   Esc: end the run", 390, colour=ui.DIM)

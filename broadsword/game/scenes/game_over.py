@@ -16,7 +16,8 @@ class GameOver:
         self.app, self.play, self.victory = app, play, victory
         world = play.world
         self.score = world.score.points
-        self.level = world.level.name
+        self.level = world.level.title  # the table shows the stage's title
+        self.difficulty = play.run.difficulty
         self.continues = world.progress.continues_used
         run = play.run
         # A cleared run's last stage is already in its totals (the results screen added it).
@@ -24,7 +25,7 @@ class GameOver:
 
     @property
     def qualifies(self) -> bool:
-        return not self.play.watched and self.score > 0 and self.app.scores.qualifies(self.score)
+        return not self.play.watched and self.score > 0 and self.app.scores.qualifies(self.score, self.difficulty)
 
     def handle(self, event: pygame.event.Event) -> bool:
         if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:
@@ -36,7 +37,7 @@ class GameOver:
         from .name_entry import NameEntry
 
         if self.qualifies:
-            self.app.stack.replace(NameEntry(self.app, self.score, self.level))
+            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty))
         else:
             self.app.to_title()
 
@@ -46,12 +47,10 @@ class GameOver:
     def draw(self, surf: pygame.Surface) -> None:
         p = self.app.painter
         p.veil()
-        if self.victory and self.play.run.custom is not None:  # a level file played on its own
-            p.text("STAGE CLEARED", 250, ui.BIG, ui.GOLD)
-            p.text(f"{self.play.world.level.title} on {self.play.run.difficulty.title}", 296, colour=ui.CREAM)
-        elif self.victory:
-            p.text("BROADSWORD FALLS", 250, ui.BIG, ui.GOLD)
-            p.text(f"Every stage cleared on {self.play.run.difficulty.title}", 296, colour=ui.CREAM)
+        if self.victory:
+            heading, line = self.victory_lines()
+            p.text(heading, 250, ui.BIG, ui.GOLD)
+            p.text(line, 296, colour=ui.CREAM)
         else:
             p.text("GAME OVER", 270, ui.BIG, ui.BAD)
         p.text(f"Final score {self.score:,}", 340, ui.HEADING, ui.GOLD)
@@ -60,6 +59,17 @@ class GameOver:
             p.text(label, y, 22, ui.DIM, x=surf.get_width() / 2 - 8, anchor="midright")
             p.text(value, y, 22, ui.WHITE, x=surf.get_width() / 2 + 8, anchor="midleft")
         p.text("Enter to enter your name" if self.qualifies else "Enter for the title", 560, colour=ui.DIM)
+
+    def victory_lines(self) -> tuple[str, str]:
+        """A cleared run's heading and line: every stage only when the run played them all
+        (a run started at a later stage, or a level file alone, cleared just its own)."""
+        run, difficulty = self.play.run, self.play.run.difficulty.title
+        cleared, total = self.totals.stages, len(self.app.levels)
+        if run.custom is None and cleared >= total:
+            return "BROADSWORD FALLS", f"Every stage cleared on {difficulty}"
+        if cleared <= 1:
+            return "STAGE CLEARED", f"{self.play.world.level.title} on {difficulty}"
+        return "STAGES CLEARED", f"{cleared} of {total} stages, to {self.play.world.level.title}, on {difficulty}"
 
     def rows(self) -> list[tuple[str, str]]:
         """``(label, value)`` of the run's totals, as the screen lists them."""

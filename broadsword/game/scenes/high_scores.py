@@ -1,9 +1,11 @@
-"""The high-score table; any of Enter, Z or Esc goes back to the title."""
+"""The high-score tables, one a difficulty (Left/Right: another); Enter, Fire or Esc goes
+back to the title. Each row: rank, name, score and the stage it ended on (its title)."""
 
 from __future__ import annotations
 
 import pygame
 
+from ...data.difficulty import Difficulty
 from .. import ui
 from ..controls import Action
 
@@ -14,8 +16,8 @@ RANK_RIGHT, NAME_LEFT, SCORE_RIGHT, SCORE_ROOM, LEVEL_LEFT = 40, 48, 326, 140, 3
 
 
 def level_label(level: str) -> str:
-    """What the table shows of the level a score was made on: a shipped level's name, or a
-    level file's name without its directories and ``.toml``."""
+    """What the table shows of the stage a score was made on: its title as kept (tables from
+    before kept a level name or file: the file's name without its directories and ``.toml``)."""
     name = level.replace("\\", "/").rsplit("/", 1)[-1]
     return name.removesuffix(".toml") or level
 
@@ -23,14 +25,21 @@ def level_label(level: str) -> str:
 class HighScoresScene:
     opaque = True
 
-    def __init__(self, app):
+    def __init__(self, app, difficulty: Difficulty | None = None):
         self.app = app
+        self.difficulty = difficulty or app.difficulty  # the table shown
 
     def handle(self, event: pygame.event.Event) -> bool:
-        if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:
+        actions = self.app.controls.actions(event)
+        if actions & {Action.CONFIRM, Action.FIRE, Action.BACK}:
             self.app.to_title()
-            return True
-        return False
+        elif actions & {Action.LEFT, Action.RIGHT}:
+            order = list(Difficulty)
+            step = 1 if Action.RIGHT in actions else -1
+            self.difficulty = order[(order.index(self.difficulty) + step) % len(order)]
+        else:
+            return False
+        return True
 
     def update(self, dt: float) -> int:
         return 0
@@ -39,15 +48,17 @@ class HighScoresScene:
         app, p = self.app, self.app.painter
         app.renderer.draw_idle(surf)
         p.veil()
-        p.text("HIGH SCORES", 110, ui.BIG, ui.GOLD)
+        p.text("HIGH SCORES", 96, ui.BIG, ui.GOLD)
+        p.text(f"< {self.difficulty.title} >   (Left or Right: another)", 136, colour=ui.CREAM)
         w = surf.get_width()
-        for i, e in enumerate(app.scores.entries):  # columns: a long row never shrinks the others
+        table = app.scores.of(self.difficulty)
+        for i, e in enumerate(table):  # columns: a long row never shrinks the others
             y = 170 + 28 * i
             p.text(f"{i + 1}.", y, x=RANK_RIGHT, anchor="midright")
             p.text(e.name, y, x=NAME_LEFT, anchor="midleft", width=SCORE_RIGHT - SCORE_ROOM - NAME_LEFT)
             p.text(f"{e.score:,}", y, x=SCORE_RIGHT, anchor="midright", width=SCORE_ROOM)
             p.text(level_label(e.level), y, colour=ui.DIM, x=LEVEL_LEFT, anchor="midleft", width=w - LEVEL_LEFT)
-        if not app.scores.entries:
+        if not table:
             p.text("none yet", 200)
         if app.message:  # e.g. a save that failed: say so here, where the player is looking
             for i, line in enumerate(p.lines(app.message, ERROR_WRAP, 3)):

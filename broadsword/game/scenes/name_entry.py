@@ -7,6 +7,7 @@ import datetime
 
 import pygame
 
+from ...data.difficulty import Difficulty
 from .. import ui
 from ..scores import NAME_MAX, Entry
 
@@ -14,8 +15,8 @@ from ..scores import NAME_MAX, Entry
 class NameEntry:
     opaque = False
 
-    def __init__(self, app, score: int, level: str):
-        self.app, self.score, self.level = app, score, level
+    def __init__(self, app, score: int, level: str, difficulty: Difficulty = Difficulty.NORMAL):
+        self.app, self.score, self.level, self.difficulty = app, score, level, difficulty
         self.name = ""
 
     def handle(self, event: pygame.event.Event) -> bool:
@@ -38,14 +39,15 @@ class NameEntry:
         from .high_scores import HighScoresScene
 
         app = self.app
-        app.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, datetime.date.today().isoformat()))
+        today = datetime.date.today().isoformat()
+        app.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, today, self.difficulty))
         try:
             warning = app.scores.save()
             if warning:
                 app.message = warning
         except OSError as exc:
             app.message = f"could not save high scores: {exc}"
-        app.stack.reset(HighScoresScene(app))
+        app.stack.reset(HighScoresScene(app, self.difficulty))
 
     def update(self, dt: float) -> int:
         return 0

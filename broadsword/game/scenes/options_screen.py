@@ -1,8 +1,10 @@
 """The options: difficulty, music and sound volumes, fullscreen, always showing the hit
-shape, and rebinding every gameplay action to a key and a pad button.
+shape, the game speed (50-100 %: the wall clock only, so replays stay exact), the input
+display, and rebinding every gameplay action to a key and a pad button.
 
-Up/Down choose a row, Left/Right change it, Enter rebinds (then press the key or pad button;
-Esc cancels); Esc leaves. Each change is saved at once, atomically (options.json and
+Up/Down choose a row, Left/Right change it; on an action's row, Enter adds a key or pad button
+to the ones it has and Backspace replaces them all (then press the key or button; Esc
+cancels); Esc leaves. Each change is saved at once, atomically (options.json and
 controls.json in the data directory); a save that fails is said on screen.
 """
 
@@ -15,9 +17,11 @@ import pygame
 from ...data.difficulty import Difficulty
 from .. import ui
 from ..controls import FIXED_KEYS, REBINDABLE, Action, Bindings, key_label
-from ..options import VOLUME_STEPS
+from ..options import SPEED_MIN, SPEED_STEP, VOLUME_STEPS
 
 DIFFICULTIES = list(Difficulty)
+#: On an action's row, these keys start a rebinding that replaces its keys (Enter adds one).
+REPLACE_KEYS = (pygame.K_BACKSPACE, pygame.K_DELETE)
 
 
 @dataclass(frozen=True)
@@ -35,10 +39,16 @@ ROWS = (
         Row("Sound volume", "sound"),
         Row("Fullscreen (F11)", "fullscreen"),
         Row("Always show hit shape", "always_hitbox"),
+        Row("Game speed", "speed"),
+        Row("Input display", "input_display"),
     ]
     + [Row(a.title, action=a) for a in REBINDABLE]
     + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")]
 )
+
+
+#: The rows of options (the rebindable actions follow them).
+OPTION_ROWS = sum(1 for r in ROWS if r.option)
 
 
 class OptionsScene:
@@ -48,6 +58,7 @@ class OptionsScene:
         self.app = app
         self.row = 0
         self.waiting: Action | None = None  # rebinding this action: the next key or button
+        self.replace = False  # the next key or button replaces the action's others (else joins them)
         self.note = ""
 
     # ------------------------------------------------------------------ events
@@ -65,6 +76,8 @@ class OptionsScene:
             self.change(row.option, 1 if Action.RIGHT in actions else -1)
         elif actions & {Action.CONFIRM, Action.FIRE}:
             self.choose(row)
+        elif event.type == pygame.KEYDOWN and event.key in REPLACE_KEYS and row.action is not None:
+            self.listen(row.action, replace=True)
         else:
             return False
         return True
@@ -76,6 +89,8 @@ class OptionsScene:
             value = DIFFICULTIES[(DIFFICULTIES.index(o.difficulty) + step) % len(DIFFICULTIES)]
         elif option in ("music", "sound"):
             value = max(0, min(VOLUME_STEPS, getattr(o, option) + step))
+        elif option == "speed":
+            value = max(SPEED_MIN, min(100, o.speed + SPEED_STEP * step))
         else:
             value = not getattr(o, option)
         if option == "fullscreen":
@@ -86,14 +101,19 @@ class OptionsScene:
         if row.option:
             self.change(row.option, 1)
         elif row.action is not None:
-            self.waiting = row.action
-            self.note = f"press a key or pad button for {row.action.title} (Esc: cancel)"
+            self.listen(row.action, replace=False)
         elif row.command == "reset":
             self.app.controls.bindings = Bindings()
             self.app.save_bindings()
             self.note = "controls reset to the defaults"
         else:
             self.app.stack.pop()
+
+    def listen(self, action: Action, replace: bool) -> None:
+        """Wait for the key or button that joins ``action``'s (or, ``replace``, replaces them)."""
+        self.waiting, self.replace = action, replace
+        how = "to replace all of" if replace else "to add to"
+        self.note = f"press a key or pad button {how} {action.title}'s (Esc: cancel)"
 
     def _rebind(self, event: pygame.event.Event) -> bool:
         action, b = self.waiting, self.app.controls.bindings
@@ -105,11 +125,11 @@ class OptionsScene:
                 self.note = f"{key_label(event.key)} is fixed ({FIXED_KEYS[event.key].title}); try another key"
                 return True
             else:
-                b.bind_key(action, event.key)
-                self.note = f"{action.title}: {key_label(event.key)}"
+                b.bind_key(action, event.key, self.replace)
+                self.note = f"{action.title}: {b.describe(action)}"
                 self.app.save_bindings()
         elif event.type == pygame.JOYBUTTONDOWN:
-            b.bind_button(action, event.button)
+            b.bind_button(action, event.button, self.replace)
             self.note = f"{action.title}: {b.describe(action)}"
             self.app.save_bindings()
         else:
@@ -125,6 +145,8 @@ class OptionsScene:
         o = self.app.options
         if row.option == "difficulty":
             return f"< {o.difficulty.title} >"
+        if row.option == "speed":
+            return f"< {o.speed}% >" + ("  (replays stay exact)" if o.speed < 100 else "")
         if row.option in ("music", "sound"):
             v = getattr(o, row.option)
             return f"< {'#' * v}{'.' * (VOLUME_STEPS - v)} {v * 100 // VOLUME_STEPS}% >"
@@ -141,7 +163,7 @@ class OptionsScene:
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
         for i, row in enumerate(ROWS):
-            y = 118 + 26 * i + (10 if i >= 5 else 0) + (10 if i >= 5 + len(REBINDABLE) else 0)
+            y = 110 + 26 * i + (10 if i >= OPTION_ROWS else 0) + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
             chosen = i == self.row
             if chosen:
                 pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))
@@ -149,7 +171,7 @@ class OptionsScene:
             p.text(row.label, y, colour=colour, x=w * 0.45, anchor="midright")
             p.text(self.value(row), y, colour=ui.CREAM if chosen else ui.DIM, x=w * 0.45 + 14, anchor="midleft")
         p.text(
-            self.note or "Up/Down choose   Left/Right change   Enter rebind   Esc back",
+            self.note or "Up/Down choose   Left/Right change   Enter add a key   Backspace replace   Esc back",
             580,
             colour=ui.WARN if "fixed" in self.note else ui.DIM,
         )

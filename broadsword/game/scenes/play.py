@@ -139,7 +139,8 @@ class Play:
 
     # ------------------------------------------------------------------ stepping
     def update(self, dt: float) -> int:
-        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0)
+        # the game speed option scales the wall clock only: the same steps, fewer a second
+        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0) * self.app.options.speed / 100
         steps = 0
         while self.accumulator >= DT and steps < MAX_CATCH_UP and not self.ended:
             self.step()
@@ -164,18 +165,7 @@ class Play:
             return
         ev = self.runner.step(inp)
         self.source.stepped(world)
-        self.app.renderer.on_events(ev)
-        audio = self.app.audio
-        for happened, sound in (
-            (ev.shots, "shot"),
-            (ev.grazes, "graze"),
-            (ev.damaged, "hit"),
-            (ev.player_hit, "player_hit"),
-        ):
-            if happened:
-                audio.play(sound)
-        if ev.kills:
-            audio.play("big_explosion" if ev.boss_killed else "explosion")
+        self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
         if isinstance(self.source, ReplayInput):
             playback = self.source.playback
             if playback.divergence is not None or playback.done:

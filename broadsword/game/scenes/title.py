@@ -11,7 +11,7 @@ import pygame
 from ...data.difficulty import Difficulty
 from ...sim import FIELD
 from .. import ui
-from ..controls import DEFAULT_KEYS, Action, Bindings, key_label
+from ..controls import Action, Bindings, confirm_label, keys_label, move_label
 
 ERROR_LINES = 7  # at most this many wrapped lines of a load error (the rest: "...")
 ERROR_TEXT = (255, 214, 200)
@@ -20,22 +20,19 @@ ERROR_X, ERROR_Y = 20, 334
 #: A warning on the title (a file not used, a save that failed): at most this many lines, in this font size.
 MESSAGE_LINES, MESSAGE_SIZE = 4, 18
 DIFFICULTIES = list(Difficulty)
+#: The key that opens "How to play".
+HOW_TO_PLAY_KEY = pygame.K_i
+#: The first-run hint's colour (gold, pulsing) and place.
+HINT_Y = 232
 
 
 def controls_list(b: Bindings) -> list[tuple[str, str]]:
     """(keys, what) rows of the title's key table, from the bindings in use."""
 
     def keys(a: Action) -> str:
-        labels = [key_label(k).removeprefix("Left ").removeprefix("Right ") for k in b.keys.get(a, ())]
-        return " / ".join(dict.fromkeys(labels)) or "(none)"  # Left Shift / Right Shift: Shift
+        return keys_label(b, a)
 
-    move = (
-        "Arrows / WASD"
-        if all(b.keys.get(a) == DEFAULT_KEYS[a] for a in DEFAULT_KEYS if a.value in ("left", "right", "up", "down"))
-        else " ".join(
-            key_label(b.keys[a][0]) for a in (Action.LEFT, Action.RIGHT, Action.UP, Action.DOWN) if b.keys.get(a)
-        )
-    )
+    move = move_label(b)
     return [
         (move, "move"),
         (keys(Action.FIRE), "fire"),
@@ -86,6 +83,10 @@ class Title:
             from .options_screen import OptionsScene
 
             app.stack.push(OptionsScene(app))
+        elif key == HOW_TO_PLAY_KEY:
+            from .how_to_play import HowToPlay
+
+            app.stack.push(HowToPlay(app))
         elif Action.BACK in actions:
             app.running = False
         else:
@@ -102,24 +103,33 @@ class Title:
         p.text("BROADSWORD", 110, ui.BIG, ui.GOLD)
         p.text("polygon-armature shoot-'em-up", 150, colour=(160, 180, 220))
         ship = pygame.transform.scale_by(app.bank.images["player"], 2)
-        surf.blit(ship, ship.get_rect(center=(w / 2, 204)))
+        surf.blit(ship, ship.get_rect(center=(w / 2, 190)))
+        if not app.options.played:  # the first run: point at the help, pulsing
+            glow = 200 + int(55 * ((app.renderer.tick // 20) % 2))
+            p.text("New here? Press I for how to play", HINT_Y, 24, (255, glow, 120))
+        else:
+            p.text("I: how to play", HINT_Y, 20, ui.DIM)
         if app.custom_level:
             name, hint = Path(app.custom_level).name, "(Left/Right: shipped levels)"
         else:
-            name, hint = app.levels[app.start_index], "(Left/Right)"
+            name, hint = app.stage_title(app.levels[app.start_index]), "(Left/Right)"
         font = p.font()
         while len(name) > 8 and font.size(f"Stage: {name}   {hint}")[0] > w - 20:
             name = "..." + name[4:]  # a long file name loses its start, keeps its end
         p.text(f"Stage: {name}   {hint}", 258, colour=ui.CREAM)
         p.text(f"Difficulty: < {app.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
-        p.text("Enter or Z play   O options   H scores   E edit hit shapes   Esc quit", 310, colour=ui.DIM)
+        p.text(
+            f"{confirm_label(app.controls.bindings)} play   O options   H scores   E edit hit shapes   Esc quit",
+            310,
+            colour=ui.DIM,
+        )
         if app.error:
             self._draw_error()
         else:
             self._draw_controls()
-        if app.scores.entries:
-            best = app.scores.entries[0]
-            p.text(f"High score {best.score:,}  {best.name}", 570, colour=(150, 255, 200))
+        table = app.scores.of(app.difficulty)
+        if table:
+            p.text(f"High score on {app.difficulty.title}: {table[0].score:,}  {table[0].name}", 570, colour=ui.GOOD)
         if app.message:  # below the high score: up to MESSAGE_LINES small lines
             message = app.message.replace(str(app.data / "_")[:-1], "")  # files in the data dir by name
             for i, line in enumerate(p.lines(message, w - 20, MESSAGE_LINES, MESSAGE_SIZE)):

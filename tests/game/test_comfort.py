@@ -1,0 +1,57 @@
+"""Comfort options: the game speed (the wall clock only: replays stay exact) and the input display."""
+
+from __future__ import annotations
+
+import pygame
+import pytest
+
+from broadsword.game.app import App
+from broadsword.game.options import Options
+from broadsword.game.scores import HighScores
+from broadsword.sim import DT, Input
+
+
+def autopilot_run(tmp_path, speed: int, frames: int) -> tuple[int, str]:
+    """The autopilot's first stage after ``frames`` frames of DT wall time at ``speed`` %:
+    (world frame, state hash)."""
+    app = App(seed=1, demo=True, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
+    try:
+        app.set_options(speed=speed)
+        app.start_run()
+        for _ in range(frames):
+            app.frame(DT)
+        return app.world.frame, app.world.state_hash()
+    finally:
+        pygame.quit()
+
+
+def test_speed__half_speed_takes_the_same_steps_half_as_often(tmp_path):
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    half = autopilot_run(tmp_path / "a", 50, 160)
+    full = autopilot_run(tmp_path / "b", 100, 80)
+    assert half[0] == full[0] == 80 and half[1] == full[1]  # the same world, frame for frame
+
+
+def test_speed__option_is_checked_and_saved(tmp_path):
+    with pytest.raises(ValueError, match="speed"):
+        Options(speed=45)
+    with pytest.raises(ValueError, match="speed"):
+        Options(speed=110)
+    assert Options.from_json({"version": 1, "speed": 70}).speed == 70
+
+
+def test_input_display__shows_the_last_steps_input_when_on(tmp_path):
+    app = App(seed=1, demo=True, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
+    try:
+        app.start_run()
+        for _ in range(30):
+            app.frame(DT)
+        assert app.panel_info().held is None and "FIRE" not in app.panel_painter.said
+        app.set_options(input_display=True)
+        app.frame(DT)
+        held = app.panel_info().held
+        assert held == Input.from_byte(app.play.recorder.inputs[-1]) and held.fire  # the autopilot fires
+        assert {"FIRE", "SLOW", "BOMB"} <= set(app.panel_painter.said)
+    finally:
+        pygame.quit()
