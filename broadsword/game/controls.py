@@ -311,6 +311,8 @@ def load_bindings(path: Path | None = None) -> tuple[Bindings, str | None]:
     if got is None:
         return Bindings(), None
     doc, data = got
+    if not isinstance(doc, dict):  # nothing in it to keep: say "not used", as for unreadable files
+        return Bindings(), f"controls file {path} not used (not a JSON object; {keep_copy(path, data)}): default keys"
     bindings, problems = Bindings.from_json(doc)
     if not problems:
         return bindings, None

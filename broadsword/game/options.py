@@ -115,6 +115,8 @@ def load_options(path: Path | None = None) -> tuple[Options, str | None]:
     if got is None:
         return Options(), None
     doc, data = got
+    if not isinstance(doc, dict):  # nothing in it to keep: say "not used", as for unreadable files
+        return Options(), f"options file {path} not used (not a JSON object; {keep_copy(path, data)}): defaults"
     options, problems = Options.from_json(doc)
     if not problems:
         return options, None

@@ -8,7 +8,7 @@ import pytest
 from broadsword.game.app import App
 from broadsword.game.options import Options
 from broadsword.game.scores import HighScores
-from broadsword.sim import DT, Input
+from broadsword.sim import DT
 
 
 def autopilot_run(tmp_path, speed: int, frames: int) -> tuple[int, str]:
@@ -38,7 +38,9 @@ def test_speed__option_is_checked_and_saved(tmp_path):
         Options(speed=45)
     with pytest.raises(ValueError, match="speed"):
         Options(speed=110)
-    assert Options.from_json({"version": 1, "speed": 70}).speed == 70
+    assert Options.from_json({"version": 1, "speed": 70}) == (Options(speed=70), [])
+    value, problems = Options.from_json({"version": 1, "speed": 75, "music": 3})
+    assert value == Options(music=3) and problems and "speed" in problems[0]  # the bad value only
 
 
 def test_input_display__shows_the_last_steps_input_when_on(tmp_path):
@@ -51,7 +53,7 @@ def test_input_display__shows_the_last_steps_input_when_on(tmp_path):
         app.set_options(input_display=True)
         app.frame(DT)
         held = app.panel_info().held
-        assert held == Input.from_byte(app.play.recorder.inputs[-1]) and held.fire  # the autopilot fires
+        assert held == app.play.runner.recorder.last_input and held.fire  # the autopilot fires
         assert {"FIRE", "SLOW", "BOMB"} <= set(app.panel_painter.said)
     finally:
         pygame.quit()

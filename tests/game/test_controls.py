@@ -164,7 +164,7 @@ def test_bindings_file__missing_is_the_defaults_silently(tmp_path):
     "content, field",
     [
         (b"\xff\xfe not json", "controls.json"),
-        (b"[1, 2]", "version"),
+        (b"[1, 2]", "JSON object"),
         (b'{"version": 0}', "version"),
         (b'{"version": 1, "keys": {"fire": ["no such key"]}}', "keys.fire"),
         (b'{"version": 1, "keys": {"mute": ["q"]}}', "keys.mute"),
@@ -203,11 +203,11 @@ def test_bindings_file__one_bad_name_keeps_every_valid_one(tmp_path):
     path.write_text(json.dumps(doc))
     b, warning = load_bindings(path)
     expected = Bindings()
-    expected.bind_key(Action.BOMB, pygame.K_v)
-    expected.bind_key(Action.SLOW, pygame.K_c)
+    expected.bind_key(Action.BOMB, pygame.K_v, replace=True)  # a file lists an action's keys in full
+    expected.bind_key(Action.SLOW, pygame.K_c, replace=True)
     expected.keys[Action.PAUSE] = (pygame.K_p, pygame.K_ESCAPE)  # Esc pauses by default: allowed
-    expected.bind_button(Action.FIRE, PadButton.Y)
-    expected.bind_button(Action.SLOW, PadButton.RB)
+    expected.bind_button(Action.FIRE, PadButton.Y, replace=True)
+    expected.bind_button(Action.SLOW, PadButton.RB, replace=True)
     assert _table(b) == _table(expected)  # fire's only key was refused: it keeps its defaults
     assert warning is not None
     for named in ("keys.bomb: unknown key 'no such key'", "keys.fire: 'escape' is a fixed key", "buttons.fire"):
@@ -235,7 +235,7 @@ def test_bindings_file__a_newer_versions_additions_survive_a_save(tmp_path):
     path.write_text(json.dumps({"version": 3, "keys": {"bomb": ["v"], "dash": ["q"]}, "mouse": {"aim": True}}))
     b, warning = load_bindings(path)
     assert warning is None and b.keys[Action.BOMB] == (pygame.K_v,)
-    b.bind_key(Action.SLOW, pygame.K_c)
+    b.bind_key(Action.SLOW, pygame.K_c, replace=True)
     save_bindings(b, path)
     doc = json.loads(path.read_text())
     assert doc["keys"]["dash"] == ["q"] and doc["mouse"] == {"aim": True} and doc["version"] == 3

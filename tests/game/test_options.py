@@ -43,7 +43,7 @@ def test_options__a_file_leaving_fields_out_keeps_their_defaults(tmp_path):
         ('{"version": 1, "volume": 3}', "volume"),
         ('{"version": "1"}', "version"),
         ('{"version": 1, "music": 3, "sou', "options.json"),  # truncated
-        ("[1, 2]", "version"),
+        ("[1, 2]", "JSON object"),
     ],
 )
 def test_options__a_bad_file_or_value_is_named_and_copied_aside(tmp_path, content, field):
@@ -71,12 +71,12 @@ def test_options__one_bad_value_keeps_every_valid_one(tmp_path):
 
 def test_options__a_newer_versions_extra_options_survive_a_save(tmp_path):
     path = tmp_path / "options.json"
-    path.write_text(json.dumps({"version": 2, "music": 4, "speed": 75, "palette": {"name": "deutan"}}))
+    path.write_text(json.dumps({"version": 2, "music": 4, "vsync": "adaptive", "palette": {"name": "deutan"}}))
     o, warning = load_options(path)
     assert (o, warning) == (Options(music=4), None)
     save_options(Options(music=5), path)
     doc = json.loads(path.read_text())
-    assert doc["music"] == 5 and doc["speed"] == 75 and doc["palette"] == {"name": "deutan"}
+    assert doc["music"] == 5 and doc["vsync"] == "adaptive" and doc["palette"] == {"name": "deutan"}
     assert doc["version"] == 2
 
 

@@ -95,9 +95,11 @@ def test_view__a_file_that_needs_parameters_is_refused_without_them(capsys):
 
 def test_view__an_unwritable_screenshot_path_is_refused_before_the_run(tmp_path, capsys):
     flower = str(PATTERNS / "flower.xml")
-    for bad, why in ((tmp_path / "none" / "v.png", "no folder"), (tmp_path, "it is a directory")):
-        assert main(["pattern", "view", flower, "--frames", "1", "--screenshot", str(bad)]) == 1
-        assert f"broadsword: --screenshot {bad}: cannot write there ({why}" in capsys.readouterr().err
+    (tmp_path / "a-file").write_text("")
+    for bad, why in ((tmp_path / "a-file" / "v.png", "is a file, not a folder"), (tmp_path, "a directory")):
+        assert main(["pattern", "view", flower, "--frames", "1", "--screenshot", str(bad)]) == 2  # a usage error
+        err = capsys.readouterr().err
+        assert f"--screenshot {bad}: " in err and why in err
     shot = tmp_path / "ok.png"
     assert main(["pattern", "view", flower, "--frames", "1", "--screenshot", str(shot)]) == 0
-    assert shot.is_file() and [p.name for p in tmp_path.iterdir()] == ["ok.png"]  # no temporary left
+    assert shot.is_file() and sorted(p.name for p in tmp_path.iterdir()) == ["a-file", "ok.png"]  # no temporary left

@@ -537,7 +537,7 @@ def test_title__both_unusable_settings_files_are_said_in_full(tmp_path, capsys):
     data = tmp_path / "a-data-directory-with-a-rather-long-name"
     data.mkdir()
     (data / "options.json").write_text("garbage")
-    (data / "controls.json").write_text('{"version": 1, "keys": {"left": 5}}')
+    (data / "controls.json").write_text('["not", "a", "table"]')  # unusable whole (one bad value keeps the rest)
     a = App(seed=1, audio=False, scores=HighScores(data / "scores.json"), data=data)
     drawn = []
     real = a.painter.text
