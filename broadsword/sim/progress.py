@@ -23,12 +23,13 @@ CONTINUES = 3
 
 class Progress:
     """The world's stage-level rules and tallies (``bombs_used``, ``continues_used``,
-    ``bonuses``)."""
+    ``phases_beaten`` (boss phases whose hit points ran out), ``bonuses``)."""
 
     def __init__(self, world, continues_used: int = 0):
         self.world = world
         self.bombs_used = 0
         self.continues_used = continues_used
+        self.phases_beaten = 0
         self.bonuses: list[tuple[str, int]] = []  # every bonus paid this stage
         self._phase_clean = True  # no miss and no bomb since the current phase began
 
@@ -60,6 +61,8 @@ class Progress:
         boss = w.boss
         ended = boss.phase if boss.dead else boss.phase - 1
         ev.phase_ended = True
+        if how is PhaseEnd.BEATEN:
+            self.phases_beaten += 1
         eb = w.enemy_bullets
         w.items.drop_many(eb.pos, ItemKind.STAR, homing=True)
         eb.clear()

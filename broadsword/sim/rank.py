@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ..data.levels import FireSpec
+from ..data.levels import FireKind, FireSpec
 
 
 def rate_factor(rank: float) -> float:
@@ -32,24 +32,35 @@ def speed_factor(rank: float) -> float:
 
 
 class RankedFire:
-    """Firing patterns as fired at one rank; ``of(spec)`` is the scaled copy (cached)."""
+    """Firing patterns as fired at one rank; ``of(spec)`` is the scaled copy (cached).
+    A difficulty's factors (positive) multiply further: ``fire_rate`` every gun's volleys per
+    second, ``aimed_rate`` and ``aimed_speed`` the aimed guns' (``FireKind.AIMED``) volleys
+    per second and bullet speed."""
 
-    def __init__(self, rank: float):
+    def __init__(self, rank: float, fire_rate: float = 1.0, aimed_rate: float = 1.0, aimed_speed: float = 1.0):
         if not 0.0 <= rank <= 1.0:
             raise ValueError(f"rank must be in 0..1, got {rank!r}")
-        self.rank = rank
+        if min(fire_rate, aimed_rate, aimed_speed) <= 0:
+            raise ValueError(
+                f"fire_rate, aimed_rate and aimed_speed must be positive, got {fire_rate!r}, {aimed_rate!r}, "
+                f"{aimed_speed!r}"
+            )
+        self.rank, self.fire_rate, self.aimed_rate, self.aimed_speed = rank, fire_rate, aimed_rate, aimed_speed
         self._scaled: dict[FireSpec, FireSpec] = {}
 
     def of(self, spec: FireSpec) -> FireSpec:
         out = self._scaled.get(spec)
         if out is None:
-            if self.rank == 0.5 or not spec.fires:
+            aimed = spec.pattern is FireKind.AIMED and (self.aimed_rate, self.aimed_speed) != (1.0, 1.0)
+            if (self.rank == 0.5 and self.fire_rate == 1.0 and not aimed) or not spec.fires:
                 out = spec
             else:
+                rate = rate_factor(self.rank) * self.fire_rate * (self.aimed_rate if aimed else 1.0)
+                speed = speed_factor(self.rank) * (self.aimed_speed if aimed else 1.0)
                 out = replace(
                     spec,
-                    every=spec.every / rate_factor(self.rank),
-                    speed=spec.speed * speed_factor(self.rank),
+                    every=spec.every / rate,
+                    speed=spec.speed * speed,
                     shots=shots_at(spec.shots, self.rank),
                 )
             self._scaled[spec] = out

@@ -126,7 +126,9 @@ class World:
         self.complete = False
         self.difficulty = level.difficulty[self.settings.difficulty]
         self.rank = self.difficulty.rank  # BulletML's $rank
-        self.fires = RankedFire(self.rank)  # the level's patterns as fired at this rank
+        # the level's patterns as fired at this rank (and the difficulty's gun factors)
+        d = self.difficulty
+        self.fires = RankedFire(self.rank, d.fire_rate, d.aimed_rate, d.aimed_speed)
         self.start_lives = self.difficulty.lives or level.player.lives
         bombs = level.player.bombs if self.difficulty.bombs is None else self.difficulty.bombs
         self.player = Player(level.player, lives=self.carry.lives or self.start_lives, bombs=bombs)
