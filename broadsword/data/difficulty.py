@@ -30,11 +30,13 @@ class DifficultySpec:
     ``lives`` and ``bombs`` (None: the stage's ``[player]`` values) are what a run starts
     with. ``enemy_hp`` multiplies every ship's and boss phase's hit points (rounded, at
     least 1). ``fire_rate`` multiplies how often every gun of the original kinds (``fire =
-    "aimed"``, ``"spread"``...; not a level's own pattern files) fires, on top of ``rank``;
+    "aimed"``, ``"spread"``...; not a level's own pattern files) fires, on top of ``rank``,
+    and divides every wave ship's wait before its first volley (``fire_delay``);
     ``aimed_rate`` and ``aimed_speed`` further multiply how often the aimed guns (``fire =
     "aimed"``) fire and how fast their bullets fly.
     ``miss_power`` is the power a miss costs, in hundredths (None: the game's 50, half a
-    level; 0: a miss keeps every bit of power).
+    level; 0: a miss keeps every bit of power). ``auto_bomb``: a hit with a bomb in stock sets
+    one off at once (the death-bomb, pressed for the player), so the bomb stock saves lives.
     """
 
     rank: float
@@ -45,6 +47,7 @@ class DifficultySpec:
     aimed_rate: float = 1.0
     aimed_speed: float = 1.0
     miss_power: int | None = None
+    auto_bomb: bool = False
 
     def scale_hp(self, hp: int) -> int:
         """Hit points under ``enemy_hp``: rounded half to even, at least 1."""
@@ -56,12 +59,13 @@ DEFAULT_SPECS = {
     Difficulty.EASY: DifficultySpec(
         rank=0.0,
         lives=8,
-        bombs=6,
+        bombs=8,
         enemy_hp=0.3,
-        fire_rate=0.6,
+        fire_rate=0.5,
         aimed_rate=0.6,
-        aimed_speed=0.75,
+        aimed_speed=0.65,
         miss_power=0,
+        auto_bomb=True,
     ),
     Difficulty.NORMAL: DifficultySpec(rank=0.5),
     Difficulty.HARD: DifficultySpec(rank=0.75, enemy_hp=1.15),

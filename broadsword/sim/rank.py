@@ -1,12 +1,14 @@
 """Difficulty in the guns: how a firing pattern changes with BulletML's ``$rank``.
 
 At rank 0.5 (Normal) a pattern fires as the level wrote it. Higher ranks fire more, more
-often and faster; lower ranks less: volleys come ``0.7 + 0.6 * rank`` times as often (Easy
-0.82x, Hard 1.15x, Lunatic 1.3x), a volley of several bullets (a fan, a ring, a spiral arm
+often and faster; lower ranks less: volleys come ``0.7 + 0.6 * rank`` times as often (rank
+0 0.7x, Hard 1.15x, Lunatic 1.3x), a volley of several bullets (a fan, a ring, a spiral arm
 set) holds ``0.7 + 0.6 * rank`` times as many (rounded, at least 1; a single aimed shot stays
-single), and bullets fly ``0.85 + 0.3 * rank`` times as fast (Easy 0.91x, Lunatic 1.15x). So
-Lunatic fires about 1.7 times Normal's bullets and Easy about two thirds. Scaled once per
-pattern and kept, so the step pays nothing.
+single), and bullets fly ``0.85 + 0.3 * rank`` times as fast (rank 0 0.85x, Lunatic 1.15x). So
+Lunatic fires about 1.7 times Normal's bullets. A difficulty's ``fire_rate``, ``aimed_rate``
+and ``aimed_speed`` multiply the original kinds' rates (and aimed speed) further: Easy uses
+them (:data:`~broadsword.data.difficulty.DEFAULT_SPECS`). Scaled once per pattern and kept,
+so the step pays nothing.
 """
 
 from __future__ import annotations

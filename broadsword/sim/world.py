@@ -192,7 +192,7 @@ class World:
         if self.over or self.complete:
             return ev
         pressed, self._bomb_held = inp.bomb and not self._bomb_held, inp.bomb
-        if pressed:
+        if pressed or (self.player.stricken and self.difficulty.auto_bomb):  # auto: the death-bomb for you
             self.progress.bomb(ev)
         if self.player.stricken:
             self.player.stricken -= 1

@@ -85,6 +85,7 @@ def test_a_bad_difficulty_table_names_its_field(tmp_path):
         ('[[wave]]\nenemy = "scout"\ndifficulty = []\n', "wave[0].difficulty"),
         ('[difficulty.easy]\naimed_rate = 0\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.aimed_rate"),
         ('[difficulty.easy]\nfire_rate = 20\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.fire_rate"),
+        ('[difficulty.easy]\nauto_bomb = 1\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.auto_bomb"),
         ('[difficulty.easy]\naimed_speed = "slow"\n[[wave]]\nenemy = "scout"\n', "difficulty.easy.aimed_speed"),
         ('[difficulty.normal]\nmiss_power = -5\n[[wave]]\nenemy = "scout"\n', "difficulty.normal.miss_power"),
         ('[difficulty.normal]\nmiss_power = 0.5\n[[wave]]\nenemy = "scout"\n', "difficulty.normal.miss_power"),
@@ -111,3 +112,33 @@ def test_a_miss_costs_the_difficultys_power(level, d, lost):
     w.player.power = 300
     w.combat.lose_life(Events())
     assert w.player.power == 300 - lost
+
+
+def test_a_slower_fire_rate_waits_longer_for_the_first_volley(tmp_path):
+    p = tmp_path / "f.toml"
+    p.write_text(
+        '[difficulty.easy]\nfire_rate = 0.5\n[[wave]]\nat = 0.0\nenemy = "scout"\nfire = "aimed"\nfire_delay = 0.8\n'
+    )
+    level = load_level(p)
+    waits = {}
+    for d in ("easy", "normal"):
+        w = World(level, ARMATURES, settings=Settings(difficulty=d))
+        w.step(IDLE)
+        waits[d] = float(w.ships.pool.next_fire[0])
+    assert waits == {"easy": 1.6, "normal": 0.8}
+
+
+@pytest.mark.parametrize("auto, saved", [(True, True), (False, False)])
+def test_auto_bomb_sets_off_the_death_bomb(tmp_path, auto, saved):
+    p = tmp_path / "a.toml"
+    p.write_text(
+        f'[difficulty.easy]\nauto_bomb = {str(auto).lower()}\nbombs = 2\n[[wave]]\nat = 60.0\nenemy = "scout"\n'
+    )
+    w = World(load_level(p), ARMATURES, settings=Settings(difficulty="easy"))
+    w.step(IDLE)
+    w.player.strike()  # hit, as the combat would
+    lives = w.player.lives
+    for _ in range(30):
+        w.step(IDLE)
+    assert (w.player.lives == lives) is saved and (w.player.bombs == 1) is saved
+    assert w.progress.bombs_used == int(saved)

@@ -267,6 +267,7 @@ def _difficulty(doc, path: Path) -> dict[Difficulty, DifficultySpec]:
             aimed_rate=t.num("aimed_rate", base.aimed_rate, 0.1, 10),
             aimed_speed=t.num("aimed_speed", base.aimed_speed, 0.1, 10),
             miss_power=base.miss_power if miss_power is None else t.int("miss_power", base.miss_power, 0, 300),
+            auto_bomb=t.bool("auto_bomb", base.auto_bomb),
         )
         t.done()
     top.done()
