@@ -1,21 +1,22 @@
-"""``broadsword balance``: the autopilot over seeds, per stage and difficulty, measured.
+"""``broadsword balance``: players over seeds, per stage and difficulty, measured.
 
-Balance is measured, never guessed. For every stage and difficulty asked for, the
-autopilot (:class:`broadsword.sim.Pilot`: a player with a human's limits) plays each seed
-from the stage's start with its own lives and bombs, no continues, until the stage ends
-or the game is over, and the table reports:
+Balance is measured, never guessed. For every stage, difficulty and player asked for, the
+player plays each seed from the stage's start with the difficulty's lives and bombs until
+the stage ends or the game is over. The players (``--players``):
 
-* clears: how many seeds reached the stage's end;
-* deaths, bombs: lives lost and bombs used per run (mean);
-* peak bullets: the most enemy bullets on screen at once (max over the seeds);
-* length: seconds of play (mean; a cleared stage's length is its length);
-* still: with ``--still``, also how long a player who holds still and fires survives.
+* ``autopilot`` (:class:`broadsword.sim.Pilot`: a player with a human's limits), no continues;
+* ``stand``, ``weave``, ``stream``: naive scripted beginners (:mod:`broadsword.sim.naive`)
+  with the same limits, who hold fire, bomb when crowded, and use their continues.
+
+The table (:mod:`broadsword.balance_table`) reports per stage, difficulty and player the
+clears (without and with continues), the mean seconds to the first miss and to the first
+game over, the boss phases beaten, deaths, bombs, the peak of enemy bullets and the length.
 
 Runs go to a pool of worker processes (one per core); a progress bar says how far it is.
 
     broadsword balance                                  every stage, every difficulty, 10 seeds
     broadsword balance --stages 1-picket --difficulties easy,normal --seeds 5
-    broadsword balance --json balance.json --still
+    broadsword balance --players autopilot,stand,weave,stream --json balance.json
 """
 
 from __future__ import annotations
@@ -28,9 +29,11 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
+from .balance_table import PLAYERS, summarise, table
 from .data import DataError, list_levels, load_level, resolve_level
 from .data.difficulty import Difficulty
 from .fileio import check_writable, write_atomic
+from .sim.progress import CONTINUES
 
 #: A run stops after this many frames even if the stage has not ended (20 minutes).
 FRAME_LIMIT = 72_000
@@ -41,78 +44,59 @@ class Job:
     level: str
     difficulty: str
     seed: int
-    still: bool = False  # hold still and fire, instead of the autopilot
+    player: str = "autopilot"  # one of PLAYERS
+    continues: int = CONTINUES  # how many a naive player may use (the autopilot uses none)
+
+
+def make_player(name: str, seed: int):
+    """The player called ``name`` (one of :data:`PLAYERS`) for ``seed``: a callable from the
+    world to this frame's input."""
+    from .sim import Pilot
+    from .sim.naive import Naive, Script
+
+    return Pilot() if name == "autopilot" else Naive(Script(name), seed)
 
 
 def play(job: Job) -> dict:
-    """Play one job to the stage's end or game over; its outcome as a dict."""
+    """Play one job to the stage's end or game over (a naive player continues while it may);
+    its outcome as a dict."""
     from .runner import PeakBullets, Runner, StageStart
-    from .sim import Input, Pilot, Settings
+    from .sim import Settings
 
     peak = PeakBullets()
     start = StageStart(job.level, job.seed, Settings(difficulty=Difficulty(job.difficulty)))
     runner = Runner.open(start, observers=[peak])
-    pilot = Pilot()
-    hold = Input(fire=True)
-    runner.play((lambda w: hold) if job.still else pilot, FRAME_LIMIT)
     world = runner.world
+    player = make_player(job.player, job.seed)
+    continues = 0 if job.player == "autopilot" else job.continues
+    first_miss, game_over = None, None
+    while world.frame < FRAME_LIMIT:
+        if world.over and world.progress.continues_used < continues and world.progress.can_continue:
+            world.continue_game()
+        if world.over or world.complete:
+            break
+        ev = runner.step(player(world))
+        if first_miss is None and ev.player_hit:
+            first_miss = world.frame
+        if game_over is None and ev.game_over:
+            game_over = world.frame
     return {
         "level": job.level,
         "difficulty": job.difficulty,
         "seed": job.seed,
-        "still": job.still,
+        "player": job.player,
         "cleared": world.complete,
+        "continues": world.progress.continues_used,
         "frames": world.frame,
+        "first_miss": first_miss,
+        "game_over": game_over,
+        "phases_beaten": world.progress.phases_beaten,
+        "phases": len(world.boss.spec.phases) if world.boss else 0,
         "deaths": world.player.misses,
         "bombs": world.progress.bombs_used,
         "peak_bullets": peak.peak,
         "score": world.score.points,
     }
-
-
-def summarise(runs: list[dict]) -> list[dict]:
-    """One row per (stage, difficulty): clears, mean deaths and bombs, peak bullets, length."""
-    rows = []
-    keys = sorted(
-        {(r["level"], r["difficulty"]) for r in runs if not r["still"]},
-        key=lambda k: (k[0], list(Difficulty).index(Difficulty(k[1]))),
-    )
-    for level, diff in keys:
-        mine = [r for r in runs if r["level"] == level and r["difficulty"] == diff and not r["still"]]
-        still = [r for r in runs if r["level"] == level and r["difficulty"] == diff and r["still"]]
-        n = len(mine)
-        row = {
-            "stage": level,
-            "difficulty": diff,
-            "seeds": n,
-            "clears": sum(r["cleared"] for r in mine),
-            "deaths": round(sum(r["deaths"] for r in mine) / n, 2),
-            "bombs": round(sum(r["bombs"] for r in mine) / n, 2),
-            "peak_bullets": max(r["peak_bullets"] for r in mine),
-            "length_s": round(sum(r["frames"] for r in mine) / n / 60.0, 1),
-            "cleared_length_s": round(max((r["frames"] for r in mine if r["cleared"]), default=0) / 60.0, 1),
-        }
-        if still:
-            row["still_survives_s"] = round(min(r["frames"] for r in still) / 60.0, 1)
-        rows.append(row)
-    return rows
-
-
-def table(rows: list[dict]) -> str:
-    """The rows as a Markdown table."""
-    still = any("still_survives_s" in r for r in rows)
-    head = "| stage | difficulty | clears | deaths | bombs | peak bullets | mean length s | clear length s |"
-    head += " still survives s |" if still else ""
-    lines = [head, "|" + "---|" * (8 + still)]
-    for r in rows:
-        line = (
-            f"| {r['stage']} | {r['difficulty']} | {r['clears']}/{r['seeds']} | {r['deaths']} | {r['bombs']} | "
-            f"{r['peak_bullets']:,} | {r['length_s']} | {r['cleared_length_s']} |"
-        )
-        if still:
-            line += f" {r.get('still_survives_s', '')} |"
-        lines.append(line)
-    return "\n".join(lines)
 
 
 def _bar(done: int, total: int, started: float, out) -> None:
@@ -151,7 +135,7 @@ def run(jobs: list[Job], workers: int, out=None) -> list[dict]:
                 _bar(len(results), len(jobs), started, out)
     if getattr(out, "isatty", lambda: False)():
         print(file=out)
-    return sorted(results, key=lambda r: (r["level"], r["difficulty"], r["still"], r["seed"]))
+    return sorted(results, key=lambda r: (r["level"], r["difficulty"], r["player"], r["seed"]))
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -164,7 +148,16 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--stages", default="", help="comma-separated stage names (default: every shipped stage)")
     ap.add_argument("--difficulties", default=",".join(names), help=f"comma-separated, of {', '.join(names)}")
     ap.add_argument("--seeds", type=int, default=10, help="seeds per stage and difficulty (default 10)")
-    ap.add_argument("--still", action="store_true", help="also measure a player who holds still and fires")
+    ap.add_argument(
+        "--players", default="autopilot", help=f"comma-separated, of {', '.join(PLAYERS)} (default: autopilot)"
+    )
+    ap.add_argument(
+        "--continues",
+        type=int,
+        default=CONTINUES,
+        help=f"continues a naive player may use, 0-{CONTINUES} (default {CONTINUES}; 0 ends a run at its game over)",
+    )
+    ap.add_argument("--still", action="store_true", help="also measure the stand player (as --players ...,stand)")
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="processes (default: one per core)")
     ap.add_argument("--json", metavar="FILE", help="write every run and the table as JSON")
     return ap
@@ -178,8 +171,20 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         print(f"broadsword balance: --difficulties: {exc}", file=sys.stderr)
         return 2
+    players = [p for p in args.players.split(",") if p] + (["stand"] if args.still else [])
+    unknown = [p for p in players if p not in PLAYERS]
+    if unknown or not players:
+        print(
+            f"broadsword balance: --players: {', '.join(unknown) or 'none given'}: not one of {', '.join(PLAYERS)}",
+            file=sys.stderr,
+        )
+        return 2
+    players = list(dict.fromkeys(players))  # each once, in the order given
     if args.seeds < 1 or args.workers < 1:
         print("broadsword balance: --seeds and --workers must be at least 1", file=sys.stderr)
+        return 2
+    if not 0 <= args.continues <= CONTINUES:
+        print(f"broadsword balance: --continues must be 0-{CONTINUES}, got {args.continues}", file=sys.stderr)
         return 2
     try:  # every stage loads here, naming a bad one, before any worker starts
         for stage in stages:
@@ -190,9 +195,13 @@ def main(argv: list[str] | None = None) -> int:
     if args.json is not None and (why := check_writable(args.json)):  # before the runs, not after them
         print(f"broadsword balance: --json {args.json}: {why}", file=sys.stderr)
         return 2
-    jobs = [Job(s, d.value, seed) for s in stages for d in diffs for seed in range(args.seeds)]
-    if args.still:
-        jobs += [Job(s, d.value, seed, still=True) for s in stages for d in diffs for seed in range(args.seeds)]
+    jobs = [
+        Job(s, d.value, seed, p, args.continues)
+        for s in stages
+        for d in diffs
+        for p in players
+        for seed in range(args.seeds)
+    ]
     try:
         runs = run(jobs, args.workers)
     except DataError as exc:

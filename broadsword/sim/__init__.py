@@ -5,8 +5,9 @@
 sends), :mod:`.boss`, :mod:`.emitters` (enemy volleys), :mod:`.collide` (the one pipeline
 call a frame, and its typed record), :mod:`.combat` (applying hits), :mod:`.scoring`;
 with :mod:`.layers`, :mod:`.kinds`, :mod:`.events`, :mod:`.settings`, :mod:`.hashing`,
-:mod:`.field`, :mod:`.input`, :mod:`.pool` and the :mod:`.autopilot`. :mod:`.snapshot`
-saves and restores the whole state exactly; :mod:`.seek` reaches any frame of a run by it.
+:mod:`.field`, :mod:`.input`, :mod:`.pool`, the :mod:`.autopilot` and the naive scripted
+players of :mod:`.naive` (beginners, for ``broadsword balance``). :mod:`.snapshot` saves and
+restores the whole state exactly; :mod:`.seek` reaches any frame of a run by it.
 """
 
 from .autopilot import Pilot

@@ -133,5 +133,5 @@ class Combat:
         d = eb.pos - p.pos
         eb.keep(np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]) > CLEAR_RADIUS)
         wreck = p.pos.copy()
-        lost = p.hit()
+        lost = p.hit(w.difficulty.miss_power)
         w.items.drop(wreck, [ItemKind.POWER] * (lost // POWER_STEP // 2))  # half the lost power, to win back

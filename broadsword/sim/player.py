@@ -5,7 +5,7 @@ rounded operation, never by a libm function.
 
 A hit does not end a life at once: for ``bombs.DEATHBOMB_FRAMES`` frames the ship is
 stricken (it cannot move or fire), and a bomb in that window saves it. Otherwise the life
-is lost, power drops by ``POWER_LOSS`` and the ship respawns at the bottom, invulnerable.
+is lost, power drops by ``POWER_LOSS`` (or the difficulty's ``miss_power``) and the ship respawns at the bottom, invulnerable.
 """
 
 from __future__ import annotations
@@ -95,13 +95,14 @@ class Player:
     def extend(self) -> None:
         self.lives = min(LIVES_MAX, self.lives + 1)
 
-    def hit(self) -> int:
-        """Lose a life: power drops, respawn at the bottom, invulnerable, or stay dead with no
-        lives left. Returns the power lost (the world scatters it as items)."""
+    def hit(self, loss: int | None = None) -> int:
+        """Lose a life: power drops by ``loss`` (None: ``POWER_LOSS``), respawn at the bottom,
+        invulnerable, or stay dead with no lives left. Returns the power lost (the world
+        scatters it as items)."""
         self.stricken = 0
         self.lives -= 1
         self.misses += 1
-        lost = min(POWER_LOSS, self.power - POWER_MIN)
+        lost = min(POWER_LOSS if loss is None else loss, self.power - POWER_MIN)
         self.power -= lost
         self.pos = np.array(SPAWN, dtype=np.float64)
         self.prev = self.pos.copy()

@@ -29,7 +29,7 @@ CONTINUES = 3
 
 class Progress:
     """The world's stage-level rules and tallies (``bombs_used``, ``continues_used``,
-    ``bonuses``).
+    ``phases_beaten`` (boss phases whose hit points ran out), ``bonuses``).
 
     It refers to its world weakly (a :func:`weakref.proxy`): the world owns it, and a
     strong reference back would make every world a reference cycle, freed only when the
@@ -40,6 +40,7 @@ class Progress:
         self.world: World = weakref.proxy(world)
         self.bombs_used = 0
         self.continues_used = continues_used
+        self.phases_beaten = 0
         self.bonuses: list[tuple[str, int]] = []  # every bonus paid this stage
         self._phase_clean = True  # no miss and no bomb since the current phase began
 
@@ -73,6 +74,8 @@ class Progress:
             raise ValueError("a boss phase ended in a level without a boss")
         ended = boss.phase if boss.dead else boss.phase - 1
         ev.phase_ended = True
+        if how is PhaseEnd.BEATEN:
+            self.phases_beaten += 1
         eb = w.enemy_bullets
         w.items.drop_many(eb.pos, ItemKind.STAR, homing=True)
         eb.clear()

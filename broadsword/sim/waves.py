@@ -65,6 +65,8 @@ class WaveShips:
     ):
         self.waves = waves
         self.hp = [difficulty.scale_hp(w.hp) for w in waves]  # under the difficulty
+        # a difficulty that fires less often (fire_rate) also fires its first volley later
+        self.delay = [w.fire.delay / difficulty.fire_rate for w in waves]
         self.paths = [w.path for w in waves]
         self.kind = [kinds_base[w.enemy] for w in waves]  # each wave's armature kind
         self.mid = np.array([bool(w.midboss) for w in waves], dtype=bool)  # (n_waves,) mid-boss waves
@@ -107,7 +109,7 @@ class WaveShips:
             wave=np.full(k, w),
             mirror=mirrors,
             dive=np.zeros((k, 2)),
-            next_fire=np.full(k, spec.fire.delay),
+            next_fire=np.full(k, self.delay[w]),
             uid=np.arange(self.next_uid, self.next_uid + k),
         )
         self.next_uid += k

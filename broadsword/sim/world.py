@@ -126,7 +126,9 @@ class World:
         self.complete = False
         self.difficulty = level.difficulty[self.settings.difficulty]
         self.rank = self.difficulty.rank  # BulletML's $rank
-        self.fires = RankedFire(self.rank)  # the level's patterns as fired at this rank
+        # the level's patterns as fired at this rank (and the difficulty's gun factors)
+        d = self.difficulty
+        self.fires = RankedFire(self.rank, d.fire_rate, d.aimed_rate, d.aimed_speed)
         self.start_lives = self.difficulty.lives or level.player.lives
         bombs = level.player.bombs if self.difficulty.bombs is None else self.difficulty.bombs
         self.player = Player(level.player, lives=self.carry.lives or self.start_lives, bombs=bombs)
@@ -190,7 +192,7 @@ class World:
         if self.over or self.complete:
             return ev
         pressed, self._bomb_held = inp.bomb and not self._bomb_held, inp.bomb
-        if pressed:
+        if pressed or (self.player.stricken and self.difficulty.auto_bomb):  # auto: the death-bomb for you
             self.progress.bomb(ev)
         if self.player.stricken:
             self.player.stricken -= 1

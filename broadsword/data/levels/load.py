@@ -258,12 +258,17 @@ def _difficulty(doc, path: Path) -> dict[Difficulty, DifficultySpec]:
     for d in Difficulty:
         base = DEFAULT_SPECS[d]
         t = Table(top.raw(d.value, {}), path, f"difficulty.{d.value}")
-        lives, bombs = t.raw("lives", None), t.raw("bombs", None)
+        lives, bombs, miss_power = t.raw("lives", None), t.raw("bombs", None), t.raw("miss_power", None)
         out[d] = DifficultySpec(
             rank=t.num("rank", base.rank, 0, 1),
             lives=base.lives if lives is None else t.int("lives", base.lives, 1, 99),
             bombs=base.bombs if bombs is None else t.int("bombs", base.bombs, 0, 9),
             enemy_hp=t.num("enemy_hp", base.enemy_hp, 0.1, 10),
+            fire_rate=t.num("fire_rate", base.fire_rate, 0.1, 10),
+            aimed_rate=t.num("aimed_rate", base.aimed_rate, 0.1, 10),
+            aimed_speed=t.num("aimed_speed", base.aimed_speed, 0.1, 10),
+            miss_power=base.miss_power if miss_power is None else t.int("miss_power", base.miss_power, 0, 300),
+            auto_bomb=t.bool("auto_bomb", base.auto_bomb),
         )
         t.done()
     top.done()
