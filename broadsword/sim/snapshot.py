@@ -174,6 +174,7 @@ SCORE_FIELDS: tuple[Field, ...] = tuple(
 PROGRESS_FIELDS: tuple[Field, ...] = (
     ("bombs_used", Kind.INT),
     ("continues_used", Kind.INT),
+    ("phases_beaten", Kind.INT),
     ("_phase_clean", Kind.FLAG),
 )
 GUN_FIELDS: tuple[Field, ...] = (("cooldown", Kind.FLOAT),)
@@ -358,7 +359,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     "WaveTimeline": (frozenset(f[0] for f in TIMELINE_FIELDS), frozenset({"schedule"})),
     "WaveShips": (
         frozenset({f[0] for f in SHIPS_FIELDS} | {"pool"}),
-        frozenset({"waves", "hp", "paths", "kind", "mid"}),
+        frozenset({"waves", "hp", "paths", "kind", "mid", "delay"}),  # delay: the waves at this difficulty
     ),
     "Boss": (
         frozenset({f[0] for f in BOSS_FIELDS} | {"state", "parts"}),
