@@ -4,18 +4,27 @@ tallies tiers and hashes; the soak samples memory; the game watches nothing extr
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
+from typing import Protocol
 
 import numpy as np
 
-from ..sim import Events, Input
+from ..sim import Events, Input, World
 
-if TYPE_CHECKING:
-    from .runner import Runner
+
+class RunView(Protocol):
+    """What an observer reads of the run (a :class:`~broadsword.runner.Runner` is one): the
+    world in play and the run's frames played so far, every stage counted. Narrow on
+    purpose: an observer watches, it does not step or record."""
+
+    @property
+    def world(self) -> World: ...
+
+    @property
+    def frame(self) -> int: ...
 
 
 class Observer(Protocol):
-    def stepped(self, runner: Runner, inp: Input, ev: Events) -> None:
+    def stepped(self, runner: RunView, inp: Input, ev: Events) -> None:
         """Called after each step (``runner.frame`` is the run's frames played so far)."""
 
 
@@ -28,7 +37,7 @@ class TierTally:
         self.tiers: dict[str, dict] = {}
         self.ms: list[float] = []
 
-    def stepped(self, runner: Runner, inp: Input, ev: Events) -> None:
+    def stepped(self, runner: RunView, inp: Input, ev: Events) -> None:
         record = runner.world.collision
         if record is None:
             return
@@ -52,7 +61,7 @@ class PeakBullets:
     def __init__(self):
         self.peak = 0
 
-    def stepped(self, runner: Runner, inp: Input, ev: Events) -> None:
+    def stepped(self, runner: RunView, inp: Input, ev: Events) -> None:
         self.peak = max(self.peak, runner.world.enemy_bullets.n)
 
 
@@ -65,10 +74,10 @@ class StateHashes:
         self.frames = set(frames)
         self.hashes: dict[int, str] = {}
 
-    def began(self, runner: Runner) -> None:
+    def began(self, runner: RunView) -> None:
         if runner.frame in self.frames and runner.frame not in self.hashes:
             self.hashes[runner.frame] = runner.world.state_hash()
 
-    def stepped(self, runner: Runner, inp: Input, ev: Events) -> None:
+    def stepped(self, runner: RunView, inp: Input, ev: Events) -> None:
         if runner.frame in self.frames:
             self.hashes[runner.frame] = runner.world.state_hash()

@@ -19,11 +19,15 @@ a run with the autopilot is as reproducible as a recording.
 from __future__ import annotations
 
 from collections import deque
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .field import DT, FIELD, SPAWN
 from .input import IDLE, Input
+
+if TYPE_CHECKING:
+    from .world import World
 
 #: Frames between seeing and pressing (200 ms).
 REACTION = 12
@@ -47,12 +51,12 @@ class Pilot:
     def __init__(self, reaction: int = REACTION):
         self.pending: deque[Input] = deque([IDLE] * reaction)
 
-    def __call__(self, world) -> Input:
+    def __call__(self, world: World) -> Input:
         self.pending.append(self.decide(world))
         return self.pending.popleft()
 
     # ------------------------------------------------------------------ deciding
-    def decide(self, world) -> Input:
+    def decide(self, world: World) -> Input:
         """What to press ``REACTION`` frames from now, judged from this frame."""
         p = world.player
         if not p.alive:
@@ -92,7 +96,7 @@ class Pilot:
                 at += np.array([inp.dx, inp.dy], dtype=np.float64) / np.sqrt(float(steps)) * speed * DT
         return np.clip(at, (12.0, 16.0), (FIELD[0] - 12.0, FIELD[1] - 16.0))
 
-    def _threats(self, world, at) -> tuple[np.ndarray, np.ndarray]:
+    def _threats(self, world: World, at) -> tuple[np.ndarray, np.ndarray]:
         """Positions (m, 2) and velocities (m, 2, px/frame) of the bullets and ships seen near
         where the ship will be (ships count as bigger threats: twice each)."""
         pos = np.concatenate([world.enemy_bullets.pos, world.ships.pool.pos, world.parts.pos])
@@ -123,7 +127,7 @@ class Pilot:
         cost = float((near * near * weight).sum()) + 1e6 * float((dist < HIT).sum())
         return cost, closest
 
-    def _target_x(self, world, pos) -> float:
+    def _target_x(self, world: World, pos) -> float:
         """Under the lowest enemy above (the nearest threat, and the quickest to reach with
         shots), else the centre."""
         enemies = np.concatenate([world.ships.pool.pos, world.parts.pos])

@@ -8,7 +8,6 @@ it is being looked at, and the outcome does not depend on the order of the hits.
 from __future__ import annotations
 
 import weakref
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,9 +16,7 @@ from .collide import CollisionRecord, Group
 from .events import Events
 from .items import STAR_SCORE, ItemKind, point_value
 from .player import POWER_STEP
-
-if TYPE_CHECKING:
-    from .world import World
+from .stage_parts import StageParts
 
 #: Enemy bullets within this many px of the player's wreck are cleared (a mercy).
 CLEAR_RADIUS = 90.0
@@ -29,8 +26,8 @@ class Combat:
     """Resolves each frame's :class:`CollisionRecord` against the world's state. Like
     :class:`~.progress.Progress`, it refers to its world weakly (no reference cycle)."""
 
-    def __init__(self, world: World):
-        self.world: World = weakref.proxy(world)
+    def __init__(self, world: StageParts):
+        self.world: StageParts = weakref.proxy(world)
 
     def apply(self, record: CollisionRecord, ev: Events) -> None:
         w = self.world

@@ -20,12 +20,16 @@ from __future__ import annotations
 
 from collections import deque
 from enum import Enum
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .autopilot import REACTION
 from .field import FIELD
 from .input import IDLE, Input
+
+if TYPE_CHECKING:
+    from .world import World
 
 #: Bomb when at least this many enemy bullets or ships are within CROWD_PX px of the ship.
 CROWD, CROWD_PX = 5, 48.0
@@ -56,11 +60,11 @@ class Naive:
         self.frames = 0  # decisions made
         self.pending: deque[Input] = deque([IDLE] * reaction)
 
-    def __call__(self, world) -> Input:
+    def __call__(self, world: World) -> Input:
         self.pending.append(self.decide(world))
         return self.pending.popleft()
 
-    def decide(self, world) -> Input:
+    def decide(self, world: World) -> Input:
         """What to press ``REACTION`` frames from now, judged from this frame."""
         self.frames += 1
         p = world.player
@@ -86,7 +90,7 @@ class Naive:
         return self.direction, down, True
 
     @staticmethod
-    def _crowded(world, pos: np.ndarray) -> bool:
+    def _crowded(world: World, pos: np.ndarray) -> bool:
         """At least ``CROWD`` enemy bullets or ships within ``CROWD_PX`` of ``pos``, a bomb in
         stock and none going off."""
         if world.player.bombs <= 0 or world.bomb.active:

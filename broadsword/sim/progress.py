@@ -10,7 +10,6 @@ clearing the stage pays for the clear, for no miss and for no bomb.
 from __future__ import annotations
 
 import weakref
-from typing import TYPE_CHECKING
 
 from .bombs import FRAMES as BOMB_FRAMES
 from .bombs import GRACE_S
@@ -19,9 +18,7 @@ from .events import Events
 from .field import DT
 from .items import ItemKind
 from .scoring import CLEAR_BONUS, NO_BOMB_BONUS, NO_MISS_BONUS
-
-if TYPE_CHECKING:
-    from .world import World
+from .stage_parts import StageParts
 
 #: Continues a run may use.
 CONTINUES = 3
@@ -36,8 +33,8 @@ class Progress:
     cyclic collector gets round to it -- a soak's finished games piled up until then
     (docs/RELIABILITY.md). Its methods need the world alive."""
 
-    def __init__(self, world: World, continues_used: int = 0):
-        self.world: World = weakref.proxy(world)
+    def __init__(self, world: StageParts, continues_used: int = 0):
+        self.world: StageParts = weakref.proxy(world)
         self.bombs_used = 0
         self.continues_used = continues_used
         self.phases_beaten = 0
