@@ -44,7 +44,7 @@ from .scenes.play import (
 )
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
-from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, draw_panel, panel_state
+from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, SidePanel
 from .soundtrack import follow
 from .sprites import SpriteBank
 from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
@@ -111,7 +111,6 @@ class App:
         pygame.init()
         # After pygame.init(): key names are read through SDL, which warns on stderr before it
         bindings, bindings_warning = load_bindings(self.data / "controls.json")
-        self._panel_state: tuple | None = None  # what the panel shows now (None: not drawn yet)
         self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
@@ -264,19 +263,9 @@ class App:
         play = self.play
         if self.hint and play is not None and self.stack.top is play and not play.watched:
             draw_first_run_hint(self.painter, self.controls.bindings, play.world.time)
-        if self.screen.get_parent() is self.canvas:  # the field beside the side panel
-            self.draw_panel()
+        if self.panel is not None:  # the field beside the side panel
+            self.panel.draw(self.world, self.panel_info(), self.renderer.life_icon)
         self.window.present(self.canvas)
-
-    def draw_panel(self) -> None:
-        """The side panel beside the field: the stage's numbers in play, else the best score."""
-        world, info = self.world, self.panel_info()
-        state = panel_state(world, info)
-        if state == self._panel_state:
-            return  # the panel's pixels are as they were: nothing else draws there
-        self._panel_state = state
-        self.panel_painter.forget()
-        draw_panel(self.panel_surface, self.panel_painter, world, info, self.renderer.life_icon)
 
     def panel_info(self) -> PanelInfo:
         """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
@@ -354,11 +343,10 @@ class App:
         if size is None:
             self.canvas = pygame.Surface(FRAME)
             self.screen = self.canvas.subsurface(FIELD_RECT)
-            self.panel_surface = self.canvas.subsurface(PANEL_RECT)
-            self.panel_painter = Painter(self.panel_surface)
-            self._panel_state = None  # a new panel: drawn on the next frame
+            self.panel: SidePanel | None = SidePanel(self.canvas.subsurface(PANEL_RECT))  # drawn next frame
         else:
             self.canvas = self.screen = pygame.Surface(size)
+            self.panel = None
         self.painter = Painter(self.screen)
 
     def stage_title(self, name: str) -> str:

@@ -203,3 +203,22 @@ def _boss(painter: ui.Painter, world: World, y: float, w: int) -> None:
     mid = world.ships.midboss()
     if mid is not None:
         painter.text(mid.name.upper(), y, 24, (255, 120, 140))
+
+
+class SidePanel:
+    """The panel beside the field: its ``surface`` (a subsurface of the window's canvas), its
+    ``painter`` and what it shows now. :meth:`draw` repaints it only when what it would show
+    has changed (nothing else draws there), so a frame in play rarely pays for it."""
+
+    def __init__(self, surface: pygame.Surface):
+        self.surface = surface
+        self.painter = ui.Painter(surface)
+        self._state: tuple | None = None  # what it shows now (None: not drawn yet)
+
+    def draw(self, world: World | None, info: PanelInfo, life_icon: pygame.Surface) -> None:
+        state = panel_state(world, info)
+        if state == self._state:
+            return
+        self._state = state
+        self.painter.forget()
+        draw_panel(self.surface, self.painter, world, info, life_icon)

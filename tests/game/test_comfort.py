@@ -49,11 +49,11 @@ def test_input_display__shows_the_last_steps_input_when_on(tmp_path):
         app.start_run()
         for _ in range(30):
             app.frame(DT)
-        assert app.panel_info().held is None and "FIRE" not in app.panel_painter.said
+        assert app.panel_info().held is None and "FIRE" not in app.panel.painter.said
         app.set_options(input_display=True)
         app.frame(DT)
         held = app.panel_info().held
         assert held == app.play.runner.recorder.last_input and held.fire  # the autopilot fires
-        assert {"FIRE", "SLOW", "BOMB"} <= set(app.panel_painter.said)
+        assert {"FIRE", "SLOW", "BOMB"} <= set(app.panel.painter.said)
     finally:
         pygame.quit()

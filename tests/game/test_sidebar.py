@@ -26,12 +26,12 @@ def test_sidebar__the_window_shows_the_field_beside_the_panel(make_app):
     app = make_app()
     assert app.canvas.get_size() == FRAME and app.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
     assert (
-        app.screen.get_abs_offset() == FIELD_RECT.topleft and app.panel_surface.get_abs_offset() == PANEL_RECT.topleft
+        app.screen.get_abs_offset() == FIELD_RECT.topleft and app.panel.surface.get_abs_offset() == PANEL_RECT.topleft
     )
     app.start_run()
     app.frame(DT)
     assert app.panel_info().mark is None  # the player plays: no mark
-    panel = pygame.surfarray.array3d(app.panel_surface)
+    panel = pygame.surfarray.array3d(app.panel.surface)
     assert (panel.sum(axis=2) > 300).mean() > 0.01  # the numbers are drawn there
 
 
@@ -49,7 +49,7 @@ def test_sidebar__huge_numbers_stay_inside_the_panel(make_app):
     w.score.points, w.score.grazes, w.score.items = 9_999_999_990, 10**15, 9_876_543_210
     w.player.lives, w.player.bombs = 99, 99
     app.frame(DT)
-    drawn = app.panel_painter.drawn
+    drawn = app.panel.painter.drawn
     assert len(drawn) >= 10
     for rect in drawn:
         assert pygame.Rect(0, 0, *PANEL_RECT.size).contains(rect), rect
@@ -67,13 +67,13 @@ def test_sidebar__drawn_again_only_when_what_it_shows_changes(make_app):
     app.start_run()
     app.frame(DT)
     drawn = []
-    real = app.panel_painter.forget
-    app.panel_painter.forget = lambda: drawn.append(1) or real()
+    real = app.panel.painter.forget
+    app.panel.painter.forget = lambda: drawn.append(1) or real()
     app.world.player.invulnerable = 1e9
     for _ in range(5):
         app.render()
     assert drawn == []
-    before = pygame.surfarray.array3d(app.panel_surface).copy()
+    before = pygame.surfarray.array3d(app.panel.surface).copy()
     app.world.score.points += 1230
     app.render()
-    assert drawn == [1] and (pygame.surfarray.array3d(app.panel_surface) != before).any()
+    assert drawn == [1] and (pygame.surfarray.array3d(app.panel.surface) != before).any()
