@@ -70,3 +70,15 @@ def test_runners__bad_streams_name_the_row_and_field():
         decode_runners(table, ints, np.append(floats, 1.0), n, "bullets")
     with pytest.raises(ValueError, match=r"^bullets: runner row: .* out of range"):
         decode_runners(table, ints, floats, first, "bullets")  # rows past the store's
+
+
+def test_node_table__copies_of_one_pattern_number_alike():
+    """The same pattern loaded twice (as two FireSpecs of one kind load theirs) gets one
+    number, its nodes the first copy's: which copy a gun runs leaves no trace in a snapshot."""
+    p, q = bulletml.loads(PATTERN, name="p"), bulletml.loads(PATTERN, name="p")
+    other = bulletml.loads(PATTERN, name="other")
+    table = NodeTable([p, q, other])
+    assert table.pattern_index[id(p)] == table.pattern_index[id(q)] == 0 and table.pattern_index[id(other)] == 1
+    assert table.patterns == [p, other]
+    assert table.index[id(q.top[0])] == table.index[id(p.top[0])]
+    assert table.index[id(other.top[0])] != table.index[id(p.top[0])]

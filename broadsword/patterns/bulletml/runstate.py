@@ -36,14 +36,21 @@ SEQ, REP = 0, 1
 
 
 class NodeTable:
-    """Numbers for ``patterns`` (in the order given, duplicates dropped) and for every
-    :class:`Action` and :class:`ActionRef` in them (in file order).
+    """Numbers for ``patterns`` and for every :class:`Action` and :class:`ActionRef` in them
+    (in file order).
+
+    Patterns are numbered by content, not by object: the same file loaded twice (two
+    FireSpecs of one kind each load theirs, and which one a gun runs can depend on what ran
+    first) gets one number, and its nodes the numbers of the first copy's nodes at the same
+    place in the walk, so equal states give equal numbers. The content is the pattern's name,
+    orientation and the kind, label and length of every node in walk order.
 
     Attributes
     ----------
     patterns : list of Pattern
+        One per content, the first copy given.
     nodes : list of Action or ActionRef
-        ``nodes[k]`` is node ``k``; ``index`` maps ``id(node)`` back to ``k``.
+        ``nodes[k]`` is node ``k``; ``index`` maps ``id(node)`` of any copy back to ``k``.
     """
 
     def __init__(self, patterns: Sequence[Pattern]):
@@ -52,42 +59,65 @@ class NodeTable:
         self.nodes: list[Action | ActionRef] = []
         self.index: dict[int, int] = {}
         self.commands_of: dict[int, int] = {}  # id(action.commands) -> an action with them
+        by_content: dict[tuple, tuple[int, list[int]]] = {}
         for p in patterns:
-            if id(p) not in self.pattern_index:
-                self.pattern_index[id(p)] = len(self.patterns)
+            if id(p) in self.pattern_index:
+                continue
+            walk: list[Action | ActionRef] = []
+            _walk_pattern(p, walk, set())
+            key = (p.name, p.orientation, tuple(_signature(n) for n in walk))
+            if key in by_content:
+                k, numbers = by_content[key]
+            else:
+                k, numbers = len(self.patterns), list(range(len(self.nodes), len(self.nodes) + len(walk)))
+                by_content[key] = (k, numbers)
                 self.patterns.append(p)
-                self._walk_pattern(p)
+                self.nodes += walk
+            self.pattern_index[id(p)] = k
+            for node, number in zip(walk, numbers, strict=True):
+                self.index[id(node)] = number
+                if type(node) is Action:
+                    self.commands_of.setdefault(id(node.commands), number)
 
-    def _walk_pattern(self, p: Pattern) -> None:
-        for a in p.top:
-            self._walk(a)
-        for a in p.actions.values():
-            self._walk(a)
-        for b in p.bullets.values():
-            self._walk(b)
-        for f in p.fires.values():
-            self._walk(f)
 
-    def _walk(self, node) -> None:
-        kind = type(node)
-        if kind is Action or kind is ActionRef:
-            if id(node) in self.index:
-                return
-            self.index[id(node)] = len(self.nodes)
-            self.nodes.append(node)
-            if kind is Action:
-                self.commands_of.setdefault(id(node.commands), self.index[id(node)])
-                for c in node.commands:
-                    self._walk(c)
-        elif kind is Repeat:
-            self._walk(node.body)
-        elif kind is Fire:
-            self._walk(node.bullet)
-        elif kind is Bullet:
-            for a in node.actions:
-                self._walk(a)
-        # FireRef, BulletRef and the plain commands hold no action of their own: what they
-        # name is walked from the pattern's tables.
+def _signature(node: Action | ActionRef) -> tuple:
+    if isinstance(node, Action):
+        return ("action", node.label, len(node.commands))
+    return ("ref", node.label, len(node.params))
+
+
+def _walk_pattern(p: Pattern, out: list, seen: set[int]) -> None:
+    """Every Action and ActionRef of ``p``, each once, in a fixed order: the top actions,
+    then the labelled actions, bullets and fires in file order, depth first."""
+    for a in p.top:
+        _walk(a, out, seen)
+    for a in p.actions.values():
+        _walk(a, out, seen)
+    for b in p.bullets.values():
+        _walk(b, out, seen)
+    for f in p.fires.values():
+        _walk(f, out, seen)
+
+
+def _walk(node, out: list, seen: set[int]) -> None:
+    kind = type(node)
+    if kind is Action or kind is ActionRef:
+        if id(node) in seen:
+            return
+        seen.add(id(node))
+        out.append(node)
+        if kind is Action:
+            for c in node.commands:
+                _walk(c, out, seen)
+    elif kind is Repeat:
+        _walk(node.body, out, seen)
+    elif kind is Fire:
+        _walk(node.bullet, out, seen)
+    elif kind is Bullet:
+        for a in node.actions:
+            _walk(a, out, seen)
+    # FireRef, BulletRef and the plain commands hold no action of their own: what they
+    # name is walked from the pattern's tables.
 
 
 def encode_runners(table: NodeTable, rows: Sequence[int], runners: Sequence[Runner]) -> tuple[np.ndarray, np.ndarray]:
