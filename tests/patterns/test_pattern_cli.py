@@ -37,8 +37,8 @@ def test_check__params_and_usage_errors(tmp_path, capsys):
     assert main(["pattern", "check", str(f), "--rank", "1.5"]) == 2
     assert main(["pattern", "check", str(f), "--params", "x"]) == 2
     assert main(["pattern", "check"]) == 2
-    assert main(["pattern", "check", str(f), "--params", "4", "--frames", "100001"]) == 2  # bounded
-    assert "must be at most 100,000" in capsys.readouterr().err
+    assert main(["pattern", "check", str(f), "--params", "4", "--frames", "36001"]) == 2  # bounded
+    assert "must be a whole number in [1, 36,000], got 36001" in capsys.readouterr().err
 
 
 def test_check__warns_of_each_leniency_and_says_ok_with_the_count(tmp_path, capsys):
