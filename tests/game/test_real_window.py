@@ -106,7 +106,7 @@ class Session:
         try:
             with open(self.tmp / "xvfb.log", "wb") as log:
                 xvfb = subprocess.Popen(
-                    ["Xvfb", "-displayfd", str(w), "-screen", "0", "800x1000x24", "-nolisten", "tcp"],
+                    ["Xvfb", "-displayfd", str(w), "-screen", "0", "1024x1000x24", "-nolisten", "tcp"],
                     pass_fds=(w,),
                     stdout=log,
                     stderr=log,
