@@ -86,27 +86,33 @@ def outlier_grid(quick: bool = False, seed: int = 2003, enemies: int = 20, bulle
     hits = [k[5] for k in kept["after"]]
     if any(k[5] != h for k, h in zip(kept["before (old rule)"], hits, strict=True)):
         raise AssertionError("the bin size changed the hits: a tier is not conservative")
-    rows = []
-    for name in pipes:
-        k = kept[name]
-        rows.append(
-            {
-                "grid": name,
-                "bin_px": round(_median([x[4] for x in k]), 1),
-                "pairs_in": int(_median([x[0] for x in k])),
-                "bins_pairs_out": int(_median([x[1] for x in k])),
-                "bins_passed_%": round(100.0 * _median([x[1] / max(x[0], 1) for x in k]), 2),
-                "bins_ms": round(_median([x[2] for x in k]), 3),
-                "armature_ms": round(_median([x[3] for x in k]), 3),
-                "frame_ms": round(_median(ms[name]), 3),
-                "hits": int(_median([len(x[5]) for x in k])),
-            }
+    rows = [
+        dict(
+            _grid_row(name, kept[name]),
+            frame_ms=round(_median(ms[name]), 3),
+            hits=int(_median([len(x[5]) for x in kept[name]])),
         )
+        for name in pipes
+    ]
     return {
         "scene": f"{enemies} ships, {bullets} bullets, one {2 * BOMB_RADIUS:.0f} px bomb alone in its layer",
         "frames": frames,
         "kernel": pipes["after"].kernel.value,
         "table": rows,
+    }
+
+
+def _grid_row(name: str, kept: list) -> dict:
+    """One grid's medians over its kept frames, each ``(pairs in, bins tier pairs out, bins ms,
+    armature ms, bin size, hits)``."""
+    return {
+        "grid": name,
+        "bin_px": round(_median([x[4] for x in kept]), 1),
+        "pairs_in": int(_median([x[0] for x in kept])),
+        "bins_pairs_out": int(_median([x[1] for x in kept])),
+        "bins_passed_%": round(100.0 * _median([x[1] / max(x[0], 1) for x in kept]), 2),
+        "bins_ms": round(_median([x[2] for x in kept]), 3),
+        "armature_ms": round(_median([x[3] for x in kept]), 3),
     }
 
 
@@ -154,20 +160,7 @@ def game_bomb(level: str = "3-broadsword", frames: int = 1500, seed: int = 3, me
             bins = tiers["bins"]
             kept[name].append((bins.pairs_in, bins.pairs_out, bins.ms, tiers["armature"].ms,
                                record.result.broad.layout.size, len(record.result.hits)))  # fmt: skip
-    rows = []
-    for name, k in kept.items():
-        rows.append(
-            {
-                "grid": name,
-                "bin_px": round(_median([x[4] for x in k]), 1),
-                "pairs_in": int(_median([x[0] for x in k])),
-                "bins_pairs_out": int(_median([x[1] for x in k])),
-                "bins_passed_%": round(100.0 * _median([x[1] / max(x[0], 1) for x in k]), 2),
-                "bins_ms": round(_median([x[2] for x in k]), 3),
-                "armature_ms": round(_median([x[3] for x in k]), 3),
-                "hits": int(sum(x[5] for x in k)),
-            }
-        )
+    rows = [dict(_grid_row(name, k), hits=int(sum(x[5] for x in k))) for name, k in kept.items()]
     same = worlds["after"].state_hash() == worlds["before (old rule)"].state_hash()
     return {"level": level, "bomb_at_frame": world.frame - len(kept["after"]), "frames": len(kept["after"]),
             "same_state_hash": same, "table": rows}  # fmt: skip
