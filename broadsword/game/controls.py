@@ -29,7 +29,7 @@ import pygame
 from ..fileio import write_atomic
 from ..sim import Input
 from .scores import data_home
-from .settingsfile import SettingsUnreadable, keep_copy, merged_for_save, one_line, read_settings
+from .settingsfile import load_settings, merged_for_save, one_line
 
 #: The file's format, and its largest sensible size (anything bigger is not a bindings file).
 FORMAT_VERSION = 1
@@ -304,19 +304,7 @@ def load_bindings(path: Path | None = None) -> tuple[Bindings, str | None]:
     (None when all were); a missing file is the defaults, silently. A file with any bad
     content is copied aside (``controls.json.bad``) first, and the warning says where."""
     path = Path(path) if path is not None else bindings_path()
-    try:
-        got = read_settings(path, FILE_MAX_BYTES)
-    except SettingsUnreadable as exc:
-        return Bindings(), f"controls file {path} not used ({exc}): default keys"
-    if got is None:
-        return Bindings(), None
-    doc, data = got
-    if not isinstance(doc, dict):  # nothing in it to keep: say "not used", as for unreadable files
-        return Bindings(), f"controls file {path} not used (not a JSON object; {keep_copy(path, data)}): default keys"
-    bindings, problems = Bindings.from_json(doc)
-    if not problems:
-        return bindings, None
-    return bindings, f"controls file {path}: {'; '.join(problems)} (the rest kept; {keep_copy(path, data)})"
+    return load_settings(path, FILE_MAX_BYTES, "controls", "default keys", Bindings(), Bindings.from_json)
 
 
 def save_bindings(bindings: Bindings, path: Path | None = None) -> None:

@@ -20,7 +20,7 @@ from pathlib import Path
 from ..data.difficulty import Difficulty
 from ..fileio import write_atomic
 from .scores import data_home
-from .settingsfile import SettingsUnreadable, keep_copy, merged_for_save, one_line, read_settings
+from .settingsfile import load_settings, merged_for_save, one_line
 
 FORMAT_VERSION = 1
 FILE_MAX_BYTES = 64 << 10
@@ -108,19 +108,7 @@ def load_options(path: Path | None = None) -> tuple[Options, str | None]:
     bad content is copied aside (``options.json.bad``) before anything can be written
     over it, and the warning says where."""
     path = Path(path) if path is not None else options_path()
-    try:
-        got = read_settings(path, FILE_MAX_BYTES)
-    except SettingsUnreadable as exc:
-        return Options(), f"options file {path} not used ({exc}): defaults"
-    if got is None:
-        return Options(), None
-    doc, data = got
-    if not isinstance(doc, dict):  # nothing in it to keep: say "not used", as for unreadable files
-        return Options(), f"options file {path} not used (not a JSON object; {keep_copy(path, data)}): defaults"
-    options, problems = Options.from_json(doc)
-    if not problems:
-        return options, None
-    return options, f"options file {path}: {'; '.join(problems)} (the rest kept; {keep_copy(path, data)})"
+    return load_settings(path, FILE_MAX_BYTES, "options", "defaults", Options(), Options.from_json)
 
 
 def save_options(options: Options, path: Path | None = None) -> None:

@@ -16,9 +16,13 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
 from ..fileio import FileTooLarge, read_capped, write_atomic
+
+T = TypeVar("T")
 
 #: What a problem's text is cut to (one line each, on the title).
 PROBLEM_CHARS = 160
@@ -63,6 +67,30 @@ def keep_copy(path: Path, data: bytes) -> str:
     except OSError as exc:
         return f"no copy kept ({one_line(exc.strerror or str(exc))})"
     return f"a copy is kept as {copy}"
+
+
+def load_settings(
+    path: Path, max_bytes: int, what: str, fallback: str, default: T, from_json: Callable[[dict], tuple[T, list[str]]]
+) -> tuple[T, str | None]:
+    """A settings file read value by value: ``(value, warning)``. A missing file is ``default``,
+    silently; an unreadable one, or one that is no JSON object, is ``default`` with "``what``
+    file PATH not used (...): ``fallback``"; a file with bad values keeps every good one
+    (``from_json`` returns the value and the problems) and names each bad one. A file with
+    any bad content is copied aside (:func:`keep_copy`) before anything can be written over
+    it, and the warning says where."""
+    try:
+        got = read_settings(path, max_bytes)
+    except SettingsUnreadable as exc:
+        return default, f"{what} file {path} not used ({exc}): {fallback}"
+    if got is None:
+        return default, None
+    doc, data = got
+    if not isinstance(doc, dict):  # nothing in it to keep: "not used", as for unreadable files
+        return default, f"{what} file {path} not used (not a JSON object; {keep_copy(path, data)}): {fallback}"
+    value, problems = from_json(doc)
+    if not problems:
+        return value, None
+    return value, f"{what} file {path}: {'; '.join(problems)} (the rest kept; {keep_copy(path, data)})"
 
 
 def _move_aside(path: Path) -> str:
