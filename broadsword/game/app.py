@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pygame
 
-from ..data import DataError, list_levels, load_level, resolve_level
+from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
 from ..data.recordings import Recording
 from ..runner import Runner, Stage
@@ -34,7 +34,7 @@ from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
 from .render import Renderer
-from .run import Run, load_stage
+from .run import Run, StageTitles, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
 from .scenes.how_to_play import draw_first_run_hint
@@ -144,7 +144,7 @@ class App:
         self.message = "; ".join(warnings) or None
         self.runner: Runner | None = None  # the run in play (or last played), every stage of it
         self.hint = False  # the first run's hint shows over its first stage
-        self._titles: dict[str, str] = {}  # shipped level name -> its title, read once (stage_title)
+        self.stage_title = StageTitles()  # shipped level name -> its title ("I. Outer Picket")
         self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
@@ -349,15 +349,6 @@ class App:
             self.panel = None
         self.painter = Painter(self.screen)
 
-    def stage_title(self, name: str) -> str:
-        """Shipped level ``name``'s title ("I. Outer Picket"), or ``name`` if it cannot be read."""
-        if name not in self._titles:
-            try:
-                self._titles[name] = load_level(resolve_level(name)).title
-            except DataError:
-                self._titles[name] = name
-        return self._titles[name]
-
     def to_title(self) -> None:
         self.stack.reset(Title(self))
 
@@ -385,7 +376,3 @@ class App:
             save_bindings(self.controls.bindings, self.data / "controls.json")
         except OSError as exc:
             self.message = f"could not save controls: {exc}"
-
-    def lines(self, text: str, width: int, limit: int) -> list[str]:
-        """``text`` wrapped to ``width`` px in the body font, at most ``limit`` lines."""
-        return self.painter.lines(text, width, limit)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..data import DataError, load_level, resolve_level
 from ..data.difficulty import Difficulty
 from ..runner import Stage, StageStart, open_stage
 from ..sim import Carry, Settings, World
@@ -88,3 +89,19 @@ def load_stage(run: Run, levels: list[str], armatures: dict, seed: int) -> Stage
     """Open the run's current stage (:func:`stage_start`) in a new world.
     :class:`~broadsword.data.DataError` naming the file and field if it cannot load."""
     return open_stage(stage_start(run, levels, seed), armatures)
+
+
+class StageTitles:
+    """Shipped levels' titles by name ("1-picket" -> "I. Outer Picket"), each read once; a
+    level that cannot be read is shown by its name."""
+
+    def __init__(self) -> None:
+        self._titles: dict[str, str] = {}
+
+    def __call__(self, name: str) -> str:
+        if name not in self._titles:
+            try:
+                self._titles[name] = load_level(resolve_level(name)).title
+            except DataError:
+                self._titles[name] = name
+        return self._titles[name]

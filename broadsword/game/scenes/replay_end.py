@@ -32,7 +32,7 @@ class ReplayEnd:
             ]
         elif source.error is not None:
             self.ok = False
-            self.lines = ["The replay's next stage cannot open:", *app.lines(source.error, 560, 3)]
+            self.lines = ["The replay's next stage cannot open:", *app.painter.lines(source.error, 560, 3)]
         elif not playback.done:
             self.ok = False
             self.lines = [
