@@ -99,6 +99,12 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         '(the JSON\'s hashes: {"F": hash})',
     )
     ap.add_argument(
+        "--seek",
+        action="store_true",
+        help="with --hashes: reach those frames by seeking, in the order given (the nearest kept "
+        "snapshot restored, then stepped), not by straight playback; the hashes must be the same",
+    )
+    ap.add_argument(
         "--list-levels",
         action="store_true",
         help="print the shipped stages in play order, one a line (name, then title), and exit",
@@ -213,6 +219,9 @@ def _run_play(args: argparse.Namespace) -> int:
         if args.hashes is not None and not (args.headless and replay):
             print("broadsword: --hashes needs --headless and --replay", file=sys.stderr)
             return 2
+        if args.seek and args.hashes is None:
+            print("broadsword: --seek needs --hashes (and --headless --replay)", file=sys.stderr)
+            return 2
         level = args.level or (replay.first.level if replay else list_levels()[0])
         if args.level and args.headless:  # exit 2 at once, not after a first launch's compile
             load_level(resolve_level(level))  # (a window opens on the title and shows it there)
@@ -236,6 +245,7 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
                 args.hashes or (),
+                args.seek,
             )
             saved = _save_recording(args.record, recording) if args.record else True
             for warning in summary["warnings"]:

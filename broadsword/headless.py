@@ -12,11 +12,25 @@ from collections.abc import Sequence
 from .data.difficulty import Difficulty
 from .data.recordings import Recording
 from .runner import Observer, PeakBullets, Runner, StageStart, StateHashes, TierTally
+from .runner.seek import Seeker
 from .sim import IDLE, Pilot, Settings, World
 
 
 def _idle(world: World):
     return IDLE
+
+
+def _sought(rec: Recording, path: str, frames: Sequence[int]) -> dict[str, str]:
+    """The state hash at each of ``frames`` reached by seeking, in that order (frames past
+    where the replay ended or first differed are left out)."""
+    seeker = Seeker(rec, path)
+    out = {}
+    for f in frames:
+        try:
+            out[str(f)] = seeker.seek(f).state_hash()
+        except ValueError:
+            continue  # outside the run: never reached, as with straight playback
+    return out
 
 
 def run_headless(
@@ -29,6 +43,7 @@ def run_headless(
     rotation: str | None = None,
     difficulty: Difficulty = Difficulty.NORMAL,
     hashes: Sequence[int] = (),
+    seek: bool = False,
 ) -> tuple[dict, Recording]:
     """Play at most ``frames`` steps with no window; return the summary (DESIGN.md's JSON)
     and the run's :class:`Recording`.
@@ -41,7 +56,9 @@ def run_headless(
     and, when a checkpoint's hash differed, ``first_mismatch``. ``rotation``, when given,
     replaces the level's ``scene.rotation``; ``difficulty`` picks the stage's values for it.
     ``hashes``: the run's frames after which to report the state hash (``hashes``: frame ->
-    hash; frames never reached are left out).
+    hash; frames never reached are left out). ``seek``: those frames are reached by seeking
+    in the recording (:class:`~broadsword.runner.seek.Seeker`: the nearest snapshot restored,
+    then stepped), in the order given, instead of by the straight playback.
     """
     tally, peak, hashed = TierTally(), PeakBullets(), StateHashes(hashes)
     observers: list[Observer] = [tally, peak, hashed]
@@ -68,7 +85,9 @@ def run_headless(
             "state_hash": world.state_hash(),
         }
     )
-    if hashes:
+    if hashes and seek and replay is not None:
+        summary["hashes"] = _sought(replay, replay_path, [f for f in hashes if f <= frames])
+    elif hashes:
         summary["hashes"] = {str(f): hashed.hashes[f] for f in hashes if f in hashed.hashes}
     pb = runner.playback
     if pb is not None:

@@ -4,13 +4,14 @@ busiest, and how long a replay theatre's seek takes.
 ``snapshot``: one entry per scene -- the shipped bullet-hell stage at its peak (54 s in, as
 the game-frame section plays it) and the stress scene once it holds 10,000 enemy bullets
 -- with ``size_bytes`` (and ``zlib1_bytes``, compressed at level 1 as a
-:class:`~broadsword.sim.seek.Seeker` keeps them), ``save_ms`` and ``restore_ms`` (medians
+:class:`~broadsword.runner.seek.Seeker` keeps them), ``save_ms`` and ``restore_ms`` (medians
 of ``repeats``).
 
-``seek``: a run of the shipped stages in play order, the autopilot playing (continuing when
-it loses), until it is ``minutes`` long; one Seeker per stage, prepared (every snapshot
-made), then ``seeks`` random frames of the whole run reached in a seeded order: median and
-worst ms, each checked against straight playback's state hash.
+``seek``: a recorded run of the shipped stages in play order, the autopilot playing
+(continuing when it loses), until it is ``minutes`` long; one Seeker over the whole run,
+prepared (every snapshot made), then ``seeks`` random frames of it reached in a seeded order:
+median and worst ms and the snapshots' memory, each frame checked against straight
+playback's state hash.
 """
 
 from __future__ import annotations
@@ -25,12 +26,15 @@ import numpy as np
 
 from ..data import list_levels, load_level, resolve_level
 from ..data.levels import Level
-from ..runner import Runner, Stage, StageStart, open_level, shipped_armatures
-from ..sim import Input, Pilot, World
-from ..sim.seek import SNAPSHOT_EVERY, Seeker
+from ..data.recordings import Recording
+from ..runner import Runner, Stage, StageStart, StateHashes, open_level, open_stage, shipped_armatures
+from ..runner.seek import SNAPSHOT_EVERY, Seeker
+from ..sim import Carry, Pilot, Settings, Toggle, World
 from ..sim.snapshot import Snapshots
 from .game_frame import STRESS_LEVELS
 
+#: What the benchmark's run is called where a file name would be (it is never written).
+RUN_NAME = "bench-seek-run"
 #: Steps to the bullet-hell stage's peak (as the game-frame section plays it).
 PEAK_STEPS = 3240
 
@@ -93,66 +97,62 @@ def run_snapshots(quick: bool = False, seed: int = 0) -> list[dict]:
     return out
 
 
-def _record(make: Callable[[], World], frames: int) -> tuple[list[Input], list, list[str]]:
-    """An autopilot run of at most ``frames`` steps (continuing after each game over while it
-    may): its inputs, toggles and the state hash after every step."""
-    runner, pilot = Runner(Stage(make(), "")), Pilot()
-    world = runner.world
-    inputs: list[Input] = []
-    hashes: list[str] = []
-    while len(inputs) < frames and not world.complete:
-        if world.over:
-            if not world.progress.can_continue:
-                break
+def autopilot_run(frames: int, seed: int = 0) -> Recording:
+    """A recorded run of the shipped stages in play order, the autopilot playing (continuing
+    after each game over while it may; each stage carrying score, lives and power to the
+    next), until it is ``frames`` frames long or the last stage ends."""
+    levels = list_levels()
+    runner, pilot = Runner.open(StageStart(levels[0], seed)), Pilot()
+    index = 0
+    while runner.frame < frames:
+        world = runner.world
+        if world.over and world.progress.can_continue:
             world.continue_game()
-        inputs.append(pilot(world))
-        runner.step(inputs[-1])
-        hashes.append(world.state_hash())
-    return inputs, list(world.toggles), hashes
+        elif world.complete and index + 1 < len(levels):
+            index += 1
+            carry = Carry(world.score.points, world.player.lives, world.progress.continues_used, world.player.power)
+            runner.begin_stage(open_stage(StageStart(levels[index], seed + index, Settings(), carry)))
+        elif world.over or world.complete:
+            break
+        runner.play(pilot, frames)
+    return runner.recording()
 
 
 def run_seek(minutes: float = 5.0, seeks: int = 60, seed: int = 0, every: int = SNAPSHOT_EVERY) -> dict:
-    """The ``seek`` entry: a ``minutes``-long run over the shipped stages, a Seeker per stage
-    (snapshots every ``every`` frames), ``seeks`` random frames reached."""
-    frames_left = round(minutes * 60 * 60)
-    stages = []  # (seeker, hashes)
+    """The ``seek`` entry: a ``minutes``-long autopilot run over the shipped stages, recorded;
+    a :class:`~broadsword.runner.seek.Seeker` over it (snapshots every ``every`` frames),
+    prepared; then ``seeks`` random frames of the run reached in a seeded order, each checked
+    against straight playback's state hash."""
     t0 = time.perf_counter()
-    for level in list_levels():
-        if frames_left <= 0:
-            break
-        make = _opener(level, seed)
-        inputs, toggles, hashes = _record(make, frames_left)
-        frames_left -= len(inputs)
-        stages.append((level, Seeker(make, inputs, toggles, every), hashes))
+    rec = autopilot_run(round(minutes * 60 * 60), seed)
     recorded = time.perf_counter() - t0
+    straight = StateHashes(range(rec.frames + 1))
+    playback = Runner.replaying(rec, RUN_NAME, observers=[straight])
+    playback.play_back(RUN_NAME)
     t0 = time.perf_counter()
-    for _, seeker, _ in stages:
-        seeker.prepare()
+    seeker = Seeker(rec, RUN_NAME, every=every)
+    seeker.prepare()
     prepared = time.perf_counter() - t0
-    starts = np.cumsum([0] + [len(h) for _, _, h in stages])
     rng = np.random.default_rng(seed)
     times, wrong = [], 0
-    for frame in rng.integers(1, starts[-1], seeks).tolist():
-        i = int(np.searchsorted(starts, frame, side="right")) - 1
-        _, seeker, hashes = stages[i]
-        local = frame - int(starts[i])
+    for frame in rng.integers(1, rec.frames + 1, seeks).tolist():
         t = time.perf_counter()
-        world = seeker.seek(local)
+        world = seeker.seek(frame)
         times.append((time.perf_counter() - t) * 1e3)
-        if local and world.state_hash() != hashes[local - 1]:
-            wrong += 1
+        wrong += world.state_hash() != straight.hashes[frame]
     return {
-        "minutes": float(starts[-1] / 3600),
-        "frames": int(starts[-1]),
-        "stages": [level for level, _, _ in stages],
+        "minutes": rec.frames / 3600,
+        "frames": rec.frames,
+        "stages": [st.level for st in rec.stages],
+        "continues": sum(t[1] == Toggle.CONTINUE.value for st in rec.stages for t in st.toggles),
         "every": every,
-        "snapshots": sum(len(s.snapshots) for _, s, _ in stages),
-        "snapshot_bytes": sum(len(b) for _, s, _ in stages for b in s.snapshots.values()),
+        "snapshots": seeker.snapshots,
+        "snapshot_bytes": seeker.snapshot_bytes,
         "seeks": seeks,
         "median_ms": float(np.median(times)),
         "max_ms": float(np.max(times)),
         "p90_ms": float(np.percentile(times, 90)),
-        "wrong": wrong,
+        "wrong": int(wrong),
         "record_s": recorded,
         "prepare_s": prepared,
         "load_average": os.getloadavg()[0] if hasattr(os, "getloadavg") else None,
@@ -174,7 +174,8 @@ def markdown(snapshots: list[dict], seek: dict | None) -> str:
     if seek is not None:
         lines += [
             "",
-            f"Seeking a {seek['minutes']:.1f}-minute run ({', '.join(seek['stages'])}; a snapshot every "
+            f"Seeking a {seek['minutes']:.1f}-minute run ({', '.join(seek['stages'])}, {seek['continues']} "
+            f"continues; a snapshot every "
             f"{seek['every']} frames, {seek['snapshots']} kept, {seek['snapshot_bytes'] / 1e6:.1f} MB): "
             f"{seek['seeks']} random seeks, median {seek['median_ms']:.0f} ms, 90th percentile "
             f"{seek['p90_ms']:.0f} ms, worst {seek['max_ms']:.0f} ms; {seek['wrong']} differed from straight "

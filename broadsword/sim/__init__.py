@@ -7,7 +7,7 @@ call a frame, and its typed record), :mod:`.combat` (applying hits), :mod:`.scor
 with :mod:`.layers`, :mod:`.kinds`, :mod:`.events`, :mod:`.settings`, :mod:`.hashing`,
 :mod:`.field`, :mod:`.input`, :mod:`.pool`, the :mod:`.autopilot` and the naive scripted
 players of :mod:`.naive` (beginners, for ``broadsword balance``). :mod:`.snapshot` saves and
-restores the whole state exactly; :mod:`.seek` reaches any frame of a run by it.
+restores the whole state exactly (:mod:`broadsword.runner.seek` reaches any frame of a run by it).
 """
 
 from .autopilot import Pilot
@@ -17,7 +17,6 @@ from .field import DT, FIELD, SPAWN
 from .input import IDLE, Input
 from .layers import GameLayer, LayerIds
 from .pool import Pool
-from .seek import Seeker
 from .settings import Carry, Settings, Toggle, ToggleEvent
 from .snapshot import Snapshots
 from .world import World
@@ -35,7 +34,6 @@ __all__ = [
     "Input",
     "LayerIds",
     "Pool",
-    "Seeker",
     "Settings",
     "Snapshots",
     "Toggle",

@@ -9,7 +9,7 @@ from broadsword.sim import Input
 def test_seek__a_short_run_is_reached_exactly():
     seek = run_seek(minutes=0.05, seeks=5, seed=1, every=20)
     assert seek["frames"] == 180 and seek["stages"] == ["1-picket"]
-    assert seek["snapshots"] == 10  # frames 0, 20, ..., 180
+    assert seek["snapshots"] == 11  # frames 0, 20, ..., 180, and the stage's start
     assert seek["wrong"] == 0 and seek["max_ms"] >= seek["median_ms"] > 0
     assert "5 random seeks" in markdown([], seek)
 
