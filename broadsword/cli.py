@@ -5,7 +5,7 @@
     broadsword --headless --level LEVEL --frames N --seed S --autopilot
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
-    broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
+    broadsword --replay run.json                 watch a recording in the replay theatre (seek, speeds, take over)
     broadsword --list-levels
     broadsword --version
     broadsword edit PATH                         the armature editor (broadsword.game.editor)
@@ -87,8 +87,8 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     ap.add_argument(
         "--replay",
         metavar="FILE",
-        help="play a recording, every stage and continue of it: on screen (watch it, with pause, F2 step "
-        "and the overlay), or with --headless check it frame by frame (the JSON's replay_matches, and "
+        help="play a recording, every stage and continue of it: on screen in the replay theatre (a seek "
+        "bar with the run's marks, pause, step, speeds, the overlay, T to take over), or with --headless check it frame by frame (the JSON's replay_matches, and "
         "first_divergence: the first frame that differs and the part of the state)",
     )
     ap.add_argument(
@@ -378,10 +378,9 @@ def _play(
     if replay_error is not None:
         app.report(replay_error)
     elif replay is not None:
-        try:
-            app.watch_replay(replay, args.replay)  # watch it: the recorded inputs drive the world
-        except DataError as exc:
-            app.report(exc)
+        from .game.scenes.theatre import open_theatre
+
+        open_theatre(app, args.replay)  # the theatre: seek, speeds, marks, take over (or the title says why not)
     elif level is not None and args.lab is None and app.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()

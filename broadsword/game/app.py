@@ -42,6 +42,7 @@ from .scenes.play import (
     MAX_CATCH_UP,  # noqa: F401  (the loop's limit, named where the app is)
     ReplayInput,
 )
+from .scenes.theatre import Theatre
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
 from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, SidePanel
@@ -169,8 +170,12 @@ class App:
 
     @property
     def world(self) -> World | None:
+        """The world on screen: the stage in play's, else the replay theatre's."""
         play = self.play
-        return play.world if play is not None else None
+        if play is not None:
+            return play.world
+        theatre = self.stack.find(Theatre)
+        return theatre.world if theatre is not None else None
 
     def recording(self) -> Recording | None:
         """The run in play (or the last one played), every stage in one recording; None before any."""
@@ -274,11 +279,17 @@ class App:
         mark = None
         if play is not None and play.watched:
             mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
+        elif play is not None and play.run.take_over:
+            mark = Mark.TAKE_OVER
+        theatre = self.stack.find(Theatre) if play is None else None
+        if theatre is not None:
+            mark = Mark.REPLAY
         difficulty = self.world.settings.difficulty if self.world is not None else self.difficulty
         held = None
-        if play is not None and self.options.input_display:
+        runner = play.runner if play is not None else theatre.runner if theatre is not None else None
+        if runner is not None and self.options.input_display:
             # the last step's input, as recorded: the player's, the autopilot's, a replay's
-            held = play.runner.recorder.last_input or Input()
+            held = runner.recorder.last_input or Input()
         return PanelInfo(max((e.score for e in self.scores.of(difficulty)), default=0), mark, held)
 
     # ------------------------------------------------------------------ runs and stages

@@ -48,6 +48,7 @@ class Mark(Enum):
 
     REPLAY = "REPLAY"
     DEMO = "DEMO"
+    TAKE_OVER = "TAKE-OVER"  # the player plays on from a replay's frame
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,12 @@ class GameOver:
 
     @property
     def qualifies(self) -> bool:
-        return not self.play.watched and self.score > 0 and self.app.scores.qualifies(self.score, self.difficulty)
+        return (
+            not self.play.watched
+            and not self.play.run.take_over
+            and self.score > 0
+            and self.app.scores.qualifies(self.score, self.difficulty)
+        )
 
     def handle(self, event: pygame.event.Event) -> bool:
         if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:

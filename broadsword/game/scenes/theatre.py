@@ -1,0 +1,339 @@
+"""The replay theatre: a recorded run on screen, to study. The field is drawn as in play (the
+side panel shows the run with its REPLAY mark); a seek bar along the bottom shows the run's
+marks (misses, bombs, boss phases, stage starts), how far it is seekable, the current time
+and the total.
+
+Keys: Space pause/play; Left/Right one frame back/forward (paused; held: repeat);
+Shift+Left/Right 5 s back/forward; Up/Down or ] / [ the speed (0.25x to 16x); PageUp/PageDown
+or P/N the previous/next mark; Home/End the start/end; F1 the overlay; T take over (play on
+yourself from this frame); Esc leave. The mouse: click or drag on the bar.
+
+The run is a :class:`~broadsword.runner.seek.Seeker`: the theatre prepares it in the
+background of play (a few frames a tick, within :data:`PREPARE_MS`), and seeks only where it
+is prepared (the bar's thin line). A seek lands one frame early and steps that frame, so the
+world has its collision record for the overlay. A replay that differs from its recording
+plays to the first frame that differs and says so in a banner.
+
+:func:`open_theatre` is the one way in (the command line's ``--replay`` in a window, the
+replay list).
+"""
+
+from __future__ import annotations
+
+import time
+from enum import Enum
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import pygame
+
+from ...data import DataError
+from ...data.recordings import load_recording
+from ...runner import CHECKPOINT, Runner, open_recorded
+from ...runner.seek import Seeker
+from ...sim import DT, Snapshots, World
+from .. import ui
+from ..controls import Action
+from ..run import Run
+from ..seekbar import SeekBar
+from ..sidebar import FIELD_RECT
+from ..window import to_surface
+
+if TYPE_CHECKING:
+    from ..app import App
+
+#: The speeds, slowest first.
+SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0)
+#: Frames Shift+Left/Right moves (5 s).
+JUMP = 300
+#: Milliseconds a tick may spend preparing the run in the background, and stepping it in play.
+PREPARE_MS, PLAY_MS = 12.0, 30.0
+#: A held Left/Right repeats after this many seconds, then every ``REPEAT_EVERY`` s.
+REPEAT_DELAY, REPEAT_EVERY = 0.35, 1 / 20
+#: The seek bar's height, px, at the bottom of the field.
+BAR_HEIGHT = 46
+
+
+class Command(Enum):
+    """What a key asks of the theatre."""
+
+    PAUSE = "pause"
+    BACK_ONE = "back one frame"
+    FORWARD_ONE = "forward one frame"
+    BACK_JUMP = "back 5 s"
+    FORWARD_JUMP = "forward 5 s"
+    SLOWER = "slower"
+    FASTER = "faster"
+    PREVIOUS_MARK = "previous mark"
+    NEXT_MARK = "next mark"
+    START = "start"
+    END = "end"
+    TAKE_OVER = "take over"
+
+
+KEYS = {
+    pygame.K_SPACE: Command.PAUSE,
+    pygame.K_UP: Command.FASTER,
+    pygame.K_RIGHTBRACKET: Command.FASTER,
+    pygame.K_DOWN: Command.SLOWER,
+    pygame.K_LEFTBRACKET: Command.SLOWER,
+    pygame.K_PAGEUP: Command.PREVIOUS_MARK,
+    pygame.K_p: Command.PREVIOUS_MARK,
+    pygame.K_PAGEDOWN: Command.NEXT_MARK,
+    pygame.K_n: Command.NEXT_MARK,
+    pygame.K_HOME: Command.START,
+    pygame.K_END: Command.END,
+    pygame.K_t: Command.TAKE_OVER,
+}
+#: Left/Right: (alone, with Shift).
+ARROWS = {
+    pygame.K_LEFT: (Command.BACK_ONE, Command.BACK_JUMP),
+    pygame.K_RIGHT: (Command.FORWARD_ONE, Command.FORWARD_JUMP),
+}
+
+
+class TheatreKeys:
+    """Keys -> :class:`Command`; a held Left/Right (one frame) repeats: :meth:`repeats`."""
+
+    def __init__(self) -> None:
+        self.held: Command | None = None
+        self.held_for = 0.0
+        self._repeated = 0
+
+    def command(self, event: pygame.event.Event) -> Command | None:
+        if event.type == pygame.KEYUP and event.key in ARROWS:
+            self.held = None
+            return None
+        if event.type != pygame.KEYDOWN:
+            return None
+        if event.key in ARROWS:
+            one, jump = ARROWS[event.key]
+            if event.mod & pygame.KMOD_SHIFT:
+                return jump
+            self.held, self.held_for, self._repeated = one, 0.0, 0
+            return one
+        return KEYS.get(event.key)
+
+    def repeats(self, dt: float) -> int:
+        """How many repeats of the held one-frame step fall due in the ``dt`` s just passed."""
+        if self.held is None:
+            return 0
+        self.held_for += dt
+        due = max(0, int((self.held_for - REPEAT_DELAY) / REPEAT_EVERY) + 1) if self.held_for >= REPEAT_DELAY else 0
+        n, self._repeated = due - self._repeated, due
+        return max(0, n)
+
+
+class Theatre:
+    """A recorded run (``seeker``, read from ``path``) on screen, to pause, scrub, step,
+    speed up or slow down, and take over."""
+
+    opaque = True
+
+    def __init__(self, app: App, seeker: Seeker, path: str | Path):
+        self.app, self.seeker, self.path = app, seeker, str(path)
+        self.bar = SeekBar(pygame.Rect(0, FIELD_RECT.height - BAR_HEIGHT, FIELD_RECT.width, BAR_HEIGHT), seeker.frames)
+        self.keys = TheatreKeys()
+        self.paused = False
+        self.speed = SPEEDS.index(1.0)
+        self.accumulator = 0.0
+        self.dragging = False
+
+    @property
+    def world(self) -> World:
+        return self.seeker.world
+
+    @property
+    def runner(self) -> Runner:
+        return self.seeker.runner
+
+    @property
+    def frame(self) -> int:
+        return self.seeker.frame
+
+    # ------------------------------------------------------------------ seeking
+    def go(self, frame: int) -> None:
+        """Seek to ``frame``, kept within what is prepared; the frame before it is sought and
+        then stepped, so the world has that step's collision record (the overlay's)."""
+        frame = min(max(0, frame), self.seeker.reached)
+        if frame == self.frame:
+            return
+        renderer = self.app.renderer
+        renderer.effects.clear()
+        renderer.captions.clear()
+        if frame == 0:
+            self.seeker.seek(0)
+        else:
+            self.seeker.seek(frame - 1)
+            self.seeker.step()
+        self.accumulator = 0.0
+
+    def mark_after(self, frame: int, forward: bool) -> int | None:
+        """The first mark's frame after ``frame`` (``forward``) or before it."""
+        frames = sorted({m.frame for m in self.seeker.marks})
+        if forward:
+            return next((f for f in frames if f > frame), None)
+        return next((f for f in reversed(frames) if f < frame), None)
+
+    def obey(self, command: Command) -> None:
+        here = self.frame
+        if command is Command.PAUSE:
+            self.paused = not self.paused
+            self.accumulator = 0.0
+        elif command is Command.FASTER:
+            self.speed = min(self.speed + 1, len(SPEEDS) - 1)
+        elif command is Command.SLOWER:
+            self.speed = max(self.speed - 1, 0)
+        elif command in (Command.BACK_ONE, Command.FORWARD_ONE):
+            if self.paused:
+                self.go(here + (1 if command is Command.FORWARD_ONE else -1))
+        elif command in (Command.BACK_JUMP, Command.FORWARD_JUMP):
+            self.go(here + (JUMP if command is Command.FORWARD_JUMP else -JUMP))
+        elif command in (Command.PREVIOUS_MARK, Command.NEXT_MARK):
+            target = self.mark_after(here, command is Command.NEXT_MARK)
+            if target is not None:
+                self.go(target)
+        elif command is Command.START:
+            self.go(0)
+        elif command is Command.END:
+            self.go(self.seeker.reached)
+        elif command is Command.TAKE_OVER:
+            self.take_over()
+
+    def take_over(self) -> None:
+        """Play on from this frame yourself: a new run whose first stage is this world, as it
+        is now, in the normal play scene (marked TAKE-OVER)."""
+        app, seeker = self.app, self.seeker
+        pb = seeker.runner.playback
+        index = pb.index if pb is not None else 0
+        data = seeker.snapshot()
+        try:
+            stage = open_recorded(seeker.rec.stages[index], index, self.path, app.bank.armatures)
+        except DataError as exc:
+            app.report(exc)
+            return
+        Snapshots(stage.world).restore(stage.world, data)
+        run = Run.of_level(stage.level_ref, app.levels, stage.world.settings.difficulty)
+        run.take_over = True
+        app.renderer.effects.clear()
+        app.play_stage(stage, run)
+
+    # ------------------------------------------------------------------ events
+    def handle(self, event: pygame.event.Event) -> bool:
+        app = self.app
+        if event.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEMOTION, pygame.MOUSEBUTTONUP):
+            return self._mouse(event)
+        command = self.keys.command(event)
+        if command is not None:
+            self.obey(command)
+            return True
+        actions = app.controls.actions(event)
+        if Action.OVERLAY in actions:
+            app.overlay.visible = not app.overlay.visible
+        elif Action.BACK in actions:
+            self.leave()
+        else:
+            return event.type == pygame.KEYUP and event.key in ARROWS
+        return True
+
+    def _mouse(self, event: pygame.event.Event) -> bool:
+        pos = self._field_pos(event.pos)
+        if event.type == pygame.MOUSEBUTTONUP and event.button == 1:
+            used, self.dragging = self.dragging, False
+            return used
+        if event.type == pygame.MOUSEBUTTONDOWN and event.button == 1 and pos is not None and self.bar.hit(pos):
+            self.dragging = True
+        if self.dragging and pos is not None:
+            self.go(self.bar.frame_at(pos[0]))
+            return True
+        return False
+
+    def _field_pos(self, pos: tuple[int, int]) -> tuple[float, float] | None:
+        """A window position in field px (the field is presented scaled, beside the panel)."""
+        win = pygame.display.get_surface()
+        if win is None:
+            return float(pos[0]), float(pos[1])
+        at = to_surface(pos, win.get_size(), self.app.canvas.get_size())
+        return None if at is None else (at[0] - FIELD_RECT.left, at[1] - FIELD_RECT.top)
+
+    def leave(self) -> None:
+        """Esc: back to what opened the theatre (the replay list), else the title."""
+        stack = self.app.stack
+        if len(stack.scenes) > 1 and stack.top is self:
+            stack.pop()
+        else:
+            self.app.to_title()
+
+    # ------------------------------------------------------------------ time
+    def update(self, dt: float) -> int:
+        """Play on at the speed (unless paused or dragging), within :data:`PLAY_MS`; repeat
+        a held step; then prepare the run further within :data:`PREPARE_MS`."""
+        t0 = time.perf_counter()
+        for _ in range(self.keys.repeats(dt)):
+            if self.keys.held is not None:
+                self.obey(self.keys.held)
+        steps = 0
+        if not self.paused and not self.dragging:
+            self.accumulator += dt * SPEEDS[self.speed]
+            while self.accumulator >= DT and (time.perf_counter() - t0) * 1e3 < PLAY_MS:
+                ev = self.seeker.step()
+                if ev is None:  # the run's end (or where it first differs)
+                    self.paused, self.accumulator = True, 0.0
+                    break
+                steps += 1
+                self.accumulator -= DT
+                if SPEEDS[self.speed] <= 1.0:
+                    self.app.feedback.stepped(ev, self.world)  # sounds too, at normal speed or slower
+                else:
+                    self.app.renderer.on_events(ev, self.world)
+            self.accumulator = min(self.accumulator, DT)  # a backlog is dropped: slower, never frozen
+        t1 = time.perf_counter()
+        while not self.seeker.prepared and (time.perf_counter() - t1) * 1e3 < PREPARE_MS:
+            self.seeker.prepare(2)
+        return steps
+
+    # ------------------------------------------------------------------ drawing
+    def note(self) -> str:
+        speed = SPEEDS[self.speed]
+        shown = f"{speed:g}x"
+        return f"PAUSED  {shown}" if self.paused else shown
+
+    def draw(self, surf: pygame.Surface) -> None:
+        app, world = self.app, self.world
+        alpha = 1.0 if self.paused else min(self.accumulator / DT, 1.0)
+        on_top = app.stack.top is self
+        app.renderer.draw(surf, world, alpha, show_armature=app.options.always_hitbox, title_card=on_top)
+        if world.rotation != world.level.scene.rotation:
+            app.painter.text(f"rotation {world.rotation}", 38, 18, colour=ui.GOLD)
+        if app.overlay.visible:
+            record = world.collision
+            app.overlay.draw(surf, record.result if record is not None else None, app.fps, self.paused)
+        self._banner()
+        self.bar.draw(surf, app.painter, self.frame, self.seeker.reached, self.seeker.marks, self.note())
+
+    def _banner(self) -> None:
+        d = self.seeker.divergence
+        if d is None:
+            return
+        p = self.app.painter
+        what = "a checkpoint's hash" if d.part == CHECKPOINT else f"the {d.part}"
+        rect = pygame.Rect(0, 58, FIELD_RECT.width, 44)
+        p.panel(rect, fill=(60, 10, 16), edge=ui.BAD)
+        p.text(f"REPLAY DIFFERS from frame {d.frame:,}: {what}", rect.top + 14, 20, ui.BAD)
+        p.text("it plays to there; the game or its data changed since it was recorded", rect.top + 32, 15, ui.DIM)
+
+
+def open_theatre(app: App, path: str | Path) -> None:
+    """Open the recording at ``path`` in the theatre, over the scene on top (Esc goes back to
+    it). A file that cannot be read or played (broken, another version, a level changed or
+    missing) is said where the game says load errors (:meth:`App.report`: the title's line),
+    and nothing opens."""
+    try:
+        rec = load_recording(path)
+        seeker = Seeker(rec, path, app.bank.armatures)
+    except DataError as exc:
+        app.report(exc)
+        return
+    app.error = None
+    app.runner = None
+    app.stack.push(Theatre(app, seeker, path))
