@@ -275,13 +275,15 @@ class Theatre:
         steps = 0
         if not self.paused and not self.dragging:
             self.accumulator += dt * SPEEDS[self.speed]
-            while self.accumulator >= DT and (time.perf_counter() - t0) * 1e3 < PLAY_MS:
+            while self.accumulator >= DT - 1e-9 and (time.perf_counter() - t0) * 1e3 < PLAY_MS:
                 ev = self.seeker.step()
                 if ev is None:  # the run's end (or where it first differs)
                     self.paused, self.accumulator = True, 0.0
                     break
                 steps += 1
-                self.accumulator -= DT
+                self.accumulator = max(
+                    0.0, self.accumulator - DT
+                )  # (1e-9: whole steps of real time are not lost to rounding)
                 if SPEEDS[self.speed] <= 1.0:
                     self.app.feedback.stepped(ev, self.world)  # sounds too, at normal speed or slower
                 else:

@@ -1,0 +1,186 @@
+"""The replay theatre (issue 21, part 4): keys and the mouse move about the run to the states
+straight playback reaches; marks, speeds, the divergence banner; T takes over into play."""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import pygame
+import pytest
+
+from broadsword.data.recordings import save_recording
+from broadsword.game.app import App
+from broadsword.game.scenes import Play
+from broadsword.game.scenes import theatre as theatre_module
+from broadsword.game.scenes.theatre import JUMP, SPEEDS, Theatre, open_theatre
+from broadsword.game.scores import HighScores
+from broadsword.game.sidebar import Mark
+from broadsword.runner import Runner, StageStart, StateHashes
+from broadsword.runner.seek import MarkKind
+from broadsword.sim import DT, Input, Pilot
+
+FRAMES, BOMB_AT = 400, 60
+
+
+@functools.cache
+def recorded():
+    """1-picket, the autopilot for FRAMES frames, a bomb at BOMB_AT; the recording and the
+    state hash after every frame."""
+    runner, pilot = Runner.open(StageStart("1-picket", 5)), Pilot()
+    hashes = StateHashes(range(FRAMES + 1))
+    runner.observers.append(hashes)
+    hashes.began(runner)
+    while runner.frame < FRAMES:
+        inp = pilot(runner.world)
+        runner.step(dataclasses.replace(inp, bomb=True) if runner.frame == BOMB_AT else inp)
+    return runner.recording(), hashes.hashes
+
+
+@pytest.fixture(scope="module")
+def opened(tmp_path_factory):
+    """An app with the recording opened in the theatre and prepared (shared: each test gets
+    a theatre of its own over the same seeker)."""
+    tmp = tmp_path_factory.mktemp("theatre")
+    app = App(seed=0, audio=False, scores=HighScores(tmp / "scores.json"), data=tmp)
+    path = tmp / "run.json"
+    save_recording(path, recorded()[0])
+    open_theatre(app, path)
+    scene = app.scene
+    assert isinstance(scene, Theatre), app.error
+    scene.seeker.prepare()
+    yield app, scene.seeker, path
+    pygame.quit()
+
+
+@pytest.fixture
+def theatre(opened):
+    app, seeker, path = opened
+    seeker.seek(0)
+    scene = Theatre(app, seeker, path)
+    app.stack.reset(scene)
+    return app, scene
+
+
+def key(app, k, mod=0, up=False):
+    app.handle(pygame.event.Event(pygame.KEYUP if up else pygame.KEYDOWN, key=k, mod=mod, unicode="", scancode=0))
+
+
+def at(scene) -> str:
+    return recorded()[1][scene.frame]
+
+
+def test_keys__pause_step_jump_ends_and_marks_reach_straight_playbacks_states(theatre):
+    app, scene = theatre
+    key(app, pygame.K_SPACE)
+    assert scene.paused
+    for k, mod, want in (
+        (pygame.K_RIGHT, 0, 1),
+        (pygame.K_RIGHT, 0, 2),
+        (pygame.K_LEFT, 0, 1),
+        (pygame.K_RIGHT, pygame.KMOD_LSHIFT, 1 + JUMP),
+        (pygame.K_END, 0, FRAMES),
+        (pygame.K_RIGHT, pygame.KMOD_LSHIFT, FRAMES),  # clamped to the run
+        (pygame.K_PAGEUP, 0, BOMB_AT + 1),  # the bomb's mark (the step it went off in)
+        (pygame.K_LEFT, 0, BOMB_AT),
+        (pygame.K_PAGEDOWN, 0, BOMB_AT + 1),
+        (pygame.K_HOME, 0, 0),
+    ):
+        key(app, k, mod)
+        key(app, k, mod, up=True)
+        assert scene.frame == want, (k, mod)
+        assert scene.world.state_hash() == at(scene)
+        if want:
+            assert scene.world.collision is not None  # the overlay's record: the last frame was stepped
+
+
+def test_marks__the_stage_start_and_the_bomb(theatre):
+    _, scene = theatre
+    assert [(m.frame, m.kind) for m in scene.seeker.marks] == [(0, MarkKind.STAGE), (BOMB_AT + 1, MarkKind.BOMB)]
+
+
+def test_playing__speeds_and_a_held_step_repeat(theatre, monkeypatch):
+    monkeypatch.setattr(theatre_module, "PLAY_MS", 1e9)  # the steps due, whatever the host's load
+    app, scene = theatre
+    key(app, pygame.K_DOWN)
+    assert SPEEDS[scene.speed] == 0.5
+    for _ in range(9):
+        key(app, pygame.K_RIGHTBRACKET)
+    assert SPEEDS[scene.speed] == 16.0
+    scene.update(4 * DT)
+    assert scene.frame == 64 and scene.world.state_hash() == at(scene)
+    key(app, pygame.K_SPACE)
+    frame = scene.frame
+    key(app, pygame.K_RIGHT)  # held: one step now, then repeats after the delay
+    scene.update(0.1)
+    assert scene.frame == frame + 1
+    scene.update(0.5)
+    assert scene.frame > frame + 2 and scene.world.state_hash() == at(scene)
+    key(app, pygame.K_RIGHT, up=True)
+    frame = scene.frame
+    scene.update(0.5)
+    assert scene.frame == frame
+
+
+def test_mouse__a_click_on_the_bar_seeks_there(theatre):
+    app, scene = theatre
+    scene.paused = True
+    bar = scene.bar
+    left, right, y = bar.line
+    window = pygame.display.get_surface().get_size()
+    k = window[0] / app.canvas.get_width()  # the field sits at the canvas's left edge
+    x = left + (right - left) * 0.25
+    app.handle(pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=(x * k, y * k), button=1))
+    assert scene.dragging and scene.frame == bar.frame_at(x) == round(FRAMES * 0.25)
+    assert scene.world.state_hash() == at(scene)
+    app.handle(pygame.event.Event(pygame.MOUSEMOTION, pos=((x + 40) * k, y * k), rel=(40, 0), buttons=(1, 0, 0)))
+    assert scene.frame == bar.frame_at(x + 40) > round(FRAMES * 0.25)
+    app.handle(pygame.event.Event(pygame.MOUSEBUTTONUP, pos=((x + 40) * k, y * k), button=1))
+    assert not scene.dragging
+
+
+def test_take_over__plays_on_from_the_frame_in_the_play_scene(theatre):
+    app, scene = theatre
+    scene.go(200)
+    before = scene.world.state_hash()
+    key(app, pygame.K_t)
+    play = app.scene
+    assert isinstance(play, Play) and play.run.take_over and not play.watched
+    assert play.world.frame == 200 and play.world.state_hash() == before
+    assert app.panel_info().mark is Mark.TAKE_OVER
+    play.step()
+    assert play.world.frame == 201
+
+
+def test_divergence__a_banner_names_the_frame_and_part(tmp_path):
+    rec = recorded()[0]
+    st = rec.first
+    inputs = bytearray(st.inputs)
+    moved = Input.from_byte(inputs[100])
+    inputs[100] = dataclasses.replace(moved, dx=1 if moved.dx != 1 else -1).to_byte()  # the player moves otherwise
+    path = tmp_path / "run.json"
+    save_recording(path, dataclasses.replace(rec, stages=(dataclasses.replace(st, inputs=bytes(inputs)),)))
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
+    try:
+        open_theatre(app, path)
+        scene = app.scene
+        assert isinstance(scene, Theatre)
+        scene.seeker.prepare()
+        app.render()
+        said = " ".join(app.painter.said)
+        assert "REPLAY DIFFERS from frame 101: the player" in said
+        key(app, pygame.K_END)
+        assert scene.frame == 101 == scene.seeker.end
+    finally:
+        pygame.quit()
+
+
+def test_open_theatre__a_broken_file_says_why_and_opens_nothing(tmp_path):
+    path = tmp_path / "broken.json"
+    path.write_text("{not json")
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
+    try:
+        open_theatre(app, path)
+        assert not isinstance(app.scene, Theatre) and app.error is not None and "broken.json" in app.error
+    finally:
+        pygame.quit()
