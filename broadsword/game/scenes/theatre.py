@@ -307,9 +307,16 @@ class Theatre:
         app.renderer.draw(surf, world, alpha, show_armature=app.options.always_hitbox, title_card=on_top)
         if world.rotation != world.level.scene.rotation:
             app.painter.text(f"rotation {world.rotation}", 38, 18, colour=ui.GOLD)
-        if app.overlay.visible:
+        overlay = app.overlay
+        if overlay.visible:
             record = world.collision
-            app.overlay.draw(surf, record.result if record is not None else None, app.fps, self.paused)
+            keys = overlay.step_key, overlay.rotation_key
+            overlay.step_key, overlay.rotation_key = (
+                "Right",
+                None,
+            )  # the theatre's step key; a replay's rotation is its own
+            overlay.draw(surf, record.result if record is not None else None, app.fps, self.paused)
+            overlay.step_key, overlay.rotation_key = keys
         self._banner()
         self.bar.draw(surf, app.painter, self.frame, self.seeker.reached, self.seeker.marks, self.note())
 
