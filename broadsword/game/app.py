@@ -24,7 +24,7 @@ import pygame
 
 from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
-from ..data.recordings import Recording
+from ..data.recordings import Recording, RunKind
 from ..runner import Runner, Stage
 from ..sim import Input, World
 from .audio import Audio
@@ -279,7 +279,7 @@ class App:
         mark = None
         if play is not None and play.watched:
             mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
-        elif play is not None and play.run.take_over:
+        elif play is not None and play.runner.recorder.info.kind is RunKind.TAKE_OVER:
             mark = Mark.TAKE_OVER
         theatre = self.stack.find(Theatre) if play is None else None
         if theatre is not None:

@@ -50,7 +50,6 @@ class Run:
     continues: int = 0
     power: int | None = None  # the shot's power, from the stage before (None: the base power)
     totals: RunTotals = RunTotals()  # the stages cleared so far (the one in play is not in it)
-    take_over: bool = False  # played on from a replay's frame (the theatre's T): marked, never a high score
 
     def level_ref(self, levels: list[str]) -> str:
         return self.custom or levels[self.level_index]

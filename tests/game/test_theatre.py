@@ -9,7 +9,7 @@ import functools
 import pygame
 import pytest
 
-from broadsword.data.recordings import save_recording
+from broadsword.data.recordings import RunKind, save_recording
 from broadsword.game.app import App
 from broadsword.game.scenes import Play
 from broadsword.game.scenes import theatre as theatre_module
@@ -145,11 +145,20 @@ def test_take_over__plays_on_from_the_frame_in_the_play_scene(theatre):
     before = scene.world.state_hash()
     key(app, pygame.K_t)
     play = app.scene
-    assert isinstance(play, Play) and play.run.take_over and not play.watched
+    assert isinstance(play, Play) and not play.watched
     assert play.world.frame == 200 and play.world.state_hash() == before
     assert app.panel_info().mark is Mark.TAKE_OVER
-    play.step()
-    assert play.world.frame == 201
+    for _ in range(30):
+        play.step()
+    assert play.world.frame == 230
+    rec = app.recording()
+    assert rec is not None and rec.info.kind is RunKind.TAKE_OVER and "run.json at frame 200" in rec.info.source
+    assert rec.first.origin == 200 and rec.frames == 30
+    # the take-over's own recording replays from where it was taken over, to the same state
+    replay = Runner.replaying(rec, "take-over.json")
+    replay.play_back("take-over.json")
+    assert replay.playback is not None and replay.playback.matches
+    assert replay.world.state_hash() == play.world.state_hash()
 
 
 def test_divergence__a_banner_names_the_frame_and_part(tmp_path):

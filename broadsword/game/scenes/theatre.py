@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import pygame
 
 from ...data import DataError
-from ...data.recordings import load_recording
+from ...data.recordings import RecordingInfo, RunKind, load_recording
 from ...runner import CHECKPOINT, Runner, open_recorded
 from ...runner.seek import Seeker
 from ...sim import DT, Snapshots, World
@@ -202,7 +202,8 @@ class Theatre:
 
     def take_over(self) -> None:
         """Play on from this frame yourself: a new run whose first stage is this world, as it
-        is now, in the normal play scene (marked TAKE-OVER)."""
+        is now, in the normal play scene (marked TAKE-OVER). Its recording starts from this
+        state (the recorder keeps the stage's start snapshot) and says where it came from."""
         app, seeker = self.app, self.seeker
         pb = seeker.runner.playback
         index = pb.index if pb is not None else 0
@@ -214,9 +215,10 @@ class Theatre:
             return
         Snapshots(stage.world).restore(stage.world, data)
         run = Run.of_level(stage.level_ref, app.levels, stage.world.settings.difficulty)
-        run.take_over = True
+        source = f"{Path(self.path).name} at frame {self.frame}"
+        runner = Runner(stage, info=RecordingInfo(kind=RunKind.TAKE_OVER, source=source))
         app.renderer.effects.clear()
-        app.play_stage(stage, run)
+        app.play_stage(stage, run, runner)
 
     # ------------------------------------------------------------------ events
     def handle(self, event: pygame.event.Event) -> bool:
