@@ -116,6 +116,7 @@ class Seeker:
         self.rec, self.path, self.armatures, self.every = rec, rec_path, armatures, int(every)
         self._prep = Runner.replaying(rec, rec_path, armatures)  # plays straight through, a few frames a call
         self._stages: dict[int, Stage] = {}  # the viewer's world of each stage, opened once
+        self._runners: dict[int, Runner] = {}  # the viewer's runner of each stage
         self._codecs: dict[int, Snapshots] = {}  # one per stage: its level's numbering, worked out once
         self._kept: dict[int, _Kept] = {}  # run frame -> its snapshot (a stage's last frame: that stage's)
         self._starts: dict[int, bytes] = {}  # stage -> its start's snapshot
@@ -123,7 +124,7 @@ class Seeker:
         self._finished = False
         self._keep_start(0, self._prep.world)
         self._keep()
-        self.runner = Runner(self._open(0), (), Playback(rec), 0)
+        self._place(0, 0)
 
     # ------------------------------------------------------------------ what is known
     @property
@@ -235,8 +236,19 @@ class Seeker:
         """Put the viewer at the run's ``frame`` of stage ``index``, restored from ``data``."""
         stage = self._open(index)
         self._codec(index, stage.world).restore(stage.world, zlib.decompress(data))
-        local = frame - self.rec.starts[index]
-        self.runner = Runner(stage, (), Playback(self.rec, index, local), frame)
+        self._place(index, frame)
+
+    def _place(self, index: int, frame: int) -> None:
+        """The viewer is stage ``index``'s runner, at the run's ``frame`` (its world already
+        there), with a playback placed at the same frame. One runner a stage, made once:
+        a runner begun on a restored world keeps its start snapshot, which costs a save."""
+        playback = Playback(self.rec, index, frame - self.rec.starts[index])
+        runner = self._runners.get(index)
+        if runner is None:
+            runner = self._runners[index] = Runner(self._open(index), (), playback, frame)
+        else:
+            runner.playback, runner.frame = playback, frame
+        self.runner = runner
 
     # ------------------------------------------------------------------ the viewer
     def seek(self, frame: int) -> World:
@@ -276,7 +288,8 @@ class Seeker:
                 self._restore(index, r.frame, self._starts[index])
             else:  # ahead of the preparer: a stage opened now is at its start
                 self._stages.pop(index, None)
-                self.runner = Runner(self._open(index), (), Playback(self.rec, index, 0), r.frame)
+                self._runners.pop(index, None)
+                self._place(index, r.frame)
             return self.step()
         return r.step(inp)
 
