@@ -274,8 +274,12 @@ class Seeker:
 
     def step(self) -> Events | None:
         """Play the viewer one frame on (into the next stage at a stage's end); its events,
-        or None at the run's end (or the first frame that differs)."""
+        or None at the run's end (or the first frame that differs). The preparer is kept at
+        least as far on (it steps first when the viewer is where it is), so every frame the
+        viewer played can be sought back to."""
         r = self.runner
+        if r.frame >= self.reached:
+            self.prepare(1)
         inp = r.replay_input()
         if inp is None:
             pb = r.playback
@@ -284,12 +288,7 @@ class Seeker:
             if not (pb.stage_done and pb.has_next_stage and pb.divergence is None):
                 return None
             index = pb.index + 1
-            if index in self._starts:
-                self._restore(index, r.frame, self._starts[index])
-            else:  # ahead of the preparer: a stage opened now is at its start
-                self._stages.pop(index, None)
-                self._runners.pop(index, None)
-                self._place(index, r.frame)
+            self._restore(index, r.frame, self._starts[index])  # the preparer opened it: its start is kept
             return self.step()
         return r.step(inp)
 

@@ -89,9 +89,12 @@ def test_step__plays_on_across_stages_and_stops_at_the_end():
     rec = three_stages()[0]
     s = Seeker(rec, PATH, ARMATURES, every=EVERY)
     s.seek(rec.starts[1] - 3)
+    assert s.reached == rec.starts[1] - 3  # prepared just as far as the seek needed
     while (ev := s.step()) is not None:
         assert ev is not None and s.world.state_hash() == straight()[s.frame]
-    assert s.frame == rec.frames
+        assert s.reached >= s.frame  # the preparer keeps up: every frame played can be sought back to
+    assert s.frame == rec.frames == s.reached and s.prepared
+    assert s.seek(rec.starts[2] - 1).state_hash() == straight()[rec.starts[2] - 1]
 
 
 def test_prepare__a_few_frames_at_a_time_marks_and_snapshots():
