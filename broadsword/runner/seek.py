@@ -120,6 +120,7 @@ class Seeker:
         self._codecs: dict[int, Snapshots] = {}  # one per stage: its level's numbering, worked out once
         self._kept: dict[int, _Kept] = {}  # run frame -> its snapshot (a stage's last frame: that stage's)
         self._starts: dict[int, bytes] = {}  # stage -> its start's snapshot
+        self._path: dict[int, _Kept] = {}  # the last seek's frames on the way (seek's keep_path)
         self.marks: list[Mark] = [Mark(0, MarkKind.STAGE)]
         self._finished = False
         self._keep_start(0, self._prep.world)
@@ -251,9 +252,13 @@ class Seeker:
         self.runner = runner
 
     # ------------------------------------------------------------------ the viewer
-    def seek(self, frame: int) -> World:
+    def seek(self, frame: int, keep_path: bool = False) -> World:
         """Put the viewer at ``frame`` (0..:attr:`end`; a frame not yet prepared is prepared
-        first) and return its world. ``ValueError`` for a frame outside the run."""
+        first) and return its world. ``ValueError`` for a frame outside the run.
+
+        ``keep_path``: keep a snapshot of every frame stepped through on the way (a frame by
+        frame walk back, as a held Left key makes, then costs one restore a frame until it
+        passes the snapshot the walk started from). Only the last such path is kept."""
         if not 0 <= frame <= self.end:
             raise ValueError(f"frame {frame} is outside the run (0..{self.end})")
         if frame > self.reached:
@@ -261,13 +266,21 @@ class Seeker:
             if frame > self.end:
                 raise ValueError(f"frame {frame} is outside the run (0..{self.end})")
         index = self.stage_of(frame)
+        if frame != self.runner.frame and frame in self._path and self._path[frame].stage == index:
+            self._restore(index, frame, self._path[frame].data)
+            return self.world
         kept = [f for f, k in self._kept.items() if f <= frame and k.stage == index]
         base = max(kept) if kept else self.rec.starts[index]
         here = self.runner
         here_index = here.playback.index if here.playback is not None else 0
         if not (here_index == index and base <= here.frame <= frame):  # restoring is nearer than stepping on
             self._restore(index, base, self._kept[base].data if kept else self._starts[index])
+        if keep_path:
+            self._path = {}
         while self.runner.frame < frame:
+            if keep_path:
+                world = self.world
+                self._path[self.runner.frame] = _Kept(index, 0, zlib.compress(self._codec(index, world).save(world), 1))
             if self.step() is None:
                 raise ValueError(f"frame {frame} is past where the replay ended ({self.runner.frame})")
         return self.world

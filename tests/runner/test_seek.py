@@ -155,3 +155,12 @@ def test_cli_seek__the_straight_hashes_in_any_order(tmp_path, capsys):
 def test_cli_seek__needs_hashes(capsys):
     assert main(["--headless", "--seek"]) == 2
     assert "--seek needs --hashes" in capsys.readouterr().err
+
+
+def test_seek__a_walk_back_frame_by_frame_over_the_kept_path():
+    rec = three_stages()[0]
+    s = Seeker(rec, PATH, ARMATURES, every=EVERY)
+    top = rec.starts[2] + 2 * EVERY - 3
+    s.seek(top, keep_path=True)
+    for frame in range(top - 1, top - EVERY - 5, -1):  # past the snapshot the walk started from
+        assert s.seek(frame).state_hash() == straight()[frame], frame

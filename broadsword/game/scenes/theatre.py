@@ -164,7 +164,7 @@ class Theatre:
         if frame == 0:
             self.seeker.seek(0)
         else:
-            self.seeker.seek(frame - 1)
+            self.seeker.seek(frame - 1, keep_path=frame < self.frame)  # going back: frame by frame, likely
             self.seeker.step()
         self.accumulator = 0.0
 
