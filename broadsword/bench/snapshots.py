@@ -122,7 +122,9 @@ def run_seek(minutes: float = 5.0, seeks: int = 60, seed: int = 0, every: int = 
     """The ``seek`` entry: a ``minutes``-long autopilot run over the shipped stages, recorded;
     a :class:`~broadsword.runner.seek.Seeker` over it (snapshots every ``every`` frames),
     prepared; then ``seeks`` random frames of the run reached in a seeded order, each checked
-    against straight playback's state hash."""
+    against straight playback's state hash and, frame by frame on the way, against the
+    recording's digests (``wrong`` counts the seeks that differed either way). Each seek's
+    wall time and its CPU time (the process's: on a busy host, what a quiet one would take)."""
     t0 = time.perf_counter()
     rec = autopilot_run(round(minutes * 60 * 60), seed)
     recorded = time.perf_counter() - t0
@@ -134,12 +136,14 @@ def run_seek(minutes: float = 5.0, seeks: int = 60, seed: int = 0, every: int = 
     seeker.prepare()
     prepared = time.perf_counter() - t0
     rng = np.random.default_rng(seed)
-    times, wrong = [], 0
+    times, cpu, wrong = [], [], 0
     for frame in rng.integers(1, rec.frames + 1, seeks).tolist():
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         world = seeker.seek(frame)
         times.append((time.perf_counter() - t) * 1e3)
-        wrong += world.state_hash() != straight.hashes[frame]
+        cpu.append((time.process_time() - c) * 1e3)
+        pb = seeker.runner.playback
+        wrong += world.state_hash() != straight.hashes[frame] or (pb is not None and pb.divergence is not None)
     return {
         "minutes": rec.frames / 3600,
         "frames": rec.frames,
@@ -152,6 +156,8 @@ def run_seek(minutes: float = 5.0, seeks: int = 60, seed: int = 0, every: int = 
         "median_ms": float(np.median(times)),
         "max_ms": float(np.max(times)),
         "p90_ms": float(np.percentile(times, 90)),
+        "median_cpu_ms": float(np.median(cpu)),
+        "max_cpu_ms": float(np.max(cpu)),
         "wrong": int(wrong),
         "record_s": recorded,
         "prepare_s": prepared,
@@ -178,7 +184,8 @@ def markdown(snapshots: list[dict], seek: dict | None) -> str:
             f"continues; a snapshot every "
             f"{seek['every']} frames, {seek['snapshots']} kept, {seek['snapshot_bytes'] / 1e6:.1f} MB): "
             f"{seek['seeks']} random seeks, median {seek['median_ms']:.0f} ms, 90th percentile "
-            f"{seek['p90_ms']:.0f} ms, worst {seek['max_ms']:.0f} ms; {seek['wrong']} differed from straight "
-            f"playback (load average {seek['load_average']}).",
+            f"{seek['p90_ms']:.0f} ms, worst {seek['max_ms']:.0f} ms (CPU time: median "
+            f"{seek['median_cpu_ms']:.0f} ms, worst {seek['max_cpu_ms']:.0f} ms); {seek['wrong']} differed from "
+            f"straight playback (load average {seek['load_average']}).",
         ]
     return "\n".join(lines)

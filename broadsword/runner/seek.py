@@ -31,10 +31,10 @@ from .playback import Divergence, Playback
 from .runner import Runner
 from .stages import Stage, open_recorded
 
-#: Frames between kept snapshots (one second of play). A seek restores one snapshot and steps
-#: at most ``SNAPSHOT_EVERY - 1`` frames; docs/PERFORMANCE.md ("Seeking") has the figures
-#: this spacing was chosen from.
-SNAPSHOT_EVERY = 60
+#: Frames between kept snapshots (half a second of play). A seek restores one snapshot and
+#: steps at most ``SNAPSHOT_EVERY - 1`` frames; docs/PERFORMANCE.md ("Snapshots and seeking")
+#: has the figures this spacing was chosen from (a 5-minute run keeps about 600, some 4 MB).
+SNAPSHOT_EVERY = 30
 
 
 class MarkKind(Enum):
