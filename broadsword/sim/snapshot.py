@@ -54,7 +54,7 @@ from .snapbytes import Reader, Writer
 from .world import World
 
 #: The snapshot format this game writes and reads (docs/FORMATS.md, "Snapshots").
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
 #: The first 8 bytes of every snapshot.
 MAGIC = b"BSWDSNAP"
 #: Warnings and toggles a snapshot may list, and rows a pool without a limit may hold.
@@ -257,25 +257,32 @@ def _get_rng(r: Reader, rng: np.random.Generator, what: str) -> dict:
 
 
 # ---------------------------------------------------------------------------- pools
-#: A Movers' channel columns, written only for the rows with a channel running.
+#: A Movers' channel columns, written only for the rows where one of them holds anything.
 CHANNEL_ENDS = ("ch_x0", "ch_x1", "ch_y0", "ch_y1")
 
 
+def _channel_rows(cols: Movers) -> np.ndarray:
+    """The rows whose channel ends hold anything (a running channel's, or a stopped one's
+    left behind: the state digests see those bits, so a snapshot keeps them)."""
+    n = cols.n
+    used = np.zeros(n, bool)
+    for name in CHANNEL_ENDS:
+        used |= getattr(cols, name)[:n].any(axis=1)
+    return np.flatnonzero(used)
+
+
 def _live_columns(cols: Columns) -> Iterator[tuple[str, np.ndarray]]:
-    """A store's live columns as saved. A Movers' runners are left out (written apart); its
-    channel ends are written for the rows with a channel running only (``ch_on`` comes
-    before them), the ends of a stopped channel as zeros; a dirty row's cached step (not read
-    before it is recomputed) as zeros: so equal states give equal bytes."""
+    """A store's live columns as saved, every bit the state digests see. A Movers' runners
+    are left out (written apart); its channel ends are written for the rows of
+    :func:`_channel_rows` only (their row numbers before the first, ``ch_x0``)."""
     movers = isinstance(cols, Movers)
-    active = np.flatnonzero(cols.ch_on.any(axis=1)) if movers else None
+    rows = _channel_rows(cols) if isinstance(cols, Movers) else None
     for name in cols.spec:
         if movers and name == "runner":
             continue
         a = getattr(cols, name)
-        if active is not None and name in CHANNEL_ENDS:
-            a = np.where(cols.ch_on[active], a[active], 0)
-        elif movers and name == "step":
-            a = np.where(cols.dirty[:, None], 0.0, a)
+        if rows is not None and name in CHANNEL_ENDS:
+            a = a[rows]
         yield name, a
 
 
@@ -290,6 +297,8 @@ def _put_columns(w: Writer, cols: Columns, table: NodeTable | None = None) -> No
     w.i64(cols.refused)
     for name, a in _live_columns(cols):
         w.text(name)
+        if name == CHANNEL_ENDS[0] and isinstance(cols, Movers):
+            w.array(_channel_rows(cols))
         w.array(a)
     if isinstance(cols, Movers):
         assert table is not None
@@ -305,6 +314,7 @@ def _get_columns(r: Reader, cols: Columns, table: NodeTable | None = None) -> tu
     n = r.i64("rows", 0, cols.limit if cols.limit is not None else ROWS_MAX)
     refused = r.i64("refused", 0, INT_MAX)
     out: dict[str, np.ndarray] = {}
+    rows = np.zeros(0, np.int64)  # the rows with channel ends written (read before ch_x0)
     for name, (shape, dtype) in cols.spec.items():
         if isinstance(cols, Movers) and name == "runner":
             continue
@@ -312,9 +322,12 @@ def _get_columns(r: Reader, cols: Columns, table: NodeTable | None = None) -> tu
         if found != name:
             raise r.fail(f"expected column {name!r}, found {found!r}")
         if isinstance(cols, Movers) and name in CHANNEL_ENDS:
-            active = np.flatnonzero(out["ch_on"].any(axis=1))
+            if name == CHANNEL_ENDS[0]:
+                rows = r.array("channel rows", np.int64, (None,))
+                if len(rows) > n or (len(rows) and (rows.min() < 0 or rows.max() >= n or np.any(np.diff(rows) <= 0))):
+                    raise r.fail(f"channel rows: not increasing row numbers below {n}")
             out[name] = np.zeros((n, *shape), dtype)
-            out[name][active] = r.array(name, dtype, (len(active), *shape))
+            out[name][rows] = r.array(name, dtype, (len(rows), *shape))
         else:
             out[name] = r.array(name, dtype, (n, *shape))
     if isinstance(cols, Movers):
