@@ -1,4 +1,4 @@
-"""The replay theatre's seek bar: the run as a line along the bottom of the field, how far it
+"""The replay theatre's seek bar: the run as a line across the field, how far it
 is seekable, where the viewer is, the run's marks (misses, bombs, boss phases, stage starts)
 and the time, current and total.
 
@@ -22,7 +22,7 @@ MARK_STYLE = {
     MarkKind.MISS: ((255, 90, 90), 12),
 }
 #: The bar's colours: its track, the seekable part, the part played.
-TRACK, SEEKABLE, PLAYED, HEAD = (40, 46, 80), (90, 110, 180), (230, 236, 255), (255, 255, 255)
+TRACK, SEEKABLE, PLAYED, HEAD = (40, 46, 80), (120, 170, 255), (230, 236, 255), (255, 255, 255)
 
 
 def clock(frame: int) -> str:
@@ -80,7 +80,7 @@ class SeekBar:
         surf.blit(veil, self.rect.topleft)
         left, right, y = self.line
         pygame.draw.line(surf, TRACK, (left, y), (right, y), 5)
-        pygame.draw.line(surf, SEEKABLE, (left, y + 3), (round(self.x_of(reached)), y + 3), 1)  # the thin progress line
+        pygame.draw.line(surf, SEEKABLE, (left, y + 3), (round(self.x_of(reached)), y + 3), 2)  # the progress line
         pygame.draw.line(surf, PLAYED, (left, y), (round(self.x_of(frame)), y), 3)
         for m in marks:
             colour, height = MARK_STYLE[m.kind]

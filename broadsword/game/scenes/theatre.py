@@ -1,5 +1,5 @@
 """The replay theatre: a recorded run on screen, to study. The field is drawn as in play (the
-side panel shows the run with its REPLAY mark); a seek bar along the bottom shows the run's
+side panel shows the run with its REPLAY mark); a seek bar along the top shows the run's
 marks (misses, bombs, boss phases, stage starts), how far it is seekable, the current time
 and the total.
 
@@ -50,7 +50,8 @@ JUMP = 300
 PREPARE_MS, PLAY_MS = 12.0, 30.0
 #: A held Left/Right repeats after this many seconds, then every ``REPEAT_EVERY`` s.
 REPEAT_DELAY, REPEAT_EVERY = 0.35, 1 / 20
-#: The seek bar's height, px, at the bottom of the field.
+#: The seek bar's height, px, along the top of the field (the bottom is the player's, and the
+#: boss's bar).
 BAR_HEIGHT = 46
 
 
@@ -132,7 +133,7 @@ class Theatre:
 
     def __init__(self, app: App, seeker: Seeker, path: str | Path):
         self.app, self.seeker, self.path = app, seeker, str(path)
-        self.bar = SeekBar(pygame.Rect(0, FIELD_RECT.height - BAR_HEIGHT, FIELD_RECT.width, BAR_HEIGHT), seeker.frames)
+        self.bar = SeekBar(pygame.Rect(0, 0, FIELD_RECT.width, BAR_HEIGHT), seeker.frames)
         self.keys = TheatreKeys()
         self.paused = False
         self.speed = SPEEDS.index(1.0)
@@ -308,7 +309,7 @@ class Theatre:
         on_top = app.stack.top is self
         app.renderer.draw(surf, world, alpha, show_armature=app.options.always_hitbox, title_card=on_top)
         if world.rotation != world.level.scene.rotation:
-            app.painter.text(f"rotation {world.rotation}", 38, 18, colour=ui.GOLD)
+            app.painter.text(f"rotation {world.rotation}", BAR_HEIGHT + 12, 18, colour=ui.GOLD)
         overlay = app.overlay
         if overlay.visible:
             record = world.collision
@@ -328,7 +329,7 @@ class Theatre:
             return
         p = self.app.painter
         what = "a checkpoint's hash" if d.part == CHECKPOINT else f"the {d.part}"
-        rect = pygame.Rect(0, 58, FIELD_RECT.width, 44)
+        rect = pygame.Rect(0, BAR_HEIGHT + 24, FIELD_RECT.width, 44)
         p.panel(rect, fill=(60, 10, 16), edge=ui.BAD)
         p.text(f"REPLAY DIFFERS from frame {d.frame:,}: {what}", rect.top + 14, 20, ui.BAD)
         p.text("it plays to there; the game or its data changed since it was recorded", rect.top + 32, 15, ui.DIM)
