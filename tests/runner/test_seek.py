@@ -164,3 +164,21 @@ def test_seek__a_walk_back_frame_by_frame_over_the_kept_path():
     s.seek(top, keep_path=True)
     for frame in range(top - 1, top - EVERY - 5, -1):  # past the snapshot the walk started from
         assert s.seek(frame).state_hash() == straight()[frame], frame
+
+
+def test_seek__a_run_that_starts_from_a_restored_world():
+    """A take-over's recording (format 4: its first stage starts from a snapshot, at world
+    frame 100) is sought like any other: frame F is F steps after that start."""
+    r, pilot = Runner.open(StageStart("1-picket", 3), ARMATURES), Pilot()
+    r.play(pilot, 100)
+    taken = Runner(r.stage)  # the world as it is at frame 100, a run of its own from here
+    hashes = StateHashes(range(61))
+    taken.observers.append(hashes)
+    hashes.began(taken)
+    taken.play(pilot, 60)
+    rec = taken.recording()
+    assert rec.first.origin == 100 and rec.frames == 60
+    s = Seeker(rec, PATH, ARMATURES, every=EVERY)
+    for frame in (37, 60, 0, 12, 59):
+        assert s.seek(frame).state_hash() == hashes.hashes[frame], frame
+        assert s.world.frame == 100 + frame
