@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pygame
@@ -34,6 +35,8 @@ from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
 from .render import Renderer
+from .replaylib import ReplayLibrary
+from .replays import Replays, keep_run
 from .run import Run, StageTitles, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
@@ -121,6 +124,8 @@ class App:
         self.scores = (scores or HighScores()).load()
         self.controls = Controls(bindings)
         self.levels = list_levels()
+        self.replays = Replays(ReplayLibrary(self.data / "replays", self.levels))  # kept and saved runs
+        self.after_replay: Callable[[], None] | None = None  # a replay's end, done (None: close, as --replay)
         self.error: str | None = None  # the last level load failure, one line, shown on the title
         self.custom_level: str | None = None
         if start_level is not None and start_level not in self.levels:
@@ -190,7 +195,9 @@ class App:
         self.close()
 
     def close(self) -> None:
-        """The window goes first, at once; then audio and the rest (slower to shut down)."""
+        """The run in play is kept (a window closed mid-run); the window goes first, at once;
+        then audio and the rest (slower to shut down)."""
+        keep_run(self)
         Window.close()
         pygame.quit()
 
@@ -350,6 +357,9 @@ class App:
         self.painter = Painter(self.screen)
 
     def to_title(self) -> None:
+        """Back to the title; a run quit in the middle is kept first (:func:`.replays.keep_run`)."""
+        keep_run(self)
+        self.after_replay = None
         self.stack.reset(Title(self))
 
     def report(self, exc: DataError) -> None:
