@@ -202,6 +202,10 @@ BROKEN = {
         lambda rec: _edit(rec, lambda d: d["stages"][0].update(inputs="ff" * FRAMES)),
         "inputs: frame 0: not an input byte: 255",
     ),
+    "an input no key makes": (  # dx's two bits both set, at frame 7 of idle frames
+        lambda rec: _edit(rec, lambda d: d["stages"][0].update(inputs="05" * 7 + "03" + "05" * (FRAMES - 8))),
+        "inputs: frame 7: not an input byte: 3",
+    ),
     "a huge frame count": (lambda rec: _edit(rec, lambda d: d.update(frames=10**12)), "frames"),
     "a huge stage frame count": (
         lambda rec: _edit(rec, lambda d: d["stages"][0].update(frames=2**62)),
