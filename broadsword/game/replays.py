@@ -31,11 +31,13 @@ if TYPE_CHECKING:
 class KeptRun:
     """A run kept when it ended: its runner (so it is kept once), its recording with its
     ``info`` filled, where it was written in ``recent/`` (None: the write failed, or the run
-    was saved under a name since) and the name it was saved under, if it was."""
+    was saved under a name since), why the write failed if it did, and the name it was
+    saved under, if it was."""
 
     runner: Runner
     recording: Recording
     path: Path | None
+    problem: str | None = None
     saved_as: str | None = None
 
 
@@ -59,7 +61,7 @@ class Replays:
             path = self.library.keep(rec)
         except OSError as exc:
             warning = f"could not keep the replay: {exc.strerror or exc}"
-        self.last = KeptRun(runner, rec, path)
+        self.last = KeptRun(runner, rec, path, warning)
         return warning
 
     def save_last(self, name: str, overwrite: bool = False) -> Path:

@@ -131,6 +131,8 @@ def test_keep__a_failed_write_says_one_line_and_play_goes_on(app, monkeypatch):
     play_a_while(app)
     lose(app)
     assert app.message == "could not keep the replay: Read-only file system"
+    frames(app)
+    assert "could not keep the replay: Read-only file system   S: try to save it" in app.painter.said
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Title) and app.running
@@ -272,3 +274,28 @@ def test_list__shows_at_once_and_reads_its_files_a_few_a_frame(app, monkeypatch)
     key(pygame.K_ESCAPE)
     frames(app, 2)
     assert not any(e.unread for e in scene.entries)
+
+
+def test_keep__a_kept_run_replays_to_the_same_state_from_the_list(app):
+    app.start_run()
+    key(pygame.K_RIGHT)
+    key(pygame.K_z)
+    frames(app, 40)
+    final = app.world.state_hash()
+    played = app.world.frame
+    key(pygame.K_ESCAPE)
+    frames(app)
+    key(pygame.K_q)
+    frames(app)
+    open_list(app)
+    key(pygame.K_RETURN)
+    frames(app, played + 5)
+    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
+    assert app.world.frame == played and app.world.state_hash() == final
+
+
+def test_keep__a_window_closed_mid_run_keeps_it(app):
+    play_a_while(app)
+    app.close()
+    [path] = recent(app)
+    assert load_recording(path).frames == app.runner.frame

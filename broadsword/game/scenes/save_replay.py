@@ -111,5 +111,7 @@ def draw_save_line(app: App, y: float) -> None:
         return
     if last.saved_as is not None:
         app.painter.text(f"Replay saved as {last.saved_as}", y, 20, ui.GOOD)
+    elif last.problem is not None:  # the run could not be kept: say so where the player looks
+        app.painter.text(f"{last.problem}   S: try to save it", y, 18, ui.WARN)
     else:
         app.painter.text("S: save the replay", y, 20, ui.DIM)
