@@ -299,3 +299,22 @@ def test_keep__a_window_closed_mid_run_keeps_it(app):
     app.close()
     [path] = recent(app)
     assert load_recording(path).frames == app.runner.frame
+
+
+def test_list__scrolls_and_every_line_fits_the_field(app):
+    lib = app.replays.library
+    for i in range(12):
+        lib.save(
+            short_replay(frames=5, score=10**9 + i, date="2026-11-28T18:20:05+00:00"),
+            f"A rather long replay name, number {i:02d}",
+        )
+    lib.root.joinpath("zz broken.json").write_text("{" * 5000)
+    scene = open_list(app)
+    frames(app, 3)
+    for _ in range(12):
+        key(pygame.K_DOWN)
+    frames(app)
+    assert scene.index == 12 and scene.first == 12 - replay_list.ROWS_SHOWN + 1  # the chosen row in view
+    assert "13 of 13" in app.painter.said and any(s.startswith("broken: ") for s in app.painter.said)
+    width = app.screen.get_width()
+    assert app.painter.drawn and all(0 <= r.left and r.right <= width for r in app.painter.drawn)
