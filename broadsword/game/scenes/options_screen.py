@@ -1,6 +1,6 @@
 """The options: difficulty, music and sound volumes, fullscreen, always showing the hit
 shape, the game speed (50-100 %: the wall clock only, so replays stay exact), the input
-display, and rebinding every gameplay action to a key and a pad button.
+display, showing what hit on a miss, and rebinding every gameplay action to a key and a pad button.
 
 Up/Down choose a row, Left/Right change it; on an action's row, Enter adds a key or pad button
 to the ones it has and Backspace replaces them all (then press the key or button; Esc
@@ -41,6 +41,7 @@ ROWS = (
         Row("Always show hit shape", "always_hitbox"),
         Row("Game speed", "speed"),
         Row("Input display", "input_display"),
+        Row("Show what hit me", "show_hits"),
     ]
     + [Row(a.title, action=a) for a in REBINDABLE]
     + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")]
