@@ -2,8 +2,9 @@
 
 An observation, like the collision record: the world keeps it beside its state, never in
 it -- it is not hashed, not in a snapshot, and nothing of the game reads it back. When the
-player is struck, :meth:`HitLog.struck` copies from that frame's collision record what
-touched the hit armature (bullets, ships, boss parts: their kind, their posed polygons and
+player is struck, :meth:`HitLog.struck` copies from that frame's collision record
+(:func:`hit_record`, which a replay theatre can call on any frame's record) what touched the
+hit armature (bullets, ships, boss parts: their kind, their posed polygons and
 the player's, the exact explanation of each pair and the tiers that passed it); the
 death-bomb window then decides the outcome (:meth:`HitLog.resolve`: a miss, or saved by a
 bomb), and the record joins ``records``, the last :data:`HIT_LOG_MAX` of the stage.
@@ -25,7 +26,7 @@ from .collide import CollisionRecord, Group
 from .events import Events
 from .kinds import Kinds
 
-__all__ = ["HIT_LOG_MAX", "HITTERS_MAX", "HitLog", "HitRecord", "HitSource", "Hitter", "Outcome"]
+__all__ = ["HIT_LOG_MAX", "HITTERS_MAX", "HitLog", "HitRecord", "HitSource", "Hitter", "Outcome", "hit_record"]
 
 #: The world keeps this many resolved hits (a stage's worth); older ones are dropped.
 HIT_LOG_MAX = 32
@@ -89,6 +90,36 @@ class HitRecord:
     outcome: Outcome | None = None
 
 
+def hit_record(record: CollisionRecord, kinds: Kinds, frame: int) -> HitRecord | None:
+    """What touched the player's hit armature in the collision ``record`` (of the step that
+    ends at world frame ``frame``), unresolved (``outcome`` None); None when nothing did,
+    or when the scene poses no polygons. Any frame's record will do (a replay theatre's):
+    it reads the record only, whose posed polygons live until the world's next step."""
+    result = record.result
+    pairs = record.hits_from(Group.PLAYER)
+    if result.posed is None or not len(pairs):
+        return None
+    me = int(pairs[0, 0])
+    player = posed_polygon(result.posed, me)
+    hitters = []
+    for j in sorted(set(pairs[:, 1].tolist()))[:HITTERS_MAX]:
+        group = next((g for g in SOURCES if record.spans[g].start <= j < record.spans[g].stop), None)
+        if group is None:
+            continue
+        polygon = posed_polygon(result.posed, j)
+        hitters.append(
+            Hitter(
+                SOURCES[group],
+                kinds.names[int(record.armature[j])],
+                polygon,
+                bool(record.swept[j]),
+                explain(player, polygon),
+                tiers_passed(result, me, j),
+            )
+        )
+    return HitRecord(frame, kinds.names[int(record.armature[me])], player, tuple(hitters))
+
+
 class HitLog:
     """The hits of a stage: ``records`` (the last :data:`HIT_LOG_MAX`, oldest first) and the
     ``pending`` one whose death-bomb window is still open."""
@@ -105,31 +136,7 @@ class HitLog:
     def struck(self, record: CollisionRecord, kinds: Kinds, frame: int) -> None:
         """The player was struck in the collision ``record`` of the step that ends at world
         frame ``frame``: keep what hit it (pending until :meth:`resolve`)."""
-        result = record.result
-        if result.posed is None:  # a scene without polygon tiers: nothing exact to explain
-            return
-        pairs = record.hits_from(Group.PLAYER)
-        if not len(pairs):
-            return
-        me = int(pairs[0, 0])
-        player = posed_polygon(result.posed, me)
-        hitters = []
-        for j in sorted(set(pairs[:, 1].tolist()))[:HITTERS_MAX]:
-            group = next((g for g in SOURCES if record.spans[g].start <= j < record.spans[g].stop), None)
-            if group is None:
-                continue
-            polygon = posed_polygon(result.posed, j)
-            hitters.append(
-                Hitter(
-                    SOURCES[group],
-                    kinds.names[int(record.armature[j])],
-                    polygon,
-                    bool(record.swept[j]),
-                    explain(player, polygon),
-                    tiers_passed(result, me, j),
-                )
-            )
-        self.pending = HitRecord(frame, kinds.names[int(record.armature[me])], player, tuple(hitters))
+        self.pending = hit_record(record, kinds, frame)
 
     def resolve(self, outcome: Outcome, ev: Events) -> None:
         """The death-bomb window closed with ``outcome``: the pending hit joins ``records``
