@@ -86,3 +86,20 @@ def test_bounded():
     ev = Events()
     log.resolve(Outcome.SAVED, ev)  # nothing pending: nothing happens
     assert ev.hit is None and len(log.records) == 3
+
+
+def test_a_restore_in_the_death_bomb_window_drops_the_pending_hit():
+    """The snapshot holds the state, not the observation: a world restored while the player
+    is stricken loses the life as the original does, with no hit to log for it."""
+    from broadsword.sim.snapshot import Snapshots
+
+    runner = Runner.open(StageStart(STAGE, 1, Settings()))
+    _until_struck(runner)
+    world = runner.world
+    data = Snapshots(world).save(world)
+    world.hit_log.pending = HitRecord(0, "player", np.zeros((3, 2)), ())  # as if from another time
+    Snapshots(world).restore(world, data)
+    assert world.hit_log.pending is None and world.player.stricken
+    while world.player.stricken:
+        ev = runner.step(IDLE)
+    assert ev.player_hit and ev.hit is None and world.player.misses == 1
