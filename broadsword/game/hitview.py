@@ -53,14 +53,13 @@ class _View:
         return (self.ox + (float(p[0]) - self.cx) * self.scale, self.oy + (float(p[1]) - self.cy) * self.scale)
 
 
-def _polygon(surf: pygame.Surface, view: _View, poly, colour, width: int, fill=None) -> None:
+def _polygon(surf: pygame.Surface, view: _View, poly, colour, width: int) -> None:
+    """``poly`` (k, 2) in field px, outlined ``width`` px wide (0: filled)."""
     pts = [view(p) for p in poly]
     if len(pts) >= 3:
-        if fill is not None:
-            pygame.draw.polygon(surf, fill, pts)
         pygame.draw.polygon(surf, colour, pts, width)
     elif len(pts) == 2:
-        pygame.draw.line(surf, colour, pts[0], pts[1], width)
+        pygame.draw.line(surf, colour, pts[0], pts[1], max(width, 1))
     else:
         pygame.draw.circle(surf, colour, pts[0], 3)
 
@@ -152,17 +151,19 @@ def draw_hit(surface: pygame.Surface, rect: pygame.Rect, hit: HitRecord, font: p
     view = _View(points, area)
     clip = surface.get_clip()
     surface.set_clip(rect.inflate(-4, -4))
+    _polygon(surface, view, hit.player, PLAYER_FILL, 0)  # fills first, the player's under
     for h in hit.hitters:
-        _polygon(surface, view, h.polygon, HITTER, 2, HITTER_FILL)
-    _polygon(surface, view, hit.player, PLAYER, 2, PLAYER_FILL)
+        _polygon(surface, view, h.polygon, HITTER_FILL, 0)
+    _polygon(surface, view, hit.player, PLAYER, 2)
     for h in hit.hitters:
-        _polygon(surface, view, h.polygon, HITTER, 1)  # its outline over the player's fill
+        _polygon(surface, view, h.polygon, HITTER, 2)
     for h in hit.hitters:
         _contact(surface, view, area, hit.player, h)
     surface.set_clip(clip)
     if first is not None:
         _line(surface, font, describe(first), rect, rect.bottom - 3 * LINE - 4, ui.WHITE)
-        _line(surface, font, tiers_line(first), rect, rect.bottom - 2 * LINE - 4, ui.GOOD)
+        if first.tiers:
+            _line(surface, font, tiers_line(first), rect, rect.bottom - 2 * LINE - 4, ui.GOOD)
     _line(surface, font, LEGEND, rect, rect.bottom - LINE - 4, ui.DIM)
 
 
