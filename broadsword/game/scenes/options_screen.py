@@ -50,6 +50,10 @@ ROWS = (
 
 #: The rows of options (the rebindable actions follow them).
 OPTION_ROWS = sum(1 for r in ROWS if r.option)
+#: The first row's centre and the lowest a row may reach (the help line is below), px; the
+#: rows' spacing: 26 px, or less when that many rows (and the two 10 px gaps) would not fit.
+TOP_Y, BOTTOM_Y = 110, 556
+ROW_STEP = min(26, (BOTTOM_Y - TOP_Y - 20) // (len(ROWS) - 1))
 
 
 class OptionsScene:
@@ -164,10 +168,15 @@ class OptionsScene:
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
         for i, row in enumerate(ROWS):
-            y = 110 + 26 * i + (10 if i >= OPTION_ROWS else 0) + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
+            y = (
+                TOP_Y
+                + ROW_STEP * i
+                + (10 if i >= OPTION_ROWS else 0)
+                + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
+            )
             chosen = i == self.row
             if chosen:
-                pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))
+                pygame.draw.rect(surf, (40, 50, 100), (12, y - ROW_STEP // 2, w - 24, ROW_STEP - 1))
             colour = ui.GOLD if chosen else ui.WHITE
             p.text(row.label, y, colour=colour, x=w * 0.45, anchor="midright")
             p.text(self.value(row), y, colour=ui.CREAM if chosen else ui.DIM, x=w * 0.45 + 14, anchor="midleft")
