@@ -5,6 +5,7 @@
     broadsword --headless --level LEVEL --frames N --seed S --autopilot
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
+    broadsword --headless ... --hit-log hits.json  also write what hit the player, hit by hit, as JSON
     broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
     broadsword --list-levels
     broadsword --version
@@ -33,13 +34,17 @@ import os
 import sys
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from . import __version__
 from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, frame_list, lab_size, natural, nonempty, seed
 from .data import DataError, list_levels, load_level, recordings, resolve_level
 from .data.difficulty import Difficulty
 from .data.recordings import Recording, load_recording
-from .fileio import check_writable
+from .fileio import check_writable, write_atomic
+
+if TYPE_CHECKING:
+    from .runner.hits import HitCollector
 
 
 @dataclass(frozen=True)
@@ -97,6 +102,13 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         metavar="F1,F2,...",
         help="--headless --replay: report the state hash after each of these frames of the run "
         '(the JSON\'s hashes: {"F": hash})',
+    )
+    ap.add_argument(
+        "--hit-log",
+        metavar="FILE",
+        default=None,
+        help="--headless: write every hit on the player (what hit, both polygons, the edges that crossed or "
+        "the containment, the tiers that passed) to FILE as JSON (docs/FORMATS.md, 'Hit log')",
     )
     ap.add_argument(
         "--list-levels",
@@ -210,6 +222,12 @@ def _run_play(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
             return 2
+        if args.hit_log is not None and not args.headless:
+            print("broadsword: --hit-log needs --headless (in a window, a miss shows what hit)", file=sys.stderr)
+            return 2
+        if args.hit_log is not None and (why := check_writable(args.hit_log)):
+            print(f"broadsword: --hit-log {args.hit_log!r}: {why}", file=sys.stderr)
+            return 2
         if args.hashes is not None and not (args.headless and replay):
             print("broadsword: --hashes needs --headless and --replay", file=sys.stderr)
             return 2
@@ -225,7 +243,9 @@ def _run_play(args: argparse.Namespace) -> int:
             os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
             frames = args.frames if args.frames is not None else (replay.frames if replay else 600)
             from .headless import run_headless
+            from .runner.hits import HitCollector
 
+            hits = HitCollector()
             summary, recording = run_headless(
                 level,
                 frames,
@@ -236,8 +256,11 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
                 args.hashes or (),
+                [hits],
             )
             saved = _save_recording(args.record, recording) if args.record else True
+            if args.hit_log is not None:
+                saved = _save_hit_log(args.hit_log, hits) and saved
             for warning in summary["warnings"]:
                 print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
@@ -313,6 +336,19 @@ def _save_recording(dest: str, recording: Recording) -> bool:
             )
             return False
         print(f"broadsword: --record {dest}: cannot write ({why}); saved the run as {rescue} instead", file=sys.stderr)
+        return False
+    return True
+
+
+def _save_hit_log(dest: str, hits: HitCollector) -> bool:
+    """Write the run's hit log (a :class:`~.runner.hits.HitCollector`'s) to ``dest``
+    atomically; say why on standard error if it cannot."""
+    from .runner.hits import hit_log_document
+
+    try:
+        write_atomic(dest, (json.dumps(hit_log_document(hits.hits), indent=1) + "\n").encode())
+    except OSError as exc:
+        print(f"broadsword: --hit-log {dest}: cannot write ({exc.strerror or exc})", file=sys.stderr)
         return False
     return True
 

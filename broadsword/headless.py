@@ -29,6 +29,7 @@ def run_headless(
     rotation: str | None = None,
     difficulty: Difficulty = Difficulty.NORMAL,
     hashes: Sequence[int] = (),
+    watch: Sequence[Observer] = (),
 ) -> tuple[dict, Recording]:
     """Play at most ``frames`` steps with no window; return the summary (DESIGN.md's JSON)
     and the run's :class:`Recording`.
@@ -41,10 +42,11 @@ def run_headless(
     and, when a checkpoint's hash differed, ``first_mismatch``. ``rotation``, when given,
     replaces the level's ``scene.rotation``; ``difficulty`` picks the stage's values for it.
     ``hashes``: the run's frames after which to report the state hash (``hashes``: frame ->
-    hash; frames never reached are left out).
+    hash; frames never reached are left out). ``watch``: more observers of the run (the hit
+    log's :class:`~broadsword.runner.hits.HitCollector`).
     """
     tally, peak, hashed = TierTally(), PeakBullets(), StateHashes(hashes)
-    observers: list[Observer] = [tally, peak, hashed]
+    observers: list[Observer] = [tally, peak, hashed, *watch]
     if replay is not None:
         runner = Runner.replaying(replay, replay_path, observers=observers)
         runner.play_back(replay_path, frames=frames)

@@ -18,6 +18,7 @@ the game. Modules, one idea each:
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
 * ``tiers``       every tier in one registry, and the one rule for their order
 * ``frame``       one frame's typed record: the objects in, the result out
+* ``explain``     why one pair touches or not (crossing edges, containment) and which tiers passed it
 * ``pipeline``    the tiered pipeline a scene configures
 * ``debugdraw``   the debug-draw protocol (no renderer), and what a frame looks like through it
 * ``scenarios``   seeded reference scenes (tests, the lab and the benchmark)
@@ -39,6 +40,18 @@ from .broadphase import (
     QuadTree,
     TreeLayout,
     auto_bin_size,
+)
+from .explain import (
+    ContactKind,
+    Containment,
+    EdgeCrossing,
+    Explanation,
+    Side,
+    TierVerdict,
+    Verdict,
+    explain,
+    posed_polygon,
+    tiers_passed,
 )
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
@@ -82,6 +95,16 @@ __all__ = [
     "TierKind",
     "TreeLayout",
     "check_kernel",
+    "ContactKind",
+    "Containment",
+    "EdgeCrossing",
+    "Explanation",
+    "Side",
+    "TierVerdict",
+    "Verdict",
+    "explain",
+    "posed_polygon",
+    "tiers_passed",
     "warm_kernel",
     "check_tiers",
     "kdops",

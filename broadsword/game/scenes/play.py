@@ -18,6 +18,7 @@ import pygame
 from ...data import DataError
 from ...runner import Playback, Runner
 from ...sim import DT, Input, Pilot, World
+from ...sim.hitlog import Outcome
 from .. import heap
 from ..controls import Action, Controls
 
@@ -166,6 +167,10 @@ class Play:
         ev = self.runner.step(inp)
         self.source.stepped(world)
         self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
+        if ev.hit is not None and ev.hit.outcome is Outcome.MISS and self.app.options.show_hits and not self.app.demo:
+            from .hit_freeze import HitFreeze
+
+            self.app.stack.push(HitFreeze(self.app, self, ev.hit))  # what hit: a wall-clock freeze, never state
         if isinstance(self.source, ReplayInput):
             playback = self.source.playback
             if playback.divergence is not None or playback.done:
