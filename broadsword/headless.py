@@ -11,7 +11,6 @@ from collections.abc import Callable, Sequence
 
 from .data.difficulty import Difficulty
 from .data.recordings import Recording
-from .fileio import cache_home
 from .runner import Observer, PeakBullets, Runner, StageStart, StateHashes, TierTally, open_stage
 from .runner.practice import (
     PracticeCache,
@@ -121,9 +120,7 @@ def _practice_runner(
     check_phase(boss_phases(stage), choice.phase)  # usage errors before a long autopilot pass
     if (problem := choice.problem()) is not None:
         raise PracticeError(problem)
-    if cache is None:
-        cache = PracticeCache(cache_home() / "practice")
-    at = prepare(stage, cache, say).start(choice.phase)
+    at = prepare(stage, cache or PracticeCache.default(), say).start(choice.phase)
     stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
     d = at.loadout
     extra = {

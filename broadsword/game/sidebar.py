@@ -48,6 +48,7 @@ class Mark(Enum):
 
     REPLAY = "REPLAY"
     DEMO = "DEMO"
+    PRACTICE = "PRACTICE"
 
 
 @dataclass(frozen=True)

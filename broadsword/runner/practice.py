@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
-from ..fileio import read_capped, write_atomic
+from ..fileio import cache_home, read_capped, write_atomic
 from ..sim import DT, Pilot
 from ..sim.player import LIVES_MAX, POWER_MAX, POWER_MIN
 from ..sim.snapshot import FORMAT_VERSION as SNAPSHOT_FORMAT
@@ -194,6 +194,12 @@ def _loadout(stage: Stage) -> Loadout:
     return Loadout(int(p.lives), int(p.bombs), int(p.power))
 
 
+def start_of(stage: Stage) -> PhaseStart:
+    """Phase 0 of ``stage`` (just opened): its start, with the level's own loadout (no
+    autopilot pass needed)."""
+    return PhaseStart(STAGE_START, stage.world.frame, _loadout(stage))
+
+
 class PhaseCollector:
     """One autopilot pass over a stage, collecting every phase's start. Call
     :meth:`advance` until it returns True (a window steps it a chunk a frame and shows
@@ -207,7 +213,7 @@ class PhaseCollector:
         self.phases = boss_phases(stage)
         self.pilot = Pilot()
         self.snaps = Snapshots(world)
-        self.starts = [PhaseStart(STAGE_START, world.frame, _loadout(stage))]
+        self.starts = [start_of(stage)]
         self.ending = ""
         self.done = self.phases == 0
         # for the progress bar: the boss's arrival plus every phase's time limit, in frames
@@ -366,7 +372,7 @@ def from_json(doc: object) -> PhaseStarts:
 
 
 class PracticeCache:
-    """Phase starts kept in ``directory`` (default :func:`~broadsword.fileio.cache_home`
+    """Phase starts kept in ``directory`` (:meth:`default`: :func:`~broadsword.fileio.cache_home`
     ``/ "practice"``), one JSON file per stage, seed, difficulty and rotation, written
     atomically. :meth:`load` says in ``note`` (one line) why a file there was not used:
     damaged, or made for another level file, game version or snapshot format (stale)."""
@@ -374,6 +380,11 @@ class PracticeCache:
     def __init__(self, directory: Path):
         self.directory = Path(directory)
         self.note: str | None = None
+
+    @classmethod
+    def default(cls) -> PracticeCache:
+        """The user's practice cache: ``cache_home() / "practice"``."""
+        return cls(cache_home() / "practice")
 
     def path(self, key: PracticeKey) -> Path:
         return self.directory / key.file_name()

@@ -6,10 +6,12 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import tempfile
 from pathlib import Path
 
 import pytest
 import shipped
+from support.practice import write_level
 
 from broadsword.cli import main
 from broadsword.runner import Runner, StageStart, open_stage
@@ -29,55 +31,11 @@ from broadsword.sim import Pilot
 
 ARMATURES = shipped.armatures()
 
-#: A stage that is all boss: it arrives after 1 s, three short phases (the autopilot reaches
-#: every one within some 200 frames).
-LEVEL = """
-[level]
-title = "Practice test"
-
-[player]
-lives = 3
-
-[boss]
-name = "Test Warden"
-at = 1.0
-score = 1000
-y = 130
-sway = 40
-
-[[boss.part]]
-sprite = "frigate"
-offset = [0, 0]
-spin = 0
-fire = "aimed"
-bullet = "pellet"
-bullet_speed = 150
-fire_every = 0.5
-
-[[boss.phase]]
-name = "First"
-hp = 30
-time = 5
-
-[[boss.phase]]
-name = "Second"
-hp = 30
-time = 5
-
-[[boss.phase]]
-hp = 30
-time = 5
-"""
-
 
 @functools.cache
 def level_file() -> str:
     """The test stage's file (one per process, like the shipped levels: do not change it)."""
-    import tempfile
-
-    path = Path(tempfile.mkdtemp(prefix="broadsword-practice-")) / "warden.toml"
-    path.write_text(LEVEL, encoding="utf-8")
-    return str(path)
+    return str(write_level(Path(tempfile.mkdtemp(prefix="broadsword-practice-"))))
 
 
 def start(seed: int = 0) -> StageStart:

@@ -22,6 +22,8 @@ MESSAGE_LINES, MESSAGE_SIZE = 4, 18
 DIFFICULTIES = list(Difficulty)
 #: The key that opens "How to play".
 HOW_TO_PLAY_KEY = pygame.K_i
+#: The key that opens practice (a stage or a boss phase, with chosen lives, bombs and power).
+PRACTICE_KEY = pygame.K_p
 #: The first-run hint's colour (gold, pulsing) and place.
 HINT_Y = 232
 
@@ -79,6 +81,10 @@ class Title:
             from .armatures import ArmatureList
 
             app.stack.push(ArmatureList(app))
+        elif key == PRACTICE_KEY:
+            from .practice_menu import PracticeMenu
+
+            app.stack.push(PracticeMenu(app))
         elif key == pygame.K_o:
             from .options_screen import OptionsScene
 
@@ -119,7 +125,7 @@ class Title:
         p.text(f"Stage: {name}   {hint}", 258, colour=ui.CREAM)
         p.text(f"Difficulty: < {app.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
         p.text(
-            f"{confirm_label(app.controls.bindings)} play   O options   H scores   E edit hit shapes   Esc quit",
+            f"{confirm_label(app.controls.bindings)} play   P practice   O options   H scores   E hit shapes   Esc quit",
             310,
             colour=ui.DIM,
         )
