@@ -188,7 +188,8 @@ class PracticeMenu:
         level = app.levels[self.index]
         y = 140
         self._row(surf, Row.STAGE, y, f"< {app.stage_title(level)} >")
-        y += 34
+        y += 40
+        p.text("captured / tried", y - 20, 16, ui.DIM, x=w - 16, anchor="midright")
         p.text("Phase", y, colour=ui.GOLD if ROWS[self.row] is Row.PHASE else ui.WHITE, x=w * 0.3, anchor="midright")
         reached = len(self.starts.starts) if self.starts is not None else None
         for i, name in enumerate(self.names):

@@ -39,6 +39,8 @@ class PracticeResult:
     def draw(self, surf: pygame.Surface) -> None:
         p, o, pr = self.app.painter, self.outcome, self.practice
         p.veil()
+        w = self.app.screen.get_width()
+        p.panel(pygame.Rect(24, 190, w - 48, 320))  # over the field's own captions
         p.text("PRACTICE", 220, ui.HEADING, ui.DIM)
         p.text(pr.label, 256, colour=ui.CREAM)
         if o.captured:
