@@ -16,8 +16,10 @@ from .runner.practice import (
     PracticeCache,
     PracticeChoice,
     PracticeError,
+    StartUnfit,
     boss_phases,
     check_phase,
+    practice_info,
     practice_stage,
     prepare,
 )
@@ -120,8 +122,15 @@ def _practice_runner(
     check_phase(boss_phases(stage), choice.phase)  # usage errors before a long autopilot pass
     if (problem := choice.problem()) is not None:
         raise PracticeError(problem)
-    at = prepare(stage, cache or PracticeCache.default(), say).start(choice.phase)
-    stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
+    cache = cache or PracticeCache.default()
+    at = prepare(stage, cache, say).start(choice.phase)
+    try:
+        stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
+    except StartUnfit as exc:  # kept by a game whose snapshots differ: made again, once
+        if say is not None:
+            say(f"{exc}: it is made again")
+        at = prepare(open_stage(start), cache, say, fresh=True).start(choice.phase)
+        stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
     d = at.loadout
     extra = {
         "practice": True,
@@ -129,4 +138,4 @@ def _practice_runner(
         "origin": at.frame,
         "defaults": {"lives": d.lives, "bombs": d.bombs, "power": d.power},
     }
-    return Runner(stage, observers), extra
+    return Runner(stage, observers, info=practice_info(choice.phase)), extra

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
+from ..data.recordings import RecordingInfo, RunKind
 from ..fileio import cache_home, read_capped, write_atomic
 from ..sim import DT, Pilot
 from ..sim.player import LIVES_MAX, POWER_MAX, POWER_MIN
@@ -49,6 +50,11 @@ STAGE_START = 0
 class PracticeError(ValueError):
     """A practice cannot start: a phase the stage does not have, or a loadout out of range
     (a usage error). ``str()`` is one line saying which."""
+
+
+class StartUnfit(PracticeError):
+    """A kept phase start does not restore into the stage (the cache was made by a game
+    whose snapshots differ): it is to be made again."""
 
 
 class PhaseNotReached(PracticeError):
@@ -430,7 +436,8 @@ class PracticeCache:
 def practice_stage(stage: Stage, phase: PhaseStart, loadout: Loadout) -> Stage:
     """``stage`` (just opened, as a run opens it) moved to ``phase``'s start (its snapshot
     restored), with the player given ``loadout``. :class:`PracticeError` for a loadout out of
-    range or a snapshot that does not fit the stage (a cache made for other data)."""
+    range, :class:`StartUnfit` for a snapshot that does not fit the stage (a cache made by
+    another game: make it again). Play it in a runner with :func:`practice_info`."""
     problem = loadout.problem()
     if problem is not None:
         raise PracticeError(problem)
@@ -439,10 +446,16 @@ def practice_stage(stage: Stage, phase: PhaseStart, loadout: Loadout) -> Stage:
         try:
             Snapshots(world).restore(world, phase.snapshot)
         except ValueError as exc:
-            raise PracticeError(f"phase {phase.phase}'s start cannot be restored: {exc}") from None
+            raise StartUnfit(f"phase {phase.phase}'s kept start does not fit this game ({exc})") from None
     p = world.player
     p.lives, p.bombs, p.power = loadout.lives, loadout.bombs, loadout.power
     return stage
+
+
+def practice_info(phase: int) -> RecordingInfo:
+    """What a practice's recording says it was (its start snapshot is then kept, whatever
+    the frame: the loadout may differ from the level's)."""
+    return RecordingInfo(kind=RunKind.PRACTICE, phase=phase)
 
 
 def prepare(
@@ -450,13 +463,15 @@ def prepare(
     cache: PracticeCache,
     say: Callable[[str], None] | None = None,
     progress: Callable[[float], None] | None = None,
+    fresh: bool = False,
 ) -> PhaseStarts:
     """The phase starts of ``stage`` (just opened; the autopilot may play it): from ``cache``,
-    else collected (one autopilot pass, ``progress`` told the fraction done) and kept there.
+    else (or with ``fresh``) collected (one autopilot pass, ``progress`` told the fraction
+    done) and kept there.
     ``say`` is told, one line each, a cache not used and why, that the pass is made, and a
     cache that could not be written."""
     key = PracticeKey.of(stage)
-    starts = cache.load(key)
+    starts = None if fresh else cache.load(key)
     if cache.note and say is not None:
         say(cache.note)
     if starts is not None:

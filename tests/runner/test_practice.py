@@ -173,3 +173,30 @@ def test_headless_practice_usage_errors_exit_2_before_any_play(extra, words, cap
 
 def test_practice_choice_takes_the_defaults_it_is_not_given():
     assert PracticeChoice(2, bombs=0).loadout(Loadout(3, 3, 185)) == Loadout(3, 0, 185)
+
+
+@pytest.mark.parametrize(
+    "phase,loadout", [(2, ["--lives", "5", "--bombs", "0"]), (0, ["--bombs", "0", "--power", "300"])]
+)
+def test_a_practice_is_recorded_as_one_and_replays_to_a_match(phase, loadout, capsys, monkeypatch, tmp_path):
+    """Its start (the phase's state and the loadout, at frame 0 too) is kept in the recording."""
+    monkeypatch.setenv("BROADSWORD_CACHE_DIR", str(tmp_path))
+    PracticeCache(tmp_path / "practice").save(starts())
+    rec = tmp_path / "practice-run.json"
+    args = ["--headless", "--level", level_file(), "--practice", str(phase), *loadout, "--frames", "40"]
+    code, played, _ = run([*args, "--autopilot", "--record", str(rec)], capsys)
+    assert code == 0
+    info = json.loads(rec.read_text())["info"]
+    assert (info["kind"], info["phase"]) == ("practice", phase)
+    code, replayed, _ = run(["--headless", "--replay", str(rec)], capsys)
+    assert code == 0 and replayed["replay_matches"] is True and replayed["frames"] == 40
+    assert replayed["state_hash"] == played["state_hash"]
+
+
+def test_a_kept_start_that_no_longer_fits_is_made_again(capsys, monkeypatch, tmp_path):
+    monkeypatch.setenv("BROADSWORD_CACHE_DIR", str(tmp_path))
+    other = starts(5)  # another seed's snapshots, kept under seed 0's key: they do not restore
+    PracticeCache(tmp_path / "practice").save(dataclasses.replace(starts(), starts=other.starts))
+    code, s, err = run(["--headless", "--level", level_file(), "--practice", "1", "--frames", "0"], capsys)
+    assert code == 0 and "does not fit this game" in err and "preparing practice" in err
+    assert s["origin"] == starts().starts[1].frame and s["state_hash"] == full_run_hashes()[0][s["origin"]]

@@ -26,7 +26,9 @@ from ...runner.practice import (
     PracticeChoice,
     PracticeError,
     PracticeKey,
+    StartUnfit,
     phase_names,
+    practice_info,
     practice_stage,
     start_of,
 )
@@ -171,7 +173,17 @@ class PracticeMenu:
         if defaults is None:  # a phase the autopilot did not reach: the note says so
             return
         self.app.audio.play("select")
-        start_practice(self.app, self.index, self.choice, self.starts, self.record)
+        self.refused(start_practice(self.app, self.index, self.choice, self.starts, self.record))
+
+    def refused(self, why: DataError | PracticeError | None) -> None:
+        """Say why a practice could not start (None: it started); a kept start that no longer
+        fits is prepared again at the next Enter."""
+        if why is None:
+            return
+        self.note = str(why)
+        if isinstance(why, StartUnfit):
+            self.starts = None
+            self.note += "; Enter prepares the stage again"
 
     def update(self, dt: float) -> int:
         return 0
@@ -239,11 +251,13 @@ class PracticeMenu:
         p.text(value, y, colour=ui.CREAM if chosen else ui.DIM, x=w * 0.3 + 14, anchor="midleft")
 
 
-def start_practice(app, index: int, choice: PracticeChoice, starts: PhaseStarts | None, record: RecordFile) -> bool:
+def start_practice(
+    app, index: int, choice: PracticeChoice, starts: PhaseStarts | None, record: RecordFile
+) -> DataError | PracticeError | None:
     """Open shipped stage ``index`` at the choice's phase with its loadout (each value chosen,
     else the default) and play it as a practice: recorded, marked PRACTICE, never in the high
-    scores; the attempt is counted in ``record``. A boss phase needs ``starts``. On a failure,
-    the practice screen (on top) says why and stays."""
+    scores; the attempt is counted in ``record``. A boss phase needs ``starts``. Returns why
+    it could not start (None: it started): :meth:`PracticeMenu.refused` says so."""
     run = Run(index, app.difficulty)
     try:
         stage = open_stage(stage_start(run, app.levels, app.seed), app.bank.armatures)
@@ -251,17 +265,14 @@ def start_practice(app, index: int, choice: PracticeChoice, starts: PhaseStarts 
         loadout = choice.loadout(at.loadout)
         practice_stage(stage, at, loadout)
     except (DataError, PracticeError) as exc:
-        top = app.stack.top
-        if isinstance(top, PracticeMenu):
-            top.note = str(exc)
-        return False
+        return exc
     phase = phase_names(stage)[choice.phase]
     label = f"{app.stage_title(app.levels[index])}: {phase if choice.phase == 0 else f'{choice.phase}. {phase}'}"
     practice = PracticeRun(index, choice, loadout, app.difficulty, stage.world, record, label)
     practice.counted(None)
     app.hint = False
-    app.play_stage(stage, run, Runner(stage), practice=practice)
-    return True
+    app.play_stage(stage, run, Runner(stage, info=practice_info(choice.phase)), practice=practice)
+    return None
 
 
 def _with(choice: PracticeChoice, name: str, value: int | None) -> PracticeChoice:

@@ -25,8 +25,10 @@ class PracticeResult:
         pr = self.practice
         if actions & {Action.CONFIRM, Action.FIRE}:
             menu = PracticeMenu(self.app, pr.index, pr.choice)
-            if not start_practice(self.app, pr.index, pr.choice, menu.starts, pr.record):
-                self.app.stack.reset(menu)  # it says why
+            why = start_practice(self.app, pr.index, pr.choice, menu.starts, pr.record)
+            if why is not None:
+                menu.refused(why)
+                self.app.stack.reset(menu)
         elif Action.BACK in actions:
             self.app.stack.reset(PracticeMenu(self.app, pr.index, pr.choice))
         else:
