@@ -11,6 +11,7 @@ import pygame
 import pytest
 from support.practice import write_level
 
+from broadsword.data.recordings import RunKind
 from broadsword.game.app import App
 from broadsword.game.practice_run import Ending, PracticeRun
 from broadsword.game.practicefile import FILE_NAME, RecordFile, Tally, load_record, save_record
@@ -148,6 +149,8 @@ def test_practice_from_the_title_prepares_starts_and_ends_with_its_phase(app):
     again.world.player.lives = 0  # no life left: a game over at the next step
     app.frame(DT)
     assert isinstance(app.scene, PracticeResult) and app.scene.outcome.ending is Ending.OUT_OF_LIVES
-    assert app.recording() is not None and app.recording().stages[0].inputs  # recorded
+    rec = app.recording()
+    assert rec is not None and rec.stages[0].inputs and rec.stages[0].snapshot  # recorded, from its start
+    assert (rec.info.kind, rec.info.phase) == (RunKind.PRACTICE, 2)
     press(app, pygame.K_ESCAPE)
     assert isinstance(app.scene, PracticeMenu) and app.scene.choice.phase == 2 and app.scene.starts is not None
