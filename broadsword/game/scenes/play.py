@@ -170,12 +170,11 @@ class Play:
         ev = self.runner.step(inp)
         self.source.stepped(world)
         self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
-        outcome = self.practice.outcome(ev, world) if self.practice is not None else None
-        if outcome is not None:
+        if self.practice is not None and (outcome := self.practice.outcome(ev, world)) is not None:
             from .practice_result import PracticeResult
 
             self.ended = True
-            self.app.stack.push(PracticeResult(self.app, self, outcome))
+            self.app.stack.push(PracticeResult(self.app, self.practice, outcome))
         elif isinstance(self.source, ReplayInput):
             playback = self.source.playback
             if playback.divergence is not None or playback.done:

@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import dataclasses
 from enum import Enum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pygame
 
 from ...data import DataError
+from ...data.difficulty import Difficulty
 from ...runner import Runner, Stage, open_stage
 from ...runner.practice import (
     LOADOUT_RANGES,
@@ -38,6 +39,9 @@ from ..controls import Action
 from ..practice_run import PracticeRun
 from ..practicefile import FILE_NAME, RecordFile
 from ..run import Run, stage_start
+
+if TYPE_CHECKING:
+    from ..app import App
 
 #: Left/Right change power by this much (0.25 on the panel's scale).
 POWER_CHANGE = 5 * POWER_STEP
@@ -61,7 +65,7 @@ LOADOUT_ROWS = {Row.LIVES: "lives", Row.BOMBS: "bombs", Row.POWER: "power"}
 class PracticeMenu:
     opaque = True
 
-    def __init__(self, app, index: int | None = None, choice: PracticeChoice | None = None):
+    def __init__(self, app: App, index: int | None = None, choice: PracticeChoice | None = None):
         self.app = app
         self.index = app.start_index if index is None else index  # the shipped stage
         self.choice = choice or PracticeChoice(0)  # the phase, and the values changed (None: defaults)
@@ -76,7 +80,7 @@ class PracticeMenu:
 
     # ------------------------------------------------------------------ the chosen stage
     @property
-    def difficulty(self):
+    def difficulty(self) -> Difficulty:
         return self.app.difficulty
 
     def _open(self) -> Stage:
@@ -252,7 +256,7 @@ class PracticeMenu:
 
 
 def start_practice(
-    app, index: int, choice: PracticeChoice, starts: PhaseStarts | None, record: RecordFile
+    app: App, index: int, choice: PracticeChoice, starts: PhaseStarts | None, record: RecordFile
 ) -> DataError | PracticeError | None:
     """Open shipped stage ``index`` at the choice's phase with its loadout (each value chosen,
     else the default) and play it as a practice: recorded, marked PRACTICE, never in the high

@@ -6,6 +6,7 @@ in the cache and the practice screen shows the defaults. Esc stops it (nothing i
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import pygame
 
@@ -13,6 +14,10 @@ from ...runner import Stage
 from ...runner.practice import PhaseCollector
 from .. import ui
 from ..controls import Action
+
+if TYPE_CHECKING:
+    from ..app import App
+    from .practice_menu import PracticeMenu
 
 #: Wall-clock time the pass may take per screen frame, s (the screen stays responsive).
 BUDGET_S = 0.05
@@ -22,7 +27,7 @@ BAR = (90, 170, 255)
 class Preparing:
     opaque = True
 
-    def __init__(self, app, menu, stage: Stage):
+    def __init__(self, app: App, menu: PracticeMenu, stage: Stage):
         self.app, self.menu = app, menu
         self.title = app.stage_title(stage.level_ref)
         self.collector = PhaseCollector(stage)

@@ -3,20 +3,24 @@ phase's captures/attempts; Enter tries again, Esc goes back to the practice scre
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import pygame
 
 from .. import ui
 from ..controls import Action
-from ..practice_run import Ending, Outcome
+from ..practice_run import Ending, Outcome, PracticeRun
+
+if TYPE_CHECKING:
+    from ..app import App
 
 
 class PracticeResult:
     opaque = False
 
-    def __init__(self, app, play, outcome: Outcome):
-        self.app, self.play, self.outcome = app, play, outcome
-        self.practice = play.practice
-        self.practice.counted(outcome)
+    def __init__(self, app: App, practice: PracticeRun, outcome: Outcome):
+        self.app, self.practice, self.outcome = app, practice, outcome
+        practice.counted(outcome)
 
     def handle(self, event: pygame.event.Event) -> bool:
         from .practice_menu import PracticeMenu, start_practice
