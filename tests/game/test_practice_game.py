@@ -4,6 +4,7 @@ phase (never at the high scores), the result screen, and the practice record fil
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from types import SimpleNamespace
 
@@ -144,7 +145,7 @@ def test_practice_from_the_title_prepares_starts_and_ends_with_its_phase(app):
     assert isinstance(result, PracticeResult) and result.outcome.ending is Ending.TIMED_OUT
     press(app, pygame.K_RETURN)  # try again: a new attempt at the same start
     again = app.scene
-    assert isinstance(again, Play) and again is not play and again.world.frame - at.frame in (0, 1)  # 0 or 1 step in
+    assert isinstance(again, Play) and again is not play and app.recording().stages[0].origin == at.frame
     assert RecordFile(app.data / FILE_NAME).record.of("warden", "normal", 2) == Tally(2, 0)
     again.world.player.lives = 0  # no life left: a game over at the next step
     app.frame(DT)
@@ -154,3 +155,31 @@ def test_practice_from_the_title_prepares_starts_and_ends_with_its_phase(app):
     assert (rec.info.kind, rec.info.phase) == (RunKind.PRACTICE, 2)
     press(app, pygame.K_ESCAPE)
     assert isinstance(app.scene, PracticeMenu) and app.scene.choice.phase == 2 and app.scene.starts is not None
+
+
+def test_a_phase_the_autopilot_never_reached_is_said_and_cannot_start(app):
+    from broadsword.runner import open_stage
+    from broadsword.runner.practice import collect
+
+    full = collect(open_stage(app_start(app), app.bank.armatures))
+    short = dataclasses.replace(
+        full, starts=full.starts[:2], ending="the autopilot ran out of lives 9 s into the stage"
+    )
+    PracticeCache.default().save(short)
+    press(app, pygame.K_p)
+    menu = app.scene
+    press(app, pygame.K_DOWN, pygame.K_RIGHT, pygame.K_RIGHT)  # phase 2: not reached
+    assert (
+        menu.defaults() is None
+        and menu.note == "Second: not reached (the autopilot ran out of lives 9 s into the stage)"
+    )
+    press(app, pygame.K_RETURN)
+    assert app.scene is menu  # nothing starts
+    press(app, pygame.K_LEFT, pygame.K_RETURN)  # phase 1 was reached: it starts
+    assert isinstance(app.scene, Play) and app.recording().stages[0].origin == full.starts[1].frame
+
+
+def app_start(app):
+    from broadsword.game.run import Run, stage_start
+
+    return stage_start(Run(0, app.difficulty), app.levels, app.seed)
