@@ -8,8 +8,8 @@ as :class:`~broadsword.sim.boss.Boss` counts). The world there is snapshotted
 (:mod:`broadsword.sim.snapshot`); the lives, bombs and power the autopilot had there are the
 practice's defaults. One pass of the autopilot collects every phase (:class:`PhaseCollector`,
 stepped in chunks so a window can show its progress); :class:`PracticeCache` keeps the
-result on disk (docs/FORMATS.md, "Practice starts"), since stage 5's boss is some 30 s of
-CPU away.
+result on disk (docs/FORMATS.md, "Practice starts"), since stage 5's last phase is some 35 s
+of CPU away.
 
 A practice stage (:func:`practice_stage`) is the stage opened as a run would open it, the
 phase's snapshot restored into it, then the chosen :class:`Loadout` put on the player.
@@ -37,7 +37,7 @@ from .stages import Stage
 
 #: The practice cache file's format (docs/FORMATS.md, "Practice starts").
 CACHE_FORMAT, CACHE_VERSION = "broadsword-practice", 1
-#: A practice cache file is never read past this many bytes (stage 5's is some 1 MB).
+#: A practice cache file is never read past this many bytes (stage 5's is some 14 KB).
 CACHE_MAX_BYTES = 64 << 20
 #: Bombs a practice may start with, at most (the game has no other cap; this keeps a typo sane).
 BOMBS_MAX = 9
@@ -222,15 +222,16 @@ class PhaseCollector:
         self.starts = [start_of(stage)]
         self.ending = ""
         self.done = self.phases == 0
-        # for the progress bar: the boss's arrival plus every phase's time limit, in frames
+        # for the progress bar: the boss's arrival plus the time limits of every phase but the
+        # last (the pass stops where the last one starts), in frames
         self.expected = 1
         if self.boss is not None:
-            self.expected = round(self.boss.spec.at / DT) + sum(self.boss.phase_limits)
+            self.expected = round(self.boss.spec.at / DT) + sum(self.boss.phase_limits[:-1])
 
     @property
     def fraction(self) -> float:
         """How far the pass has come, 0 to 1 (by frames, against the boss's arrival and its
-        phases' time limits; 1 when done)."""
+        phases' time limits: phases beaten early make it jump; 1 when done)."""
         return 1.0 if self.done else min(0.99, self.runner.world.frame / self.expected)
 
     def advance(self, steps: int) -> bool:
