@@ -1,5 +1,5 @@
-"""The title: choose the stage (Left/Right) and the difficulty (Up/Down), then play; the
-options and the high scores are a key away. A level that failed to load is shown here,
+"""The title: choose the stage (Left/Right) and the difficulty (Up/Down), then play; practice
+(P), the options and the high scores are a key away. A level that failed to load is shown here,
 in a panel where the controls list goes, so another can be picked."""
 
 from __future__ import annotations
