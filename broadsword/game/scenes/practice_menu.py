@@ -236,11 +236,15 @@ class PracticeMenu:
             where = "the level's start" if c.phase == 0 else "what the autopilot had here"
             p.text(line, y + 4, 20, ui.DIM)
             p.text(f"({where} on {self.difficulty.title})", y + 26, 20, ui.DIM)
+        elif self.starts is not None:  # prepared, and this phase was not reached (the note says why)
+            p.text(f"The autopilot did not reach this phase on {self.difficulty.title}:", y + 4, 20, ui.WARN)
+            p.text("it cannot be practised on this difficulty", y + 26, 20, ui.WARN)
         else:
             p.text("Defaults: the autopilot's at this phase, once it has played", y + 4, 20, ui.DIM)
             p.text("the stage to it (Enter: about 10-40 s, once; then kept)", y + 26, 20, ui.DIM)
         y += 64
-        self._row(surf, Row.START, y, "Enter" if d is not None or c.phase == 0 else "Enter (prepares first)")
+        start = "Enter" if d is not None else ("Enter (prepares first)" if self.starts is None else "-")
+        self._row(surf, Row.START, y, start)
         if self.note:
             for i, line in enumerate(p.lines(self.note, w - 24, 3, 18)):
                 p.text(line, 560 + 16 * i, 18, ui.WARN)
