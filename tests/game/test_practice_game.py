@@ -183,3 +183,28 @@ def app_start(app):
     from broadsword.game.run import Run, stage_start
 
     return stage_start(Run(0, app.difficulty), app.levels, app.seed)
+
+
+def test_a_phase_beaten_with_no_miss_and_no_bomb_is_a_capture(app):
+    from broadsword.runner import open_stage
+    from broadsword.runner.practice import collect
+
+    PracticeCache.default().save(collect(open_stage(app_start(app), app.bank.armatures)))
+    press(app, pygame.K_p, pygame.K_DOWN, pygame.K_RIGHT, pygame.K_RETURN)  # phase 1, its defaults
+    play = app.scene
+    assert isinstance(play, Play)
+    w = play.world
+    w.boss.hp = 1  # the first shot that lands beats the phase
+    w.player.invulnerable = 10.0  # nothing can cost a life meanwhile
+    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_z, mod=0, unicode="", scancode=0))  # fire, held
+    for _ in range(240):
+        app.frame(DT)
+        if isinstance(app.scene, PracticeResult):
+            break
+    result = app.scene
+    assert isinstance(result, PracticeResult)
+    assert result.outcome.ending is Ending.BEATEN and result.outcome.captured
+    assert RecordFile(app.data / FILE_NAME).record.of("warden", "normal", 1) == Tally(1, 1)
+    app.painter.forget()
+    result.draw(app.screen)
+    assert "CAPTURED" in app.painter.said and "Captures / attempts: 1/1" in app.painter.said
