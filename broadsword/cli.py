@@ -6,6 +6,7 @@
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
     broadsword --headless ... --hit-log hits.json  also write what hit the player, hit by hit, as JSON
+    broadsword --headless --level L --practice P start at boss phase P (0: the stage's start)
     broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
     broadsword --list-levels
     broadsword --version
@@ -34,7 +35,7 @@ import os
 import sys
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 from . import __version__
 from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, frame_list, lab_size, natural, nonempty, seed
@@ -45,6 +46,7 @@ from .fileio import check_writable, write_atomic
 
 if TYPE_CHECKING:
     from .runner.hits import HitCollector
+    from .runner.practice import PracticeChoice
 
 
 @dataclass(frozen=True)
@@ -110,6 +112,19 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         help="--headless: write every hit on the player (what hit, both polygons, the edges that crossed or "
         "the containment, the tiers that passed) to FILE as JSON (docs/FORMATS.md, 'Hit log')",
     )
+    ap.add_argument(
+        "--practice",
+        type=natural,
+        metavar="PHASE",
+        help="--headless: start at the start of the boss's phase PHASE (1-based; 0: the stage's start), "
+        "reached as the autopilot reaches it on the difficulty (one pass, kept in the cache directory), with "
+        "the lives, bombs and power it had there unless --lives, --bombs, --power say otherwise; the JSON adds "
+        "practice, phase, origin (the world frame there) and defaults. Exit 2 for a phase the stage has not, "
+        "1 if the autopilot does not reach it",
+    )
+    ap.add_argument("--lives", type=natural, help="--practice: start with these lives (1-9)")
+    ap.add_argument("--bombs", type=natural, help="--practice: start with these bombs (0-9)")
+    ap.add_argument("--power", type=natural, help="--practice: start with this power (100-400; 100 is 1.00)")
     ap.add_argument(
         "--list-levels",
         action="store_true",
@@ -228,6 +243,8 @@ def _run_play(args: argparse.Namespace) -> int:
         if args.hit_log is not None and (why := check_writable(args.hit_log)):
             print(f"broadsword: --hit-log {args.hit_log!r}: {why}", file=sys.stderr)
             return 2
+        if (practice := _practice_choice(args, replay)) is False:
+            return 2
         if args.hashes is not None and not (args.headless and replay):
             print("broadsword: --hashes needs --headless and --replay", file=sys.stderr)
             return 2
@@ -256,7 +273,9 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
                 args.hashes or (),
-                [hits],
+                watch=[hits],
+                practice=practice or None,
+                say=lambda line: print(f"broadsword: {line}", file=sys.stderr),
             )
             saved = _save_recording(args.record, recording) if args.record else True
             if args.hit_log is not None:
@@ -271,6 +290,34 @@ def _run_play(args: argparse.Namespace) -> int:
     except (DataError, KernelChoiceError) as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 2
+    except ValueError as exc:  # a practice: a phase the stage has not (2), or one the autopilot never reached (1)
+        from .runner.practice import PhaseNotReached, PracticeError
+
+        if not isinstance(exc, PracticeError):
+            raise
+        print(f"broadsword: {exc}", file=sys.stderr)
+        return 1 if isinstance(exc, PhaseNotReached) else 2
+
+
+def _practice_choice(args: argparse.Namespace, replay: Recording | None) -> PracticeChoice | None | Literal[False]:
+    """The practice ``--practice`` asks for (None: none); False, said on stderr, when the
+    options do not go together."""
+    loadout = {"lives": args.lives, "bombs": args.bombs, "power": args.power}
+    if args.practice is None:
+        given = [f"--{k}" for k, v in loadout.items() if v is not None]
+        if given:
+            print(f"broadsword: {', '.join(given)}: only with --practice", file=sys.stderr)
+            return False
+        return None
+    if not args.headless or replay is not None:
+        print(
+            "broadsword: --practice needs --headless and no --replay (in the window: the title's Practice)",
+            file=sys.stderr,
+        )
+        return False
+    from .runner.practice import PracticeChoice
+
+    return PracticeChoice(args.practice, **loadout)
 
 
 class KernelChoiceError(Exception):

@@ -34,6 +34,7 @@ from .feedback import Feedback
 from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
+from .practice_run import PracticeRun
 from .render import Renderer
 from .replaylib import ReplayLibrary
 from .replays import Replays, keep_run
@@ -276,11 +277,14 @@ class App:
 
     def panel_info(self) -> PanelInfo:
         """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
-        recording plays, "DEMO" while the autopilot does, none while the player plays."""
+        recording plays, "DEMO" while the autopilot does, "PRACTICE" in a practice, none
+        while the player plays a run."""
         play = self.play
         mark = None
         if play is not None and play.watched:
             mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
+        elif play is not None and play.practice is not None:
+            mark = Mark.PRACTICE
         difficulty = self.world.settings.difficulty if self.world is not None else self.difficulty
         held = None
         if play is not None and self.options.input_display:
@@ -315,12 +319,14 @@ class App:
             self.play_stage(stage, run)
         return True
 
-    def play_stage(self, stage: Stage, run: Run | None = None, runner: Runner | None = None) -> Play:
+    def play_stage(
+        self, stage: Stage, run: Run | None = None, runner: Runner | None = None, practice: PracticeRun | None = None
+    ) -> Play:
         """Play ``stage`` (a world already made) as the only scene: in ``runner`` (whose
-        stage in play it is), else as a new run."""
+        stage in play it is), else as a new run; ``practice``: as that practice."""
         self.error = None
         self.runner = runner if runner is not None else Runner(stage)
-        play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty))
+        play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty), practice=practice)
         self.stack.reset(play)
         return play
 
