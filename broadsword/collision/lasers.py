@@ -196,45 +196,56 @@ def laser_pieces(
     """
     n_all = len(nodes)
     starts = np.zeros(1, dtype=np.int64) if starts is None else np.asarray(starts, dtype=np.int64)
-    ends = np.append(starts[1:], n_all)  # one past each laser's last node
-    counts = ends - starts
     lasers = len(starts)
+    ends = np.empty_like(starts)  # one past each laser's last node
+    ends[:-1], ends[-1] = starts[1:], n_all
     x, y = nodes[:, 0], nodes[:, 1]
     h = 0.5 * widths  # exact (half of a double is a double, barring subnormals: rounded once)
-    # segments: every node but each laser's last starts one
-    seg_start = np.delete(np.arange(n_all), ends - 1)
-    seg_chain = np.repeat(np.arange(lasers), counts - 1)
+    chain = np.zeros(n_all, dtype=np.int64)  # each node's laser
+    chain[starts[1:]] = 1
+    np.cumsum(chain, out=chain)
+    # segments: every node but each laser's last starts one; segment s of laser l starts
+    # at node s + l
+    last = np.zeros(n_all, dtype=bool)
+    last[ends - 1] = True
+    seg_start = np.flatnonzero(~last)
+    seg_chain = np.take(chain, seg_start)
     seg_first = starts - np.arange(lasers)  # segment index of each laser's first segment
-    seg_last = seg_first + counts - 2
+    seg_last = seg_first + (ends - starts) - 2
     a, b = seg_start, seg_start + 1
-    ux, uy = _normals(np.stack([x[a], x[b]]), np.stack([y[a], y[b]]), seg_chain, seg_first, seg_last)
+    xa, ya, xb, yb = np.take(x, a), np.take(y, a), np.take(x, b), np.take(y, b)
+    ux, uy = _normals(np.stack([xa, xb]), np.stack([ya, yb]), seg_chain, seg_first, seg_last)
     # joins: interior nodes, between a laser's consecutive segments s-1 and s
-    join_seg = np.setdiff1d(np.arange(len(seg_start)), seg_first)  # a join's second segment
-    join_node = seg_start[join_seg]
-    join_chain = seg_chain[join_seg]
-    segs, joins = len(seg_start), len(join_seg)
-    px, py = np.empty((4, segs + joins)), np.empty((4, segs + joins))
+    interior = ~last
+    interior[starts] = False
+    join_node = np.flatnonzero(interior)
+    join_chain = np.take(chain, join_node)
+    cur = join_node - join_chain  # the segment starting at the node
+    prev = cur - 1
+    # Where each piece goes: laser l's pieces begin at 2 starts[l] - 3 l, its segments first.
+    seg_dest = seg_start + np.take(starts - 3 * np.arange(lasers), seg_chain)
+    join_dest = join_node + np.take(ends - 3 * np.arange(lasers) - 2, join_chain)
+    total = 2 * n_all - 3 * lasers
+    px, py = np.empty((4, total)), np.empty((4, total))
     with np.errstate(over="ignore", invalid="ignore"):
         # segment pieces: p_i + h_i u_i, p_i+1 + h_i+1 u_i, p_i+1 - h_i+1 u_i, p_i - h_i u_i
-        ax, ay, bx, by = h[a] * ux, h[a] * uy, h[b] * ux, h[b] * uy
-        px[0, :segs], py[0, :segs] = x[a] + ax, y[a] + ay
-        px[1, :segs], py[1, :segs] = x[b] + bx, y[b] + by
-        px[2, :segs], py[2, :segs] = x[b] - bx, y[b] - by
-        px[3, :segs], py[3, :segs] = x[a] - ax, y[a] - ay
+        ha, hb = np.take(h, a), np.take(h, b)
+        ax, ay, bx, by = ha * ux, ha * uy, hb * ux, hb * uy
+        px[0, seg_dest], py[0, seg_dest] = xa + ax, ya + ay
+        px[1, seg_dest], py[1, seg_dest] = xb + bx, yb + by
+        px[2, seg_dest], py[2, seg_dest] = xb - bx, yb - by
+        px[3, seg_dest], py[3, seg_dest] = xa - ax, ya - ay
         # joins at p_i (0 < i < n-1): p + h u_i-1, p + h u_i, p - h u_i-1, p - h u_i
-        xi, yi, hi = x[join_node], y[join_node], h[join_node]
-        prev, cur = join_seg - 1, join_seg
-        vx0, vy0, vx1, vy1 = hi * ux[prev], hi * uy[prev], hi * ux[cur], hi * uy[cur]
-        j = slice(segs, segs + joins)
-        px[0, j], py[0, j] = xi + vx0, yi + vy0
-        px[1, j], py[1, j] = xi + vx1, yi + vy1
-        px[2, j], py[2, j] = xi - vx0, yi - vy0
-        px[3, j], py[3, j] = xi - vx1, yi - vy1
+        xi, yi, hi = np.take(x, join_node), np.take(y, join_node), np.take(h, join_node)
+        vx0, vy0 = hi * np.take(ux, prev), hi * np.take(uy, prev)
+        vx1, vy1 = hi * np.take(ux, cur), hi * np.take(uy, cur)
+        px[0, join_dest], py[0, join_dest] = xi + vx0, yi + vy0
+        px[1, join_dest], py[1, join_dest] = xi + vx1, yi + vy1
+        px[2, join_dest], py[2, join_dest] = xi - vx0, yi - vy0
+        px[3, join_dest], py[3, join_dest] = xi - vx1, yi - vy1
     _box_unbounded(px, py)
-    owner = np.concatenate([seg_chain, join_chain])
-    # each laser's pieces together: its segments, then its joins
-    order = np.argsort(owner, kind="stable")
-    return px[:, order], py[:, order], owner[order]
+    owner = np.repeat(np.arange(lasers), 2 * (ends - starts) - 3)
+    return px, py, owner
 
 
 def pieces_touching(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> np.ndarray:

@@ -8,6 +8,10 @@ place, last. Every tier is conservative, so the hits of a scene that ends with
 whatever tiers come before. A scene without ``armature`` accepts its last tier's pairs as
 hits (cheaper, approximate).
 
+Lasers (:class:`~broadsword.collision.lasers.Laser`) go through the same tiers as their
+pieces, one object each (:mod:`broadsword.collision.laserframe`): ``step(..., lasers=[...],
+laser_layer=[...])``; what they hit comes back in :attr:`FrameResult.lasers`.
+
 Update order (paper, section 1.4): call :meth:`Pipeline.step` once per frame *after every
 object has moved*. Registering objects in bins while others still have to move lets two
 objects that overlap for a single update pass through each other.
@@ -26,6 +30,8 @@ from ._warm import warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
+from .laserframe import LaserPieces, LaserResult, laser_hits, laser_table, split_pairs, with_pieces
+from .lasers import Laser
 from .layers import LayerTable
 from .narrow import collide_pairs
 from .pixels import MaskCache
@@ -138,6 +144,8 @@ class Pipeline:
         prev_positions: np.ndarray | None = None,
         prev_angles: np.ndarray | None = None,
         swept: np.ndarray | None = None,
+        lasers: Sequence[Laser] = (),
+        laser_layer: np.ndarray | None = None,
     ) -> FrameResult:
         """Run every tier on one frame's poses. Call after all movement of the frame.
 
@@ -153,6 +161,13 @@ class Pipeline:
             Last frame's poses, for the objects in ``swept``.
         swept : (n,) bool, optional
             Objects to sweep from their previous pose (fast movers: the "quick gun" fix).
+        lasers : sequence of Laser, optional
+            The frame's lasers, each tested as its pieces against the objects its layer
+            tests (never against another laser). An object touches a laser exactly when it
+            touches one of its pieces; a fast object is caught crossing a laser between
+            frames by sweeping the object. Results: :attr:`FrameResult.lasers`.
+        laser_layer : (L,) int, optional
+            Layer id of each laser; required with ``lasers``.
 
         Raises
         ------
@@ -161,9 +176,14 @@ class Pipeline:
             a non-finite or non-real value, an id that is not an integer or is out of range
             (:mod:`broadsword.collision.arguments` has the rules). Read-only arrays (memory
             maps, ``np.frombuffer``, frozen views) are accepted, with the same answers on
-            both kernels (copied where a compiled kernel needs a writeable array).
+            both kernels (copied where a compiled kernel needs a writeable array). A
+            laser that is not a ``Laser``, a ``laser_layer`` of the wrong length or out
+            of range, or lasers in a pipeline with the ``pixel`` tier (it has masks for
+            armatures only).
         """
-        return self.run(FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept))
+        return self.run(
+            FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept, lasers, laser_layer)
+        )
 
     @staticmethod
     def _refuse_overflow(boxes: np.ndarray) -> None:
@@ -190,9 +210,20 @@ class Pipeline:
             layer, "layer", len(self.layers.names), f"the layer table has {len(self.layers.names)} layers"
         )
         n = len(layer)
-        stats = [TierStats("layers", n * (n - 1) // 2, self.layers.possible_pairs(layer), 0.0)]
-        tier_pairs = {}
         clock = time.perf_counter
+        t_lasers = clock()
+        lasers = self._laser_pieces(objects)
+        p = 0 if lasers is None else lasers.count
+        t_lasers = clock() - t_lasers
+        if lasers is None:
+            table = self.layers
+            stats = [TierStats("layers", n * (n - 1) // 2, table.possible_pairs(layer), 0.0)]
+        else:
+            table = laser_table(self.layers)  # with a shadow layer for the pieces (a few entries: cheap)
+            alone = self.layers.possible_pairs(layer)
+            allowed = table.possible_pairs(np.concatenate([layer, lasers.layer + len(self.layers.names)]))
+            stats = [TierStats("layers", n * (n - 1) // 2 + n * p, allowed, 0.0, n * p, allowed - alone)]
+        tier_pairs = {}
 
         t0 = clock()
         swept = objects.swept if objects.swept is not None and objects.swept.any() else None
@@ -219,30 +250,51 @@ class Pipeline:
             # more than the skipped posing costs (docs/PERFORMANCE.md).
             if compiled is None:
                 boxes = bounds.aabbs(posed)
-            stats.append(TierStats("pose", n, n, (clock() - t0) * 1e3))
-            t0 = clock()
         else:
             boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
+        # Laser pieces join the frame as objects n .. n + p - 1 (laserframe.py).
+        all_posed, all_boxes, all_layer = posed, boxes, layer
+        if lasers is not None:
+            all_posed = with_pieces(posed, lasers, self.workspace)
+            all_boxes = self.workspace.get("laser_boxes", (n + p, 4))
+            all_boxes[:n], all_boxes[n:] = boxes, lasers.boxes
+            all_layer = np.concatenate([layer, lasers.layer + len(self.layers.names)])
+        if self.needs_vertices:
+            stats.append(TierStats("pose", n + p, n + p, (clock() - t0 + t_lasers) * 1e3, p, p))
+            t0 = clock()
         try:
-            pairs, broad = self.broad_phase.query(boxes, layer, self.layers)
+            pairs, broad = self.broad_phase.query(all_boxes, all_layer, table)
         except ValueError:
             self._refuse_overflow(boxes)
             raise
         candidates = pairs
-        stats.append(TierStats(self.tiers[0].value, stats[0].pairs_out, len(pairs), (clock() - t0) * 1e3))
+        stats.append(self._stats(self.tiers[0].value, stats[0], pairs, n, clock() - t0, lasers is not None))
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0].value] = pairs
 
-        inp = TierInput(objects, posed, boxes, self.workspace, self.masks, self.kernel)
+        inp = TierInput(objects, all_posed, all_boxes, self.workspace, self.masks, self.kernel)
         for tier in self.tiers[1:]:
             t0 = clock()
-            n_in = len(pairs)
             keep = TIERS[tier].keep
             assert keep is not None  # check_tiers: only the first tier is a broad phase
+            before = stats[-1]
             pairs = pairs[keep(inp, pairs)]
-            stats.append(TierStats(tier.value, n_in, len(pairs), (clock() - t0) * 1e3))
+            stats.append(self._stats(tier.value, before, pairs, n, clock() - t0, lasers is not None))
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs
+        laser_result = None
+        if lasers is not None:
+            pairs, piece_hits = split_pairs(pairs, n)
+            candidates, laser_candidates = split_pairs(candidates, n)
+            split = {name: split_pairs(kept, n) for name, kept in tier_pairs.items()}
+            tier_pairs = {name: both[0] for name, both in split.items()}
+            laser_result = LaserResult(
+                lasers,
+                laser_hits(piece_hits, lasers),
+                piece_hits,
+                laser_candidates,
+                {name: both[1] for name, both in split.items()},
+            )
         return FrameResult(
             pairs,
             tuple(stats),
@@ -254,4 +306,27 @@ class Pipeline:
             self.rotation,
             self.layers,
             tier_pairs,
+            laser_result,
         )
+
+    def _laser_pieces(self, objects: FrameObjects) -> LaserPieces | None:
+        """The pieces of the frame's lasers, their layers checked; None without lasers."""
+        if not objects.lasers:
+            return None
+        if self.masks is not None:
+            raise ValueError("lasers: the pixel tier cannot test lasers (it has masks for armatures only)")
+        layer = objects.laser_layer
+        assert layer is not None  # FrameObjects: an array when there are lasers
+        names = len(self.layers.names)
+        arguments.in_range(layer, "laser_layer", names, f"the layer table has {names} layers")
+        return LaserPieces.of(objects.lasers, layer)
+
+    @staticmethod
+    def _stats(name: str, before: TierStats, pairs: np.ndarray, n: int, seconds: float, lasers: bool) -> TierStats:
+        """A tier's row: the pairs ``before`` let out went in, ``pairs`` came out; in a frame
+        with ``lasers``, also how many of each were (object, piece) pairs (the pieces are
+        the objects from ``n`` on)."""
+        if not lasers:
+            return TierStats(name, before.pairs_out, len(pairs), seconds * 1e3)
+        out = int(np.count_nonzero((pairs[:, 0] >= n) | (pairs[:, 1] >= n)))
+        return TierStats(name, before.pairs_out, len(pairs), seconds * 1e3, before.laser_pairs_out, out)

@@ -1,0 +1,258 @@
+"""Lasers in the pipeline: one frame's laser pieces as objects of the tiers.
+
+A laser (:class:`~broadsword.collision.lasers.Laser`) is tested as its pieces, convex quads
+(:mod:`broadsword.collision.lasers` defines them). The pipeline appends every piece of the
+frame after the frame's ``n`` objects, as object ``n + j``, and runs every tier on them as on
+any posed polygon of four vertices: the broad phase bins each piece by its own box (so a
+long laser is many small boxes, and neither coarsens the automatic bin size nor fills the
+grid), the bound tiers bound each piece (its box; a circle around its box; an oriented box
+along its first edge; its 8-DOP), and the exact test decides each (object, piece) pair. An
+object touches a laser exactly when it touches one of the laser's pieces (DESIGN.md,
+"Lasers").
+
+Pieces test objects only, never other pieces: each layer ``L`` of the table gets a shadow
+layer for the pieces of lasers in ``L`` (:func:`laser_table`), which tests what ``L``
+tests, except pieces. So a laser never meets itself or another laser, whatever the table.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import detmath
+from .lasers import Laser, laser_pieces
+from .layers import LayerTable
+from .posing import Posed
+from .tolerance import BOUND_SLACK
+from .workspace import Workspace
+
+__all__ = ["LaserPieces", "LaserResult", "laser_table", "with_pieces"]
+
+#: Size class of a piece: a quad is a polygon of four vertices (posing's class 4).
+PIECE_CLASS = 4
+
+
+@dataclass(frozen=True, eq=False)
+class LaserPieces:
+    """Every piece of one frame's lasers, laser after laser.
+
+    Attributes
+    ----------
+    x, y : (4, P) float64
+        Column ``j`` is piece ``j``'s corners (:func:`~broadsword.collision.lasers.laser_pieces`).
+    laser : (P,) int64
+        The laser (an index into the frame's lasers) each piece belongs to.
+    piece : (P,) int64
+        Each piece's index within its laser: its ``n - 1`` segments first, then its
+        ``n - 2`` joins (the order of :meth:`Laser.pieces`).
+    layer : (P,) int64
+        The layer id of each piece's laser.
+    boxes : (P, 4) float64
+        Each piece's box ``(xmin, ymin, xmax, ymax)`` (closed; the min and max of its corners).
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    laser: np.ndarray
+    piece: np.ndarray
+    layer: np.ndarray
+    boxes: np.ndarray
+
+    @classmethod
+    def of(cls, lasers: Sequence[Laser], layer: np.ndarray) -> LaserPieces:
+        """The pieces of ``lasers`` (already checked: :class:`~broadsword.collision.FrameObjects`),
+        each in its laser's ``layer`` ((L,) int64); one vectorised call for all of them."""
+        if not lasers:
+            e = np.empty(0, dtype=np.int64)
+            return cls(np.empty((4, 0)), np.empty((4, 0)), e, e, e, np.empty((0, 4)))
+        counts = np.fromiter((la.n for la in lasers), dtype=np.int64, count=len(lasers))
+        starts = np.zeros(len(lasers), dtype=np.int64)
+        np.cumsum(counts[:-1], out=starts[1:])
+        nodes = np.concatenate([la.nodes for la in lasers])
+        widths = np.concatenate([la.widths for la in lasers])
+        x, y, owner = laser_pieces(nodes, widths, starts)
+        first = 2 * starts - 3 * np.arange(len(lasers))  # each laser's first piece
+        piece = np.arange(len(owner)) - np.take(first, owner)
+        boxes = np.empty((4, len(owner)))
+        np.min(x, axis=0, out=boxes[0])
+        np.min(y, axis=0, out=boxes[1])
+        np.max(x, axis=0, out=boxes[2])
+        np.max(y, axis=0, out=boxes[3])
+        return cls(x, y, owner, piece, np.take(layer, owner), boxes.T)
+
+    @property
+    def count(self) -> int:
+        """Number of pieces, ``P``."""
+        return len(self.laser)
+
+    def axes(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(ux, uy)`` (P,) each: the direction of each piece's first edge (corner 0 to 1:
+        along a segment piece, across a join's rectangle), scaled by a power of two into
+        ``[0.5, 1)``; ``(1, 0)`` where that edge has no length. The oriented-box tier boxes
+        each piece in these axes (any nonzero axis gives a conservative box: it is built
+        from the corners; this one makes it tight)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            dx = 0.5 * self.x[1] - 0.5 * self.x[0]  # halves: no overflow
+            dy = 0.5 * self.y[1] - 0.5 * self.y[0]
+        _, e = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
+        ux, uy = np.ldexp(dx, -e), np.ldexp(dy, -e)
+        flat = (ux == 0) & (uy == 0)
+        ux[flat] = 1.0
+        return ux, uy
+
+    def circles(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(centre (P, 2), radius (P,))``: a circle around each piece's box, inflated as
+        posing inflates every bounding circle (``posing._circles``) so that each corner
+        lies inside in spite of rounding; halves first, so nothing overflows."""
+        b = self.boxes
+        hx, hy = 0.5 * b[:, 2] - 0.5 * b[:, 0], 0.5 * b[:, 3] - 0.5 * b[:, 1]
+        centre = np.column_stack([0.5 * b[:, 0] + 0.5 * b[:, 2], 0.5 * b[:, 1] + 0.5 * b[:, 3]])
+        with np.errstate(over="ignore"):  # past the doubles is inf: still a bound
+            radius = detmath.norm(hx, hy) * (1.0 + BOUND_SLACK) + (
+                BOUND_SLACK * np.abs(centre[:, 0]) + BOUND_SLACK * np.abs(centre[:, 1]) + BOUND_SLACK
+            )
+        return centre, radius
+
+
+def laser_table(table: LayerTable) -> LayerTable:
+    """``table`` with a shadow layer for each layer's laser pieces: layer ``L + len(names)``
+    holds the pieces of lasers in layer ``L`` and tests every layer ``L`` tests, never a
+    shadow layer. The first column of a pair stays the table entry's first layer."""
+    names = list(table.names)
+    shadow = []
+    for name in table.names:
+        s = f"{name} (laser)"
+        while s in names or s in shadow:
+            s += "'"
+        shadow.append(s)
+    tests = [(table.names[a], table.names[b]) for a, b in table.entries]
+    for a, b in table.entries:
+        tests.append((table.names[a], shadow[b]))
+        if a != b:
+            tests.append((shadow[a], table.names[b]))
+    return LayerTable(names + shadow, tests)
+
+
+def with_pieces(posed: Posed, pieces: LaserPieces, workspace: Workspace) -> Posed:
+    """``posed`` with the pieces appended as objects ``n .. n + P - 1`` of size class 4.
+
+    A new :class:`Posed`: ``posed`` itself, and its arrays, are left as they were (class 4's
+    columns are copied into the workspace, the pieces after them); the other classes and
+    their pending sweeps are shared. Class 4 never holds a sweep (a swept polygon has at
+    least 8 vertices), so its members stay ascending with the pieces after them.
+    """
+    n, p, k = posed.n, pieces.count, PIECE_CLASS
+    assert k not in posed.sweeps and k not in posed.reordered  # swept classes start at 8
+    old = posed.members.get(k)
+    m = 0 if old is None else len(old)
+    x = workspace.get("laser_x4", (k, m + p))
+    y = workspace.get("laser_y4", (k, m + p))
+    if old is not None:
+        x[:, :m], y[:, :m] = posed.vx[k], posed.vy[k]
+    x[:, m:], y[:, m:] = pieces.x, pieces.y
+    members = dict(posed.members)
+    members[k] = np.arange(n, n + p) if old is None else np.concatenate([old, np.arange(n, n + p)])
+    vx, vy = dict(posed.vx), dict(posed.vy)
+    vx[k], vy[k] = x, y
+    ux, uy = pieces.axes()
+
+    def circles() -> tuple[np.ndarray, np.ndarray]:
+        c, r = pieces.circles()
+        return np.concatenate([posed.centre, c]), np.concatenate([posed.radius, r])
+
+    return Posed(
+        n + p,
+        np.concatenate([posed.klass, np.full(p, k, dtype=np.int64)]),
+        np.concatenate([posed.slot, np.arange(m, m + p)]),
+        vx,
+        vy,
+        members,
+        circles,
+        np.concatenate([posed.swept, np.zeros(p, dtype=bool)]),
+        np.concatenate([posed.cos, ux]),
+        np.concatenate([posed.sin, uy]),
+        posed.reordered,
+        posed.sweeps,
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class LaserResult:
+    """What the pipeline found for one frame's lasers (:attr:`FrameResult.lasers`).
+
+    Pairs are ``(object, piece)``: an object index of the frame and an index into
+    :attr:`pieces` (its laser is ``pieces.laser[piece]``), whichever layer of the table entry
+    came first.
+
+    Attributes
+    ----------
+    pieces : LaserPieces
+        Every piece tested, with its laser, its index within the laser, layer and box.
+    hits : (h, 3) int64
+        One row ``(object, laser, piece)`` per object and laser that touch, sorted by
+        object then laser; ``piece`` is the laser's first piece (lowest index within the
+        laser) that touches the object.
+    piece_hits : (m, 2) int64
+        Every touching ``(object, piece)`` pair.
+    candidates : (c, 2) int64
+        The broad phase's ``(object, piece)`` pairs.
+    tier_pairs : mapping str -> (m, 2) int64
+        Each tier's surviving ``(object, piece)`` pairs, when the pipeline keeps them.
+    """
+
+    pieces: LaserPieces
+    hits: np.ndarray
+    piece_hits: np.ndarray
+    candidates: np.ndarray
+    tier_pairs: Mapping[str, np.ndarray] = field(default_factory=dict)
+
+    def furthest_tier(self, tiers: Sequence[str]) -> np.ndarray:
+        """(P,) int64: for each piece, the index in ``tiers`` (the frame's tiers,
+        :attr:`FrameResult.tiers`) of the last tier where a pair with it survived; -1 when
+        the broad phase gave it no pair. Tiers whose pairs were not kept count as
+        passing everything between the broad phase and the hits."""
+        out = np.full(self.pieces.count, -1, dtype=np.int64)
+        for t, name in enumerate(tiers):
+            if name in self.tier_pairs:
+                pairs = self.tier_pairs[name]
+            elif t == 0:
+                pairs = self.candidates
+            elif t == len(tiers) - 1:
+                pairs = self.piece_hits
+            else:
+                continue
+            out[pairs[:, 1]] = t
+        return out
+
+
+def split_pairs(pairs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """``pairs`` (m, 2) over objects and pieces -> ``(object pairs, (object, piece) pairs)``:
+    the first keep their order; in the second the object comes first and pieces are
+    numbered from 0."""
+    piece_a, piece_b = pairs[:, 0] >= n, pairs[:, 1] >= n
+    laser = piece_a | piece_b
+    if not laser.any():
+        return pairs, np.empty((0, 2), dtype=np.int64)
+    lp = pairs[laser]
+    swap = piece_a[laser]
+    out = np.where(swap[:, None], lp[:, ::-1], lp)
+    out[:, 1] -= n
+    return pairs[~laser], out
+
+
+def laser_hits(piece_hits: np.ndarray, pieces: LaserPieces) -> np.ndarray:
+    """(h, 3) int64 rows ``(object, laser, piece)``: each touching object and laser once,
+    with the laser's lowest touching piece, sorted by object then laser."""
+    if not len(piece_hits):
+        return np.empty((0, 3), dtype=np.int64)
+    obj = piece_hits[:, 0]
+    laser = np.take(pieces.laser, piece_hits[:, 1])
+    piece = np.take(pieces.piece, piece_hits[:, 1])
+    order = np.lexsort((piece, laser, obj))
+    obj, laser, piece = obj[order], laser[order], piece[order]
+    first = np.ones(len(obj), dtype=bool)
+    first[1:] = (obj[1:] != obj[:-1]) | (laser[1:] != laser[:-1])
+    return np.column_stack([obj[first], laser[first], piece[first]]).astype(np.int64, copy=False)
