@@ -45,6 +45,7 @@ from .kdop import kdops, kdops_overlap
 from .lasers import (
     LASER_NODES_MAX,
     Laser,
+    LaserSet,
     laser_pieces,
     laser_touches,
     laser_touches_swept,
@@ -88,6 +89,7 @@ __all__ = [
     "kdops_overlap",
     "LASER_NODES_MAX",
     "Laser",
+    "LaserSet",
     "laser_pieces",
     "laser_touches",
     "laser_touches_swept",

@@ -17,7 +17,7 @@ import numpy as np
 from . import arguments
 from .broadphase.base import BroadPhaseStats
 from .laserframe import LaserResult
-from .lasers import Laser
+from .lasers import Laser, LaserSet
 from .layers import LayerTable
 from .posing import Posed
 
@@ -52,8 +52,9 @@ class FrameObjects:
     swept : (n,) bool
         Objects to sweep from their previous pose (the "quick gun" fix); all ``False``
         when none is given.
-    lasers : tuple of Laser
-        The frame's lasers (:class:`~broadsword.collision.lasers.Laser`), tested as their
+    lasers : LaserSet
+        The frame's lasers (given as a :class:`~broadsword.collision.lasers.LaserSet` or a
+        sequence of :class:`~broadsword.collision.lasers.Laser`, packed), tested as their
         pieces against the objects their layer tests (never against other lasers); empty
         when none is given. A laser is taken where it is: a fast object crossing it is
         caught by sweeping the object.
@@ -68,7 +69,7 @@ class FrameObjects:
     prev_positions: np.ndarray | None = None
     prev_angles: np.ndarray | None = None
     swept: np.ndarray | None = None
-    lasers: Sequence[Laser] = ()
+    lasers: LaserSet | Sequence[Laser] = ()
     laser_layer: np.ndarray | None = None
 
     def __post_init__(self) -> None:
@@ -92,9 +93,12 @@ class FrameObjects:
                 raise ValueError(f"{name}: {n} layer ids but {len(a)} {name} (nothing is broadcast)")
         if swept.any() and (self.prev_positions is None or self.prev_angles is None):
             raise ValueError("prev_positions and prev_angles (last frame's poses) are needed for swept objects")
-        lasers = tuple(arguments.sequence(self.lasers, "lasers", "Laser objects"))
-        for i, laser in enumerate(lasers):
-            arguments.instance(laser, f"lasers[{i}]", Laser, "a Laser (make one with Laser.of(nodes, width))")
+        lasers = self.lasers
+        if not isinstance(lasers, LaserSet):
+            given = arguments.sequence(lasers, "lasers", "Laser objects (or a LaserSet)")
+            for i, laser in enumerate(given):
+                arguments.instance(laser, f"lasers[{i}]", Laser, "a Laser (make one with Laser.of(nodes, width))")
+            lasers = LaserSet.pack(given)
         put(self, "lasers", lasers)
         if self.laser_layer is None and lasers:
             raise ValueError(f"laser_layer: {len(lasers)} lasers need one layer id each")

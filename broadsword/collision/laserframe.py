@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import detmath
-from .lasers import Laser, laser_pieces
+from .lasers import LaserSet
 from .layers import LayerTable
 from .posing import Posed
 from .tolerance import BOUND_SLACK
@@ -62,18 +62,11 @@ class LaserPieces:
     boxes: np.ndarray
 
     @classmethod
-    def of(cls, lasers: Sequence[Laser], layer: np.ndarray) -> LaserPieces:
-        """The pieces of ``lasers`` (already checked: :class:`~broadsword.collision.FrameObjects`),
-        each in its laser's ``layer`` ((L,) int64); one vectorised call for all of them."""
-        if not lasers:
-            e = np.empty(0, dtype=np.int64)
-            return cls(np.empty((4, 0)), np.empty((4, 0)), e, e, e, np.empty((0, 4)))
-        counts = np.fromiter((la.n for la in lasers), dtype=np.int64, count=len(lasers))
-        starts = np.zeros(len(lasers), dtype=np.int64)
-        np.cumsum(counts[:-1], out=starts[1:])
-        nodes = np.concatenate([la.nodes for la in lasers])
-        widths = np.concatenate([la.widths for la in lasers])
-        x, y, owner = laser_pieces(nodes, widths, starts)
+    def of(cls, lasers: LaserSet, layer: np.ndarray) -> LaserPieces:
+        """The pieces of ``lasers`` (checked), each in its laser's ``layer`` ((L,) int64),
+        in one vectorised call."""
+        x, y, owner = lasers.pieces()
+        starts = lasers.starts
         first = 2 * starts - 3 * np.arange(len(lasers))  # each laser's first piece
         piece = np.arange(len(owner)) - np.take(first, owner)
         boxes = np.empty((4, len(owner)))

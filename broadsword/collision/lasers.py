@@ -44,6 +44,7 @@ still collides by edge crossing and containment of its points.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -58,6 +59,7 @@ from .posing import _sweep
 __all__ = [
     "LASER_NODES_MAX",
     "Laser",
+    "LaserSet",
     "laser_pieces",
     "laser_touches",
     "laser_touches_swept",
@@ -99,16 +101,7 @@ class Laser:
         n = len(p)
         if not 2 <= n <= LASER_NODES_MAX:
             raise ValueError(f"nodes must hold 2 to {LASER_NODES_MAX} points, got {n}")
-        w = np.asarray(width, dtype=object)
-        if w.ndim == 0:
-            w = arguments.reals([width], "width", 1)
-            w = np.full(n, w[0])
-        else:
-            w = arguments.reals(width, "width", n)
-        if (w < 0).any():
-            i = int(np.flatnonzero(w < 0)[0])
-            raise ValueError(f"width must be >= 0, got {float(w[i])!r} at node {i}")
-        p, w = p.copy(), w.astype(np.float64, copy=True)
+        p, w = p.copy(), _widths(width, "width", n)
         p.flags.writeable = w.flags.writeable = False
         return cls(p, w)
 
@@ -123,6 +116,96 @@ class Laser:
         module docstring for the definition."""
         x, y, _ = laser_pieces(self.nodes, self.widths)
         return x, y
+
+
+def _widths(width, name: str, n: int) -> np.ndarray:
+    """``(n,)`` float64 widths, a fresh array: one real for all, or ``n`` reals; each
+    finite and ``>= 0`` (errors name ``name`` and the node)."""
+    if np.asarray(width, dtype=object).ndim == 0:
+        w = np.full(n, arguments.reals([width], name, 1)[0])
+    else:
+        w = arguments.reals(width, name, n).astype(np.float64, copy=True)
+    if (w < 0).any():
+        i = int(np.flatnonzero(w < 0)[0])
+        raise ValueError(f"{name} must be >= 0, got {float(w[i])!r} at node {i}")
+    return w
+
+
+@dataclass(frozen=True, eq=False)
+class LaserSet:
+    """Many lasers packed in three arrays, checked once: what a game keeps from frame to
+    frame and hands :meth:`Pipeline.step <broadsword.collision.Pipeline.step>` (building a
+    :class:`Laser` for each of 200 lasers every frame checks 200 times).
+
+    Attributes
+    ----------
+    nodes : (N, 2) float64, read-only
+        Every laser's nodes, one laser after another (finite).
+    widths : (N,) float64, read-only
+        The full width at each node (finite, ``>= 0``).
+    starts : (L,) int64, read-only
+        Where each laser begins in ``nodes``: 0 first, increasing, each laser 2 to
+        :data:`LASER_NODES_MAX` nodes.
+
+    Laser ``i`` is ``self[i]``, a :class:`Laser` with the same pieces, bit for bit.
+    """
+
+    nodes: np.ndarray
+    widths: np.ndarray
+    starts: np.ndarray
+
+    @classmethod
+    def of(cls, nodes, widths, starts) -> LaserSet:
+        """Lasers from packed ``nodes`` ((N, 2) reals), ``widths`` (one real, or (N,)
+        reals) and ``starts`` ((L,) integers); ``ValueError`` (or ``ArgumentTypeError``)
+        naming the argument for anything else."""
+        p = arguments.points(nodes, "nodes").copy()
+        w = _widths(widths, "widths", len(p))
+        s = arguments.ids(starts, "starts", None).astype(np.int64, copy=True)
+        if len(p) and not len(s):
+            raise ValueError(f"starts: {len(p)} nodes but no laser starts")
+        if len(s):
+            counts = np.diff(np.append(s, len(p)))
+            bad = np.flatnonzero((counts < 2) | (counts > LASER_NODES_MAX))
+            if s[0] != 0:
+                raise ValueError(f"starts must begin with 0, got {int(s[0])}")
+            if bad.size:
+                i = int(bad[0])
+                raise ValueError(
+                    f"starts: laser {i} has {int(counts[i])} nodes (from {int(s[i])}); "
+                    f"a laser has 2 to {LASER_NODES_MAX}"
+                )
+        for a in (p, w, s):
+            a.flags.writeable = False
+        return cls(p, w, s)
+
+    @classmethod
+    def pack(cls, lasers: Sequence[Laser]) -> LaserSet:
+        """The lasers of a sequence of :class:`Laser` (already checked), packed."""
+        if not lasers:
+            return cls(np.empty((0, 2)), np.empty(0), np.empty(0, dtype=np.int64))
+        counts = np.fromiter((la.n for la in lasers), dtype=np.int64, count=len(lasers))
+        starts = np.zeros(len(lasers), dtype=np.int64)
+        np.cumsum(counts[:-1], out=starts[1:])
+        nodes = np.concatenate([la.nodes for la in lasers])
+        widths = np.concatenate([la.widths for la in lasers])
+        for a in (nodes, widths, starts):
+            a.flags.writeable = False
+        return cls(nodes, widths, starts)
+
+    def __len__(self) -> int:
+        return len(self.starts)
+
+    def __getitem__(self, i: int) -> Laser:
+        ends = np.append(self.starts[1:], len(self.nodes))
+        return Laser(self.nodes[self.starts[i] : ends[i]], self.widths[self.starts[i] : ends[i]])
+
+    def pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every laser's pieces, ``(x, y, owner)``, as :func:`laser_pieces` gives them."""
+        if not len(self):
+            e = np.empty((4, 0))
+            return e, e.copy(), np.empty(0, dtype=np.int64)
+        return laser_pieces(self.nodes, self.widths, self.starts)
 
 
 def _normals(x: np.ndarray, y: np.ndarray, seg_chain: np.ndarray, seg_first: np.ndarray, seg_last: np.ndarray):

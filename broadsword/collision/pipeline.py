@@ -31,7 +31,7 @@ from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
 from .laserframe import LaserPieces, LaserResult, laser_hits, laser_table, split_pairs, with_pieces
-from .lasers import Laser
+from .lasers import Laser, LaserSet
 from .layers import LayerTable
 from .narrow import collide_pairs
 from .pixels import MaskCache
@@ -144,7 +144,7 @@ class Pipeline:
         prev_positions: np.ndarray | None = None,
         prev_angles: np.ndarray | None = None,
         swept: np.ndarray | None = None,
-        lasers: Sequence[Laser] = (),
+        lasers: LaserSet | Sequence[Laser] = (),
         laser_layer: np.ndarray | None = None,
     ) -> FrameResult:
         """Run every tier on one frame's poses. Call after all movement of the frame.
@@ -161,8 +161,9 @@ class Pipeline:
             Last frame's poses, for the objects in ``swept``.
         swept : (n,) bool, optional
             Objects to sweep from their previous pose (fast movers: the "quick gun" fix).
-        lasers : sequence of Laser, optional
-            The frame's lasers, each tested as its pieces against the objects its layer
+        lasers : LaserSet or sequence of Laser, optional
+            The frame's lasers (a :class:`LaserSet` is checked once for all: the cheaper
+            form for many lasers a frame), each tested as its pieces against the objects its layer
             tests (never against another laser). An object touches a laser exactly when it
             touches one of its pieces; a fast object is caught crossing a laser between
             frames by sweeping the object. Results: :attr:`FrameResult.lasers`.
@@ -311,15 +312,15 @@ class Pipeline:
 
     def _laser_pieces(self, objects: FrameObjects) -> LaserPieces | None:
         """The pieces of the frame's lasers, their layers checked; None without lasers."""
-        if not objects.lasers:
+        if not len(objects.lasers):
             return None
         if self.masks is not None:
             raise ValueError("lasers: the pixel tier cannot test lasers (it has masks for armatures only)")
-        layer = objects.laser_layer
-        assert layer is not None  # FrameObjects: an array when there are lasers
+        lasers, layer = objects.lasers, objects.laser_layer
+        assert isinstance(lasers, LaserSet) and layer is not None  # as FrameObjects packs them
         names = len(self.layers.names)
         arguments.in_range(layer, "laser_layer", names, f"the layer table has {names} layers")
-        return LaserPieces.of(objects.lasers, layer)
+        return LaserPieces.of(lasers, layer)
 
     @staticmethod
     def _stats(name: str, before: TierStats, pairs: np.ndarray, n: int, seconds: float, lasers: bool) -> TierStats:

@@ -16,7 +16,7 @@ from kernels import KERNELS
 from star_polygons import star
 from test_lasers import oracle
 
-from broadsword.collision import BROAD_PHASES, Armature, Laser, LayerTable, Pipeline, laser_touches_swept
+from broadsword.collision import BROAD_PHASES, Armature, Laser, LaserSet, LayerTable, Pipeline, laser_touches_swept
 from broadsword.collision.scenarios import ENEMY, ENEMY_BULLET, PLAYER, PLAYER_BULLET
 
 #: (scale, shift): coordinates are small integers times ``scale`` plus ``shift``.
@@ -262,3 +262,35 @@ def test_step__refuses_lasers_with_the_pixel_tier():
     pipe = Pipeline([Armature.box(4, 4)], TABLE, tiers=("bins", "pixel"))
     with pytest.raises(ValueError, match="lasers: the pixel tier"):
         pipe.step([0], [PLAYER], [(0.0, 0.0)], [0.0], lasers=[Laser.of([(0, 0), (1, 1)], 1)], laser_layer=[2])
+
+
+def test_laser_set__packed_lasers_give_the_same_answers_and_pieces():
+    arms, objects, lasers, layers = scene(7, 1.0, 0.0)
+    pipe = Pipeline(arms, TABLE, kernel="numpy")
+    packed = LaserSet.of(
+        np.concatenate([la.nodes for la in lasers]),
+        np.concatenate([la.widths for la in lasers]),
+        np.cumsum([0] + [la.n for la in lasers[:-1]]),
+    )
+    a = pipe.step(**objects, lasers=lasers, laser_layer=layers).lasers
+    b = pipe.step(**objects, lasers=packed, laser_layer=layers).lasers
+    assert a.hits.tolist() == b.hits.tolist() and a.piece_hits.tolist() == b.piece_hits.tolist()
+    for i, laser in enumerate(lasers):
+        assert [np.array_equal(u, v) for u, v in zip(packed[i].pieces(), laser.pieces())] == [True, True]
+
+
+@pytest.mark.parametrize(
+    "nodes, widths, starts, word",
+    [
+        ([(0, 0), (1, 1), (2, 2)], 1, [1], "starts must begin with 0"),
+        ([(0, 0), (1, 1), (2, 2)], 1, [0, 2], "laser 1 has 1 nodes"),
+        ([(0, 0), (1, 1)], 1, [], "starts"),
+        ([(0, 0), (1, 1)], 1, [0.5], "starts"),
+        ([(0, 0), (1, 1)], [1, -1], [0], "widths must be >= 0"),
+        ([(0, 0), (1, 1)], [1, 1, 1], [0], "widths"),
+        ([(0, 0), (1, float("inf"))], 1, [0], "nodes"),
+    ],
+)
+def test_laser_set_of__refuses_bad_arguments_naming_them(nodes, widths, starts, word):
+    with pytest.raises(ValueError, match=word):
+        LaserSet.of(nodes, widths, starts)
