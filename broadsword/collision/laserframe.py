@@ -83,15 +83,13 @@ class LaserPieces:
 
     def axes(self) -> tuple[np.ndarray, np.ndarray]:
         """``(ux, uy)`` (P,) each: the direction of each piece's first edge (corner 0 to 1:
-        along a segment piece, across a join's rectangle), scaled by a power of two into
-        ``[0.5, 1)``; ``(1, 0)`` where that edge has no length. The oriented-box tier boxes
+        along a segment piece, across a join's rectangle), halved (so it cannot overflow),
+        not normalised; ``(1, 0)`` where that edge has no length. The oriented-box tier boxes
         each piece in these axes (any nonzero axis gives a conservative box: it is built
         from the corners; this one makes it tight)."""
         with np.errstate(over="ignore", invalid="ignore"):
-            dx = 0.5 * self.x[1] - 0.5 * self.x[0]  # halves: no overflow
-            dy = 0.5 * self.y[1] - 0.5 * self.y[0]
-        _, e = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
-        ux, uy = np.ldexp(dx, -e), np.ldexp(dy, -e)
+            ux = 0.5 * self.x[1] - 0.5 * self.x[0]
+            uy = 0.5 * self.y[1] - 0.5 * self.y[0]
         flat = (ux == 0) & (uy == 0)
         ux[flat] = 1.0
         return ux, uy
@@ -129,8 +127,12 @@ def laser_table(table: LayerTable) -> LayerTable:
     return LayerTable(names + shadow, tests)
 
 
-def with_pieces(posed: Posed, pieces: LaserPieces, workspace: Workspace) -> Posed:
+def with_pieces(posed: Posed, pieces: LaserPieces, workspace: Workspace, aligned: bool = True) -> Posed:
     """``posed`` with the pieces appended as objects ``n .. n + P - 1`` of size class 4.
+
+    The pieces' rotations (``cos``, ``sin``: the axes of their oriented boxes) are their
+    :meth:`LaserPieces.axes` when ``aligned``, else ``(1, 0)`` (the obb tier, the only
+    reader, is not configured: skip the work).
 
     A new :class:`Posed`: ``posed`` itself, and its arrays, are left as they were (class 4's
     columns are copied into the workspace, the pieces after them); the other classes and
@@ -150,7 +152,7 @@ def with_pieces(posed: Posed, pieces: LaserPieces, workspace: Workspace) -> Pose
     members[k] = np.arange(n, n + p) if old is None else np.concatenate([old, np.arange(n, n + p)])
     vx, vy = dict(posed.vx), dict(posed.vy)
     vx[k], vy[k] = x, y
-    ux, uy = pieces.axes()
+    ux, uy = pieces.axes() if aligned else (np.ones(p), np.zeros(p))
 
     def circles() -> tuple[np.ndarray, np.ndarray]:
         c, r = pieces.circles()

@@ -134,6 +134,7 @@ class Pipeline:
         self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
+        self.laser_table = laser_table(self.layers)  # the table with a shadow layer for laser pieces
 
     def step(
         self,
@@ -220,7 +221,7 @@ class Pipeline:
             table = self.layers
             stats = [TierStats("layers", n * (n - 1) // 2, table.possible_pairs(layer), 0.0)]
         else:
-            table = laser_table(self.layers)  # with a shadow layer for the pieces (a few entries: cheap)
+            table = self.laser_table
             alone = self.layers.possible_pairs(layer)
             allowed = table.possible_pairs(np.concatenate([layer, lasers.layer + len(self.layers.names)]))
             stats = [TierStats("layers", n * (n - 1) // 2 + n * p, allowed, 0.0, n * p, allowed - alone)]
@@ -256,7 +257,7 @@ class Pipeline:
         # Laser pieces join the frame as objects n .. n + p - 1 (laserframe.py).
         all_posed, all_boxes, all_layer = posed, boxes, layer
         if lasers is not None:
-            all_posed = with_pieces(posed, lasers, self.workspace)
+            all_posed = with_pieces(posed, lasers, self.workspace, aligned=Tier.OBB in self.tiers)
             all_boxes = self.workspace.get("laser_boxes", (n + p, 4))
             all_boxes[:n], all_boxes[n:] = boxes, lasers.boxes
             all_layer = np.concatenate([layer, lasers.layer + len(self.layers.names)])
