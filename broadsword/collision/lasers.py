@@ -72,6 +72,13 @@ LASER_NODES_MAX = 4096
 
 _MAX = float(np.finfo(np.float64).max)
 
+#: Segments whose larger direction component lies in [LO, HI] (or is 0) get the same normal
+#: bits unscaled: scaling by a power of two commutes with correctly rounded operations while
+#: nothing leaves the normal range, and here only the smaller component's square can (to a
+#: subnormal or zero), below 2**-62 of the larger's square: rounded away in the sum, scaled
+#: or not. So the frexp/ldexp scaling runs only where a coordinate is extreme.
+_SCALE_FREE_LO, _SCALE_FREE_HI = 2.0**-480, 2.0**480
+
 
 @dataclass(frozen=True, eq=False)
 class Laser:
@@ -219,8 +226,12 @@ def _normals(x: np.ndarray, y: np.ndarray, seg_chain: np.ndarray, seg_first: np.
         if far.any():  # ends of opposite sign near the largest double: halve first
             dx[far] = 0.5 * x[1][far] - 0.5 * x[0][far]
             dy[far] = 0.5 * y[1][far] - 0.5 * y[0][far]
-    _, e = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
-    sx, sy = np.ldexp(dx, -e), np.ldexp(dy, -e)  # exact; the larger magnitude in [0.5, 1)
+    big = np.maximum(np.abs(dx), np.abs(dy))
+    if ((big >= _SCALE_FREE_LO) & (big <= _SCALE_FREE_HI) | (big == 0)).all():
+        sx, sy = dx, dy  # the scaling would change no bit (see _SCALE_FREE_LO); frexp is slow
+    else:
+        _, e = np.frexp(big)
+        sx, sy = np.ldexp(dx, -e), np.ldexp(dy, -e)  # exact; the larger magnitude in [0.5, 1)
     length = np.sqrt(sx * sx + sy * sy)
     has = length > 0
     ux, uy = np.zeros_like(dx), np.ones_like(dy)  # (0, 1): a chain with no length at all
@@ -280,54 +291,50 @@ def laser_pieces(
     n_all = len(nodes)
     starts = np.zeros(1, dtype=np.int64) if starts is None else np.asarray(starts, dtype=np.int64)
     lasers = len(starts)
-    ends = np.empty_like(starts)  # one past each laser's last node
-    ends[:-1], ends[-1] = starts[1:], n_all
+    counts = np.empty_like(starts)  # nodes per laser
+    counts[:-1] = np.diff(starts)
+    counts[-1] = n_all - starts[-1]
     x, y = nodes[:, 0], nodes[:, 1]
     h = 0.5 * widths  # exact (half of a double is a double, barring subnormals: rounded once)
-    chain = np.zeros(n_all, dtype=np.int64)  # each node's laser
-    chain[starts[1:]] = 1
-    np.cumsum(chain, out=chain)
-    # segments: every node but each laser's last starts one; segment s of laser l starts
-    # at node s + l
-    last = np.zeros(n_all, dtype=bool)
-    last[ends - 1] = True
-    seg_start = np.flatnonzero(~last)
-    seg_chain = np.take(chain, seg_start)
-    seg_first = starts - np.arange(lasers)  # segment index of each laser's first segment
-    seg_last = seg_first + (ends - starts) - 2
-    a, b = seg_start, seg_start + 1
-    xa, ya, xb, yb = np.take(x, a), np.take(y, a), np.take(x, b), np.take(y, b)
-    ux, uy = _normals(np.stack([xa, xb]), np.stack([ya, yb]), seg_chain, seg_first, seg_last)
-    # joins: interior nodes, between a laser's consecutive segments s-1 and s
-    interior = ~last
-    interior[starts] = False
-    join_node = np.flatnonzero(interior)
-    join_chain = np.take(chain, join_node)
-    cur = join_node - join_chain  # the segment starting at the node
-    prev = cur - 1
-    # Where each piece goes: laser l's pieces begin at 2 starts[l] - 3 l, its segments first.
-    seg_dest = seg_start + np.take(starts - 3 * np.arange(lasers), seg_chain)
-    join_dest = join_node + np.take(ends - 3 * np.arange(lasers) - 2, join_chain)
-    total = 2 * n_all - 3 * lasers
-    px, py = np.empty((4, total)), np.empty((4, total))
+    # Segments: laser l's nodes are starts[l] .., its segments starts[l] - l ..
+    seg_first = starts - np.arange(lasers)
+    seg_last = seg_first + counts - 2
+    seg_chain = np.repeat(np.arange(lasers), counts - 1)
+    seg_start = np.arange(n_all - lasers) + np.take(starts - seg_first, seg_chain)  # first node of each
+    ux, uy = _normals(
+        np.stack([np.take(x, seg_start), np.take(x, seg_start + 1)]),
+        np.stack([np.take(y, seg_start), np.take(y, seg_start + 1)]),
+        seg_chain,
+        seg_first,
+        seg_last,
+    )
+    # Every piece in output order (laser by laser, segments then joins) as two nodes and two
+    # segments: corners n0 + h u(s0), n1 + h u(s1), n1 - h u(s0), n0 - h u(s1). A segment
+    # piece s: nodes s's ends, both normals its own; a join at node i: n0 = n1 = i, s0 and s1
+    # the segments before and after it.
+    owner = np.repeat(np.arange(lasers), 2 * counts - 3)
+    t = np.arange(len(owner)) - np.take(2 * starts - 3 * np.arange(lasers), owner)  # index within the laser
+    j = t - np.take(counts - 1, owner)  # join index (>= 0 for joins)
+    join = j >= 0
+    local = np.where(join, j, t)
+    s0 = np.take(seg_first, owner) + local
+    s1 = s0 + join
+    n0 = np.take(starts, owner) + local + join
+    n1 = n0 + ~join
+    x0, y0, h0 = np.take(x, n0), np.take(y, n0), np.take(h, n0)
+    x1, y1, h1 = np.take(x, n1), np.take(y, n1), np.take(h, n1)
+    ux0, uy0, ux1, uy1 = np.take(ux, s0), np.take(uy, s0), np.take(ux, s1), np.take(uy, s1)
+    px, py = np.empty((4, len(owner))), np.empty((4, len(owner)))
     with np.errstate(over="ignore", invalid="ignore"):
-        # segment pieces: p_i + h_i u_i, p_i+1 + h_i+1 u_i, p_i+1 - h_i+1 u_i, p_i - h_i u_i
-        ha, hb = np.take(h, a), np.take(h, b)
-        ax, ay, bx, by = ha * ux, ha * uy, hb * ux, hb * uy
-        px[0, seg_dest], py[0, seg_dest] = xa + ax, ya + ay
-        px[1, seg_dest], py[1, seg_dest] = xb + bx, yb + by
-        px[2, seg_dest], py[2, seg_dest] = xb - bx, yb - by
-        px[3, seg_dest], py[3, seg_dest] = xa - ax, ya - ay
-        # joins at p_i (0 < i < n-1): p + h u_i-1, p + h u_i, p - h u_i-1, p - h u_i
-        xi, yi, hi = np.take(x, join_node), np.take(y, join_node), np.take(h, join_node)
-        vx0, vy0 = hi * np.take(ux, prev), hi * np.take(uy, prev)
-        vx1, vy1 = hi * np.take(ux, cur), hi * np.take(uy, cur)
-        px[0, join_dest], py[0, join_dest] = xi + vx0, yi + vy0
-        px[1, join_dest], py[1, join_dest] = xi + vx1, yi + vy1
-        px[2, join_dest], py[2, join_dest] = xi - vx0, yi - vy0
-        px[3, join_dest], py[3, join_dest] = xi - vx1, yi - vy1
+        np.add(x0, h0 * ux0, out=px[0])
+        np.add(y0, h0 * uy0, out=py[0])
+        np.add(x1, h1 * ux1, out=px[1])
+        np.add(y1, h1 * uy1, out=py[1])
+        np.subtract(x1, h1 * ux0, out=px[2])
+        np.subtract(y1, h1 * uy0, out=py[2])
+        np.subtract(x0, h0 * ux1, out=px[3])
+        np.subtract(y0, h0 * uy1, out=py[3])
     _box_unbounded(px, py)
-    owner = np.repeat(np.arange(lasers), 2 * (ends - starts) - 3)
     return px, py, owner
 
 
