@@ -20,6 +20,7 @@ import numpy as np
 
 from .broadphase.base import GridLayout, TreeLayout
 from .frame import FrameResult
+from .lasers import LaserSet
 
 __all__ = [
     "RGB",
@@ -132,12 +133,20 @@ def laser_piece_colours(result: FrameResult, colours: FrameColours) -> list[RGB]
 
 def draw_lasers(draw: DebugDraw, result: FrameResult, colours: FrameColours) -> None:
     """Every laser piece of ``result`` as its polygon, coloured by the tier decision it met
-    (:func:`laser_piece_colours`), and a line from each laser hit's object to the centre of
+    (:func:`laser_piece_colours`; the pieces of lasers whose box met no object, which the
+    pipeline never made, in ``colours.laser_none``), and a line from each laser hit's object to the centre of
     the piece it touched first. Nothing for a frame without lasers."""
     lasers = result.lasers
-    if lasers is None or not lasers.pieces.count:
+    if lasers is None:
         return
+    culled = np.flatnonzero(~lasers.tested)
+    all_lasers = result.objects.lasers
+    if len(culled) and isinstance(all_lasers, LaserSet):  # no piece was made: make them to draw
+        x, y, _ = all_lasers.subset(culled).pieces()
+        draw.polygons(np.stack([x.T, y.T], axis=2), colours.laser_none)
     p = lasers.pieces
+    if not p.count:
+        return
     draw.polygons(np.stack([p.x.T, p.y.T], axis=2), laser_piece_colours(result, colours))
     if len(lasers.hits):
         obj, laser, local = lasers.hits.T

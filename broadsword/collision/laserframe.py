@@ -29,7 +29,7 @@ from .posing import Posed
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
-__all__ = ["LaserPieces", "LaserResult", "laser_table", "with_pieces"]
+__all__ = ["LaserPieces", "LaserResult", "laser_table", "lasers_meeting", "with_pieces"]
 
 #: Size class of a piece: a quad is a polygon of four vertices (posing's class 4).
 PIECE_CLASS = 4
@@ -62,19 +62,25 @@ class LaserPieces:
     boxes: np.ndarray
 
     @classmethod
-    def of(cls, lasers: LaserSet, layer: np.ndarray) -> LaserPieces:
+    def of(cls, lasers: LaserSet, layer: np.ndarray, chosen: np.ndarray | None = None) -> LaserPieces:
         """The pieces of ``lasers`` (checked), each in its laser's ``layer`` ((L,) int64),
-        in one vectorised call."""
+        in one vectorised call; only those of the lasers ``chosen`` ((k,) ascending) when
+        given (``laser`` still numbers them among all)."""
+        if chosen is not None:
+            lasers, layer = lasers.subset(chosen), np.take(layer, chosen)
         x, y, owner = lasers.pieces()
         starts = lasers.starts
         first = 2 * starts - 3 * np.arange(len(lasers))  # each laser's first piece
         piece = np.arange(len(owner)) - np.take(first, owner)
+        layer = np.take(layer, owner)
+        if chosen is not None:
+            owner = np.take(chosen, owner)
         boxes = np.empty((4, len(owner)))
         np.min(x, axis=0, out=boxes[0])
         np.min(y, axis=0, out=boxes[1])
         np.max(x, axis=0, out=boxes[2])
         np.max(y, axis=0, out=boxes[3])
-        return cls(x, y, owner, piece, np.take(layer, owner), boxes.T)
+        return cls(x, y, owner, piece, layer, boxes.T)
 
     @property
     def count(self) -> int:
@@ -125,6 +131,36 @@ def laser_table(table: LayerTable) -> LayerTable:
         if a != b:
             tests.append((shadow[a], table.names[b]))
     return LayerTable(names + shadow, tests)
+
+
+#: Above this many (laser, object) box comparisons in one table entry, every laser of it is
+#: pieced without a cull (a table testing lasers against a crowd: the bins do better).
+CULL_PAIRS = 1 << 16
+
+
+def lasers_meeting(
+    lasers: LaserSet, laser_layer: np.ndarray, boxes: np.ndarray, layer: np.ndarray, table: LayerTable
+) -> np.ndarray:
+    """(L,) bool: the lasers whose box (:meth:`LaserSet.boxes`) meets the box of an object
+    ((n, 4) ``boxes``, layer ids ``layer``) of a layer the laser's layer tests in ``table``.
+    The others are paired with nothing by the broad phase, so their pieces need not be made
+    (conservative: a piece lies in its laser's box; closed boxes, exact comparisons)."""
+    keep = np.zeros(len(lasers), dtype=bool)
+    boxes_l = lasers.boxes()
+    for a, b in table.entries:
+        for objects_in, lasers_in in ((a, b), (b, a)) if a != b else ((a, a),):
+            li = np.flatnonzero((laser_layer == lasers_in) & ~keep)
+            oi = np.flatnonzero(layer == objects_in)
+            if not len(li) or not len(oi):
+                continue
+            if len(li) * len(oi) > CULL_PAIRS:
+                keep[li] = True
+                continue
+            bl, bo = boxes_l[li][:, None, :], boxes[oi][None, :, :]
+            meet = (bl[..., 0] <= bo[..., 2]) & (bo[..., 0] <= bl[..., 2])
+            meet &= (bl[..., 1] <= bo[..., 3]) & (bo[..., 1] <= bl[..., 3])
+            keep[li[meet.any(axis=1)]] = True
+    return keep
 
 
 def with_pieces(posed: Posed, pieces: LaserPieces, workspace: Workspace, aligned: bool = True) -> Posed:
@@ -185,7 +221,12 @@ class LaserResult:
     Attributes
     ----------
     pieces : LaserPieces
-        Every piece tested, with its laser, its index within the laser, layer and box.
+        Every piece tested, with its laser, its index within the laser, layer and box: the
+        pieces of the lasers in :attr:`tested`.
+    tested : (L,) bool
+        The lasers whose box met the box of an object their layer tests; the others were
+        paired with nothing by the broad phase and no piece of theirs was made (draw them
+        from ``objects.lasers``).
     hits : (h, 3) int64
         One row ``(object, laser, piece)`` per object and laser that touch, sorted by
         object then laser; ``piece`` is the laser's first piece (lowest index within the
@@ -199,6 +240,7 @@ class LaserResult:
     """
 
     pieces: LaserPieces
+    tested: np.ndarray
     hits: np.ndarray
     piece_hits: np.ndarray
     candidates: np.ndarray

@@ -207,6 +207,40 @@ class LaserSet:
         ends = np.append(self.starts[1:], len(self.nodes))
         return Laser(self.nodes[self.starts[i] : ends[i]], self.widths[self.starts[i] : ends[i]])
 
+    @property
+    def counts(self) -> np.ndarray:
+        """(L,) int64: each laser's nodes."""
+        return np.diff(np.append(self.starts, len(self.nodes)))
+
+    def subset(self, chosen: np.ndarray) -> LaserSet:
+        """The lasers ``chosen`` ((k,) ascending indices), packed (the same bits each)."""
+        counts = np.take(self.counts, chosen)
+        starts = np.zeros(len(chosen), dtype=np.int64)
+        np.cumsum(counts[:-1], out=starts[1:])
+        rows = np.repeat(np.take(self.starts, chosen) - starts, counts) + np.arange(int(counts.sum()))
+        return LaserSet(np.take(self.nodes, rows, axis=0), np.take(self.widths, rows), starts)
+
+    def boxes(self) -> np.ndarray:
+        """(L, 4) float64: a closed box around each laser's pieces, clamped to the doubles.
+
+        Its nodes' box grown by ``hb = h (1 + 2**-40)``, ``h`` the laser's largest half
+        width, each bound one rounded operation: every corner is ``p + fl(h_i u)`` with
+        ``|u| <= 1 + 3 eps``, so ``|fl(h_i u)| <= fl(hb)`` and, rounding being monotone,
+        ``fl(p + fl(h_i u)) <= fl(max p + fl(hb))`` (and alike below). A piece replaced by
+        its clamped box lies inside the doubles, as the clamped bound does."""
+        x, y = self.nodes[:, 0], self.nodes[:, 1]
+        hb = np.maximum.reduceat(self.widths, self.starts) * 0.5 * (1.0 + 2.0**-40)
+        with np.errstate(over="ignore"):
+            out = np.column_stack(
+                [
+                    np.minimum.reduceat(x, self.starts) - hb,
+                    np.minimum.reduceat(y, self.starts) - hb,
+                    np.maximum.reduceat(x, self.starts) + hb,
+                    np.maximum.reduceat(y, self.starts) + hb,
+                ]
+            )
+        return np.clip(out, -_MAX, _MAX, out=out)
+
     def pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every laser's pieces, ``(x, y, owner)``, as :func:`laser_pieces` gives them."""
         if not len(self):

@@ -30,7 +30,15 @@ from ._warm import warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
-from .laserframe import LaserPieces, LaserResult, laser_hits, laser_table, split_pairs, with_pieces
+from .laserframe import (
+    LaserPieces,
+    LaserResult,
+    laser_hits,
+    laser_table,
+    lasers_meeting,
+    split_pairs,
+    with_pieces,
+)
 from .lasers import Laser, LaserSet
 from .layers import LayerTable
 from .narrow import collide_pairs
@@ -213,18 +221,20 @@ class Pipeline:
         )
         n = len(layer)
         clock = time.perf_counter
-        t_lasers = clock()
-        lasers = self._laser_pieces(objects)
-        p = 0 if lasers is None else lasers.count
-        t_lasers = clock() - t_lasers
+        lasers = self._lasers(objects)
+        laser_layer = objects.laser_layer
+        assert laser_layer is not None  # FrameObjects: an array, empty without lasers
+        p_all = 0  # pieces of every laser of the frame
         if lasers is None:
             table = self.layers
             stats = [TierStats("layers", n * (n - 1) // 2, table.possible_pairs(layer), 0.0)]
         else:
             table = self.laser_table
+            piece_layer = np.repeat(laser_layer, 2 * lasers.counts - 3) + len(self.layers.names)
+            p_all = len(piece_layer)
             alone = self.layers.possible_pairs(layer)
-            allowed = table.possible_pairs(np.concatenate([layer, lasers.layer + len(self.layers.names)]))
-            stats = [TierStats("layers", n * (n - 1) // 2 + n * p, allowed, 0.0, n * p, allowed - alone)]
+            allowed = table.possible_pairs(np.concatenate([layer, piece_layer]))
+            stats = [TierStats("layers", n * (n - 1) // 2 + n * p_all, allowed, 0.0, n * p_all, allowed - alone)]
         tier_pairs = {}
 
         t0 = clock()
@@ -254,15 +264,20 @@ class Pipeline:
                 boxes = bounds.aabbs(posed)
         else:
             boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
-        # Laser pieces join the frame as objects n .. n + p - 1 (laserframe.py).
-        all_posed, all_boxes, all_layer = posed, boxes, layer
+        # The pieces of the lasers near an object they test join the frame as objects
+        # n .. n + p - 1 (laserframe.py).
+        all_posed, all_boxes, all_layer, pieces, tested = posed, boxes, layer, None, None
+        p = 0
         if lasers is not None:
-            all_posed = with_pieces(posed, lasers, self.workspace, aligned=Tier.OBB in self.tiers)
+            tested = lasers_meeting(lasers, laser_layer, boxes, layer, self.layers)
+            pieces = LaserPieces.of(lasers, laser_layer, np.flatnonzero(tested))
+            p = pieces.count
+            all_posed = with_pieces(posed, pieces, self.workspace, aligned=Tier.OBB in self.tiers)
             all_boxes = self.workspace.get("laser_boxes", (n + p, 4))
-            all_boxes[:n], all_boxes[n:] = boxes, lasers.boxes
-            all_layer = np.concatenate([layer, lasers.layer + len(self.layers.names)])
+            all_boxes[:n], all_boxes[n:] = boxes, pieces.boxes
+            all_layer = np.concatenate([layer, pieces.layer + len(self.layers.names)])
         if self.needs_vertices:
-            stats.append(TierStats("pose", n + p, n + p, (clock() - t0 + t_lasers) * 1e3, p, p))
+            stats.append(TierStats("pose", n + p_all, n + p, (clock() - t0) * 1e3, p_all, p))
             t0 = clock()
         try:
             pairs, broad = self.broad_phase.query(all_boxes, all_layer, table)
@@ -285,14 +300,16 @@ class Pipeline:
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs
         laser_result = None
-        if lasers is not None:
+        if pieces is not None:
+            assert tested is not None
             pairs, piece_hits = split_pairs(pairs, n)
             candidates, laser_candidates = split_pairs(candidates, n)
             split = {name: split_pairs(kept, n) for name, kept in tier_pairs.items()}
             tier_pairs = {name: both[0] for name, both in split.items()}
             laser_result = LaserResult(
-                lasers,
-                laser_hits(piece_hits, lasers),
+                pieces,
+                tested,
+                laser_hits(piece_hits, pieces),
                 piece_hits,
                 laser_candidates,
                 {name: both[1] for name, both in split.items()},
@@ -311,8 +328,8 @@ class Pipeline:
             laser_result,
         )
 
-    def _laser_pieces(self, objects: FrameObjects) -> LaserPieces | None:
-        """The pieces of the frame's lasers, their layers checked; None without lasers."""
+    def _lasers(self, objects: FrameObjects) -> LaserSet | None:
+        """The frame's lasers, their layers checked; None without lasers."""
         if not len(objects.lasers):
             return None
         if self.masks is not None:
@@ -321,7 +338,7 @@ class Pipeline:
         assert isinstance(lasers, LaserSet) and layer is not None  # as FrameObjects packs them
         names = len(self.layers.names)
         arguments.in_range(layer, "laser_layer", names, f"the layer table has {names} layers")
-        return LaserPieces.of(lasers, layer)
+        return lasers
 
     @staticmethod
     def _stats(name: str, before: TierStats, pairs: np.ndarray, n: int, seconds: float, lasers: bool) -> TierStats:

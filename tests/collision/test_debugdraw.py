@@ -113,9 +113,11 @@ def test_draw_frame__draws_laser_pieces_by_their_tier_decision():
     r = pipe.step([0], [0], [(50.0, 50.0)], [0.0], lasers=lasers, laser_layer=[1, 1, 1])
     rec = RecordingDraw()
     draw_frame(rec, r, COLOURS)
-    pieces = rec.of("polygons")[-1]
-    assert len(pieces[1]) == 3
-    assert pieces[2] == [COLOURS.hit, COLOURS.laser_last, COLOURS.laser_none]
+    culled, pieces = rec.of("polygons")[-2:]  # the far laser met no box: drawn from its nodes
+    assert r.lasers.tested.tolist() == [True, True, False]
+    assert len(culled[1]) == 1 and culled[2] == COLOURS.laser_none
+    assert np.array_equal(culled[1][0], np.array([(300, 1), (390, 1), (390, -1), (300, -1)], float))
+    assert len(pieces[1]) == 2 and pieces[2] == [COLOURS.hit, COLOURS.laser_last]
     assert np.array_equal(pieces[1][0], np.array([(40, 51), (60, 51), (60, 49), (40, 49)], float))
     line = [s for s in rec.of("segments") if s[4] == 3 and s[3] == COLOURS.hit][0]  # object -> the piece it hit
     assert line[1].tolist() == [[50.0, 50.0]] and line[2].tolist() == [[50.0, 50.0]]

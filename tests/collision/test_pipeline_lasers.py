@@ -29,6 +29,7 @@ TIER_MIXES = [
     ("brute", "aabb", "circle", "obb", "kdop", "armature"),
 ]
 TABLE = LayerTable.shmup()
+M = float(np.finfo(np.float64).max)
 
 
 def scene(seed: int, scale: float, shift: float, swept: bool = False):
@@ -224,6 +225,7 @@ def test_bins__a_long_laser_does_not_coarsen_the_grid():
     rng = np.random.default_rng(4)
     n = 400
     positions = rng.uniform(0, 640, (n, 2))
+    positions[0] = (320, 20)  # the player, on the curvy laser below
     args = ([0] * n, [PLAYER] + [ENEMY_BULLET] * (n - 1), positions, np.zeros(n))
     pipe = Pipeline([Armature.box(4, 10)], TABLE, keep_tier_pairs=True)
     alone = pipe.step(*args)
@@ -294,3 +296,38 @@ def test_laser_set__packed_lasers_give_the_same_answers_and_pieces():
 def test_laser_set_of__refuses_bad_arguments_naming_them(nodes, widths, starts, word):
     with pytest.raises(ValueError, match=word):
         LaserSet.of(nodes, widths, starts)
+
+
+def test_cull__a_laser_whose_box_meets_no_object_it_tests_makes_no_piece():
+    ship = Armature.box(10, 10)
+    near, far = Laser.of([(0, 0), (100, 0)], 4), Laser.of([(0, 500), (50, 520), (100, 500)], 4)
+    pipe = Pipeline([ship], TABLE, keep_tier_pairs=True)
+    # the enemy ship at (50, 505) is on the far laser, but enemy lasers test the player only
+    r = pipe.step(
+        [0, 0],
+        [PLAYER, ENEMY],
+        [(50.0, 2.0), (50.0, 505.0)],
+        [0.0, 0.0],
+        lasers=[near, far],
+        laser_layer=[ENEMY_BULLET] * 2,
+    )
+    assert r.lasers.tested.tolist() == [True, False]
+    assert r.lasers.pieces.count == 1 and set(r.lasers.pieces.laser.tolist()) == {0}
+    assert r.lasers.hits.tolist() == [[0, 0, 0]]
+    rows = {s.name: s for s in r.stats}
+    assert rows["pose"].laser_pairs_in == 1 + 3 and rows["pose"].laser_pairs_out == 1
+    assert rows["bins"].laser_pairs_in == 1 * 4  # the player against every piece of both
+    assert rows["bins"].laser_pairs_out == 1
+
+
+@pytest.mark.parametrize("where", SCALES + [(M, 0.0), (M / 4, -M / 2)])
+def test_laser_set_boxes__hold_every_piece_corner_at_every_scale(where):
+    rng = random.Random(5)
+    scale, shift = where
+    for _ in range(30):
+        n = rng.randint(2, 7)
+        nodes = [(rng.randint(-8, 8) / 8 * scale + shift, rng.randint(-8, 8) / 8 * scale + shift) for _ in range(n)]
+        laser = Laser.of(nodes, [rng.choice([0, 1, 3, 8]) * min(scale, M / 16) for _ in range(n)])
+        (box,) = LaserSet.pack([laser]).boxes()
+        x, y = laser.pieces()
+        assert box[0] <= x.min() and x.max() <= box[2] and box[1] <= y.min() and y.max() <= box[3]
