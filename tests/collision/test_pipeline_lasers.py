@@ -52,7 +52,7 @@ def scene(seed: int, scale: float, shift: float, swept: bool = False):
     if swept:
         objects.update(
             prev_positions=[(at(), at()) for _ in range(n)],
-            prev_angles=objects["angles"],
+            prev_angles=[a + rng.choice([0.0, 0.0, 15.0]) for a in objects["angles"]],  # some turn: octagons
             swept=[rng.random() < 0.7 for _ in range(n)],
         )
     lasers = []
@@ -98,7 +98,7 @@ def first_pieces(touching: set[tuple[int, int, int]]) -> list[list[int]]:
     return [[o, la, p] for (o, la), p in sorted(best.items())]
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=30, deadline=None)
 @given(seed=st.integers(0, 2**16), where=st.sampled_from(SCALES), tiers=st.sampled_from(TIER_MIXES))
 def test_laser_hits__equal_the_exact_answer_at_every_scale(seed, where, tiers):
     arms, objects, lasers, layers = scene(seed, *where)
@@ -115,7 +115,7 @@ def test_laser_hits__equal_the_exact_answer_at_every_scale(seed, where, tiers):
 @pytest.mark.parametrize("where", SCALES)
 def test_laser_hits__swept_objects_against_their_swept_polygons(where):
     touching = 0
-    for seed in range(12):
+    for seed in range(8):
         arms, objects, lasers, layers = scene(seed, *where, swept=True)
         pipe = Pipeline(arms, TABLE, tiers=("bins", "aabb", "obb", "armature"), keep_tier_pairs=True, kernel="numpy")
         r = pipe.step(**objects, lasers=lasers, laser_layer=layers)
