@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -29,7 +30,7 @@ from .posing import Posed
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
-__all__ = ["LaserPieces", "LaserResult", "laser_table", "lasers_meeting", "with_pieces"]
+__all__ = ["LaserPieces", "LaserResult", "Joined", "join", "laser_table", "lasers_meeting", "with_pieces"]
 
 #: Size class of a piece: a quad is a polygon of four vertices (posing's class 4).
 PIECE_CLASS = 4
@@ -293,3 +294,57 @@ def laser_hits(piece_hits: np.ndarray, pieces: LaserPieces) -> np.ndarray:
     first = np.ones(len(obj), dtype=bool)
     first[1:] = (obj[1:] != obj[:-1]) | (laser[1:] != laser[:-1])
     return np.column_stack([obj[first], laser[first], piece[first]]).astype(np.int64, copy=False)
+
+
+class Joined(NamedTuple):
+    """A frame's objects with its lasers' pieces after them (:func:`join`)."""
+
+    posed: Posed  #: objects then pieces
+    boxes: np.ndarray  #: (n + p, 4)
+    layer: np.ndarray  #: (n + p,) the pieces in their shadow layers
+    pieces: LaserPieces
+    tested: np.ndarray  #: (L,) bool: the lasers whose pieces were made
+
+
+def join(
+    posed: Posed,
+    boxes: np.ndarray,
+    layer: np.ndarray,
+    lasers: LaserSet,
+    laser_layer: np.ndarray,
+    table: LayerTable,
+    workspace: Workspace,
+    aligned: bool,
+) -> Joined:
+    """The frame's ``n`` objects (``posed``, their ``boxes`` (n, 4) and ``layer`` ids) with
+    the pieces of the ``lasers`` that meet an object they test (:func:`lasers_meeting`)
+    appended as objects ``n ..``, in the shadow layers of :func:`laser_table` (``table`` is
+    the scene's own); ``aligned``: the pieces' oriented-box axes are needed."""
+    n = len(layer)
+    tested = lasers_meeting(lasers, laser_layer, boxes, layer, table)
+    pieces = LaserPieces.of(lasers, laser_layer, np.flatnonzero(tested))
+    p = pieces.count
+    all_boxes = workspace.get("laser_boxes", (n + p, 4))
+    all_boxes[:n], all_boxes[n:] = boxes, pieces.boxes
+    all_layer = np.concatenate([layer, pieces.layer + len(table.names)])
+    return Joined(with_pieces(posed, pieces, workspace, aligned), all_boxes, all_layer, pieces, tested)
+
+
+def result(
+    joined: Joined, n: int, hits: np.ndarray, candidates: np.ndarray, tier_pairs: Mapping[str, np.ndarray]
+) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray], LaserResult]:
+    """Split a joined frame's pairs (the last tier's ``hits``, the broad phase's
+    ``candidates``, each kept tier's pairs) into the objects' own, in their order, and the
+    lasers' :class:`LaserResult`: ``(hits, candidates, tier_pairs, laser result)``."""
+    hits, piece_hits = split_pairs(hits, n)
+    candidates, laser_candidates = split_pairs(candidates, n)
+    split = {name: split_pairs(kept, n) for name, kept in tier_pairs.items()}
+    laser = LaserResult(
+        joined.pieces,
+        joined.tested,
+        laser_hits(piece_hits, joined.pieces),
+        piece_hits,
+        laser_candidates,
+        {name: both[1] for name, both in split.items()},
+    )
+    return hits, candidates, {name: both[0] for name, both in split.items()}, laser

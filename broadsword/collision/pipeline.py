@@ -24,21 +24,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import _pose_kernel, arguments, bounds
+from . import _pose_kernel, arguments, bounds, laserframe
 from ._kernel import Kernel, check_kernel
 from ._warm import warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
-from .laserframe import (
-    LaserPieces,
-    LaserResult,
-    laser_hits,
-    laser_table,
-    lasers_meeting,
-    split_pairs,
-    with_pieces,
-)
+from .laserframe import laser_table
 from .lasers import Laser, LaserSet
 from .layers import LayerTable
 from .narrow import collide_pairs
@@ -266,16 +258,12 @@ class Pipeline:
             boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
         # The pieces of the lasers near an object they test join the frame as objects
         # n .. n + p - 1 (laserframe.py).
-        all_posed, all_boxes, all_layer, pieces, tested = posed, boxes, layer, None, None
-        p = 0
+        joined = None
+        all_posed, all_boxes, all_layer, p = posed, boxes, layer, 0
         if lasers is not None:
-            tested = lasers_meeting(lasers, laser_layer, boxes, layer, self.layers)
-            pieces = LaserPieces.of(lasers, laser_layer, np.flatnonzero(tested))
-            p = pieces.count
-            all_posed = with_pieces(posed, pieces, self.workspace, aligned=Tier.OBB in self.tiers)
-            all_boxes = self.workspace.get("laser_boxes", (n + p, 4))
-            all_boxes[:n], all_boxes[n:] = boxes, pieces.boxes
-            all_layer = np.concatenate([layer, pieces.layer + len(self.layers.names)])
+            aligned = Tier.OBB in self.tiers
+            joined = laserframe.join(posed, boxes, layer, lasers, laser_layer, self.layers, self.workspace, aligned)
+            all_posed, all_boxes, all_layer, p = joined.posed, joined.boxes, joined.layer, joined.pieces.count
         if self.needs_vertices:
             stats.append(TierStats("pose", n + p_all, n + p, (clock() - t0) * 1e3, p_all, p))
             t0 = clock()
@@ -285,7 +273,7 @@ class Pipeline:
             self._refuse_overflow(boxes)
             raise
         candidates = pairs
-        stats.append(self._stats(self.tiers[0].value, stats[0], pairs, n, clock() - t0, lasers is not None))
+        stats.append(self._stats(self.tiers[0].value, stats[0], pairs, n, clock() - t0, joined is not None))
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0].value] = pairs
 
@@ -296,24 +284,12 @@ class Pipeline:
             assert keep is not None  # check_tiers: only the first tier is a broad phase
             before = stats[-1]
             pairs = pairs[keep(inp, pairs)]
-            stats.append(self._stats(tier.value, before, pairs, n, clock() - t0, lasers is not None))
+            stats.append(self._stats(tier.value, before, pairs, n, clock() - t0, joined is not None))
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs
         laser_result = None
-        if pieces is not None:
-            assert tested is not None
-            pairs, piece_hits = split_pairs(pairs, n)
-            candidates, laser_candidates = split_pairs(candidates, n)
-            split = {name: split_pairs(kept, n) for name, kept in tier_pairs.items()}
-            tier_pairs = {name: both[0] for name, both in split.items()}
-            laser_result = LaserResult(
-                pieces,
-                tested,
-                laser_hits(piece_hits, pieces),
-                piece_hits,
-                laser_candidates,
-                {name: both[1] for name, both in split.items()},
-            )
+        if joined is not None:
+            pairs, candidates, tier_pairs, laser_result = laserframe.result(joined, n, pairs, candidates, tier_pairs)
         return FrameResult(
             pairs,
             tuple(stats),
