@@ -45,6 +45,34 @@ SCALE = 2
 CURVE_X = 194.0
 
 
+#: The inset's region (x, y, w, h) in scene units.
+INSET = (150, 140, 80, 90)
+
+
+class _Scaled(PygameDraw):
+    """The pygame adapter drawing a region of the scene ``zoom`` times larger."""
+
+    def __init__(self, surface: pygame.Surface, zoom: float, origin: tuple[float, float]):
+        super().__init__(surface)
+        self.zoom, self.origin = zoom, np.array(origin, float)
+
+    def _map(self, p):
+        return (np.asarray(p, float) - self.origin) * self.zoom
+
+    def polygons(self, polygons, colours, width=1):
+        super().polygons([self._map(q) for q in polygons], colours, width)
+
+    def segments(self, starts, ends, colour, width=1):
+        super().segments(self._map(starts), self._map(ends), colour, width)
+
+    def boxes(self, boxes, colours, width=1, alpha=255):
+        b = np.asarray(boxes, float).reshape(-1, 4)
+        super().boxes(np.column_stack([self._map(b[:, :2]), self._map(b[:, 2:])]), colours, width, alpha)
+
+    def circles(self, centres, radii, colours, width=1):
+        super().circles(self._map(centres), np.asarray(radii) * self.zoom, colours, width)
+
+
 def scene():
     rng = np.random.default_rng(5)
     arms = [player_armature(), random_armature(rng, 7, 40.0), Armature.box(4, 10)]
@@ -102,6 +130,14 @@ def main(argv: list[str]) -> int:
     colours = FrameColours(layers=[(90, 230, 120), (235, 90, 90), (240, 150, 200), (120, 200, 255)])
     draw_frame(PygameDraw(surf), r, colours)
     big = pygame.transform.smoothscale(surf, (SIZE[0] * SCALE, SIZE[1] * SCALE))
+    # an inset: the player and the curvy laser's bend, 4x (drawn again at that scale, not magnified)
+    zoom, (zx, zy, zw, zh) = 4, INSET
+    inset = pygame.Surface((zw * zoom, zh * zoom))
+    inset.fill((12, 12, 20))
+    draw_frame(_Scaled(inset, zoom, (zx, zy)), r, colours)
+    pygame.draw.rect(inset, (230, 230, 230), inset.get_rect(), 2)
+    pygame.draw.rect(big, (230, 230, 230), (zx * SCALE, zy * SCALE, zw * SCALE, zh * SCALE), 1)
+    big.blit(inset, (SIZE[0] * SCALE - zw * zoom - 8, SIZE[1] * SCALE - zh * zoom - 56))
     font = pygame.font.Font(None, 22)
     legend = [
         (colours.laser_none, "laser piece: no pair from the bins"),
