@@ -125,9 +125,11 @@ class TierStats:
 
     A frame with lasers counts each laser piece as an object: ``pairs_in`` and
     ``pairs_out`` include the (object, piece) pairs, and ``laser_pairs_in`` and
-    ``laser_pairs_out`` say how many of them those are (on the ``pose`` row: the pieces
-    among the objects posed). Two pieces never make a pair: the ``layers`` row's
-    ``pairs_in`` counts the object pairs and every (object, piece) pair.
+    ``laser_pairs_out`` say how many of them those are. On the ``pose`` row, in: the objects
+    and every laser's pieces, out: the objects and the pieces made (those of the lasers whose
+    box meets an object they test; the broad phase pairs the rest with nothing). Two pieces
+    never make a pair: the ``layers`` row's ``pairs_in`` counts the object pairs and every
+    (object, piece) pair.
     """
 
     name: str

@@ -1,8 +1,11 @@
 """Lasers in the pipeline: one frame's laser pieces as objects of the tiers.
 
 A laser (:class:`~broadsword.collision.lasers.Laser`) is tested as its pieces, convex quads
-(:mod:`broadsword.collision.lasers` defines them). The pipeline appends every piece of the
-frame after the frame's ``n`` objects, as object ``n + j``, and runs every tier on them as on
+(:mod:`broadsword.collision.lasers` defines them). The broad phase first compares each
+laser's box with the boxes of the objects its layer tests (:func:`lasers_meeting`: exactly
+conservative) and makes the pieces of the lasers that meet one only -- 200 enemy lasers and
+one player make the pieces of the few near the player. The pipeline appends those pieces
+after the frame's ``n`` objects, as objects ``n + j``, and runs every tier on them as on
 any posed polygon of four vertices: the broad phase bins each piece by its own box (so a
 long laser is many small boxes, and neither coarsens the automatic bin size nor fills the
 grid), the bound tiers bound each piece (its box; a circle around its box; an oriented box
