@@ -43,6 +43,7 @@ from .broadphase import (
 )
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
+from .laserframe import LaserPieces, LaserResult
 from .lasers import (
     LASER_NODES_MAX,
     Laser,
@@ -91,6 +92,8 @@ __all__ = [
     "LASER_NODES_MAX",
     "Laser",
     "LaserSet",
+    "LaserPieces",
+    "LaserResult",
     "laser_pieces",
     "laser_touches",
     "laser_touches_swept",
