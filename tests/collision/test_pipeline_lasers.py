@@ -331,3 +331,31 @@ def test_laser_set_boxes__hold_every_piece_corner_at_every_scale(where):
         (box,) = LaserSet.pack([laser]).boxes()
         x, y = laser.pieces()
         assert box[0] <= x.min() and x.max() <= box[2] and box[1] <= y.min() and y.max() <= box[3]
+
+
+def test_bench_scene__every_player_laser_pair_is_exact_on_both_kernels():
+    """The benchmark's frame (200 curvy lasers of 64 nodes, the reference scene's player,
+    ships and bullets): the player's laser hits equal laser_touches laser by laser (the cull
+    drops no touching laser), the same on every kernel."""
+    from broadsword.bench.laser_frame import Weave
+    from broadsword.collision import laser_touches
+    from broadsword.collision.scenarios import ReferenceScene
+
+    scene = ReferenceScene(enemies=100, bullets=1000, seed=3)
+    weave = Weave(200, 64, seed=3)
+    for _ in range(3):
+        pos, ang = scene.advance()
+        lasers = weave.advance()
+    got = []
+    for kernel in KERNELS:
+        r = Pipeline(scene.shapes, scene.table, kernel=kernel).step(
+            scene.armature, scene.layer, pos, ang, lasers=lasers, laser_layer=np.full(200, ENEMY_BULLET)
+        )
+        got.append(r.lasers.hits.tolist())
+        player = r.posed.polygon(0)
+    want = [i for i in range(len(lasers)) if laser_touches(lasers[i], player)]
+    assert want, "the player should be hit by some laser, or the test proves little"
+    for hits in got:
+        assert [la for o, la, _ in hits if o == 0] == want
+        assert all(o == 0 for o, _, _ in hits)  # enemy lasers test the player only
+    assert all(g == got[0] for g in got)
