@@ -15,6 +15,7 @@ the game. Modules, one idea each:
   one module per method; ``base`` holds the protocol and its statistics)
 * ``narrow``      the exact narrow phase over many pairs at once
 * ``lasers``      lasers: polylines with a width, as pieces (convex quads) collided exactly
+* ``laserframe``  lasers in the pipeline: a frame's pieces as objects of every tier, and what they hit
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
 * ``tiers``       every tier in one registry, and the one rule for their order
 * ``frame``       one frame's typed record: the objects in, the result out
@@ -55,9 +56,11 @@ from .explain import (
 )
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
+from .laserframe import LaserPieces, LaserResult
 from .lasers import (
     LASER_NODES_MAX,
     Laser,
+    LaserSet,
     laser_pieces,
     laser_touches,
     laser_touches_swept,
@@ -111,6 +114,9 @@ __all__ = [
     "kdops_overlap",
     "LASER_NODES_MAX",
     "Laser",
+    "LaserSet",
+    "LaserPieces",
+    "LaserResult",
     "laser_pieces",
     "laser_touches",
     "laser_touches_swept",

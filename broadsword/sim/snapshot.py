@@ -385,7 +385,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     "Pipeline": (  # the kernel is not state: numpy and numba give the same bits
         frozenset({"rotation"}),
         frozenset({"armatures", "broad_phase", "keep_tier_pairs", "kernel", "layers", "masks", "needs_vertices"})
-        | frozenset({"tiers", "workspace"}),
+        | frozenset({"tiers", "workspace", "laser_table"}),
     ),
 }
 
