@@ -12,14 +12,13 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-from collections.abc import Callable
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..data import DataError
-from ..data.recordings import Recording, load_recording
+from ..data.recordings import Recording
 from ..runner import Runner
 from .replaylib import ReplayLibrary
 
@@ -92,14 +91,15 @@ def keep_run(app: App) -> None:
         print(f"broadsword: {warning}", file=sys.stderr)
 
 
-def watch_file(app: App, path: Path, back: Callable[[], None]) -> str | None:
-    """Watch the replay file ``path``, and ``back`` when the viewer is done with it: the one
-    way the list opens a replay (the replay theatre, once it exists, takes over here).
-    Returns why it cannot be watched (one line), the list staying as it was."""
+def watch_file(app: App, path: Path) -> str | None:
+    """Open the replay file ``path`` in the replay theatre, over the list (Esc comes back to
+    it): the one way the list opens a replay. Returns why it cannot be watched (one line),
+    the list staying as it was."""
+    from .scenes.theatre import theatre_of
+
     try:
-        rec = load_recording(path)
-        app.watch_replay(rec, str(path))
+        scene = theatre_of(app, path)
     except DataError as exc:
         return str(exc)
-    app.after_replay = back
+    app.stack.push(scene)
     return None

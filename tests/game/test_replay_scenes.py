@@ -17,9 +17,9 @@ from broadsword.game.app import App
 from broadsword.game.replaylib import ReplayLibrary
 from broadsword.game.run import Run
 from broadsword.game.scenes import GameOver, Pause, Play, Results, Title, replay_list
-from broadsword.game.scenes.replay_end import ReplayEnd
 from broadsword.game.scenes.replay_list import ReplayList
 from broadsword.game.scenes.save_replay import SaveReplay
+from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.runner import Runner, StageStart
 from broadsword.sim import DT, Input
@@ -180,15 +180,14 @@ def test_list__title_r_shows_each_replay_and_a_broken_one_with_its_reason(app):
     assert isinstance(app.scene, ReplayList) and "cannot watch it: " in app.scene.note
 
 
-def test_list__enter_watches_and_the_end_goes_back_to_the_list(app):
+def test_list__enter_opens_the_theatre_and_esc_goes_back_to_the_list(app):
     app.replays.library.save(short_replay(frames=20), "short")
     open_list(app)
     key(pygame.K_RETURN)
     frames(app)
-    assert isinstance(app.scene, Play) and app.play.watched
+    assert isinstance(app.scene, Theatre)
     frames(app, 30)
-    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
-    key(pygame.K_RETURN)
+    key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, ReplayList) and app.running
     assert recent(app) == []  # a replay watched is not a run kept
@@ -290,8 +289,11 @@ def test_keep__a_kept_run_replays_to_the_same_state_from_the_list(app):
     open_list(app)
     key(pygame.K_RETURN)
     frames(app, played + 5)
-    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
-    assert app.world.frame == played and app.world.state_hash() == final
+    theatre = app.scene
+    assert isinstance(theatre, Theatre) and theatre.paused  # at the run's end
+    seeker = theatre.seeker
+    assert seeker.frame == seeker.end == played and seeker.divergence is None
+    assert theatre.world.state_hash() == final
 
 
 def test_keep__a_window_closed_mid_run_keeps_it(app):

@@ -30,8 +30,7 @@ class GameOver:
     @property
     def qualifies(self) -> bool:
         return (
-            not self.play.watched
-            and not self.play.run.take_over
+            self.play.ranked
             and self.score > 0
             and self.app.scores.qualifies(self.score, self.difficulty)
         )

@@ -16,6 +16,7 @@ from typing import Protocol
 import pygame
 
 from ...data import DataError
+from ...data.recordings import RunKind
 from ...runner import Playback, Runner
 from ...sim import DT, Input, Pilot, World
 from ...sim.hitlog import Outcome
@@ -123,6 +124,12 @@ class Play:
     @property
     def watched(self) -> bool:
         return self.source.watched
+
+    @property
+    def ranked(self) -> bool:
+        """The run may enter the high-score table: played, from a stage's start (not watched,
+        not a practice, not taken over from a replay)."""
+        return not self.watched and self.runner.recorder.info.kind is RunKind.RUN
 
     # ------------------------------------------------------------------ events
     def handle(self, event: pygame.event.Event) -> bool:

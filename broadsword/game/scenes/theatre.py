@@ -341,11 +341,18 @@ def open_theatre(app: App, path: str | Path) -> None:
     missing) is said where the game says load errors (:meth:`App.report`: the title's line),
     and nothing opens."""
     try:
-        rec = load_recording(path)
-        seeker = Seeker(rec, path, app.bank.armatures)
+        scene = theatre_of(app, path)
     except DataError as exc:
         app.report(exc)
         return
     app.error = None
+    app.stack.push(scene)
+
+
+def theatre_of(app: App, path: str | Path) -> Theatre:
+    """The theatre of the recording at ``path`` (not pushed); :class:`DataError` naming the
+    file and field when it cannot be read or played."""
+    rec = load_recording(path)
+    seeker = Seeker(rec, path, app.bank.armatures)
     app.runner = None
-    app.stack.push(Theatre(app, seeker, path))
+    return Theatre(app, seeker, path)
