@@ -20,6 +20,7 @@ from ...runner import Playback, Runner
 from ...sim import DT, Input, Pilot, World
 from .. import heap
 from ..controls import Action, Controls
+from ..lasers import draw_laser_armatures
 
 #: Slow motion (F3) runs the world at this share of real time.
 SLOW_MOTION = 0.25
@@ -227,3 +228,4 @@ class Play:
 
             paused = isinstance(app.stack.top, Pause)
             app.overlay.draw(surf, record.result if record is not None else None, app.fps, paused)
+            draw_laser_armatures(surf, self.world)
