@@ -30,7 +30,12 @@ GLOW_DIM = 0.45
 #: The warning line blinks: on for BLINK render frames, off for BLINK.
 BLINK = 4
 #: F1 overlay: segment pieces, join pieces, and pieces touching the player's hit shape.
-OVERLAY_SEGMENT, OVERLAY_JOIN, OVERLAY_TOUCH = (255, 80, 220), (255, 220, 90), (255, 40, 40)
+OVERLAY_SEGMENT, OVERLAY_JOIN, OVERLAY_TOUCH, OVERLAY_NODE = (
+    (255, 80, 220),
+    (200, 170, 60),
+    (255, 40, 40),
+    (255, 255, 255),
+)
 
 
 def _polys(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list[list[tuple[float, float]]]:
@@ -84,7 +89,7 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int) -> None:
 def draw_laser_armatures(surf: pygame.Surface, world: World) -> None:
     """The F1 overlay's view of the lasers: every lit laser's pieces outlined (segment pieces
     and bevel joins in their own colours, those touching the player's hit shape in red),
-    its nodes dotted, and the warning lines' axes dashed."""
+    its nodes as white points, and the warning lines' axes dashed."""
     lasers = world.lasers
     p = lasers.pool
     if not p.n:
@@ -114,4 +119,4 @@ def draw_laser_armatures(surf: pygame.Surface, world: World) -> None:
         pygame.draw.polygon(surf, colour, list(zip(x[:, j].tolist(), y[:, j].tolist())), 1)
     for i in live:
         for nx, ny in p.nodes[i, : int(p.count[i])].tolist():
-            surf.fill(OVERLAY_JOIN, (int(nx) - 1, int(ny) - 1, 3, 3))
+            surf.fill(OVERLAY_NODE, (int(nx), int(ny), 1, 1))

@@ -10,10 +10,11 @@ of its own. Each laser in play is a row of :attr:`Lasers.pool`:
   heading;
 * a **beam** is a straight laser that, once on, turns about its part at ``turn`` degrees a
   second;
-* a **curvy** laser is a chain of up to ``nodes`` nodes: each step its head moves ``speed``
-  along a heading that turns at ``turn`` and wobbles ``wave`` degrees every ``period`` s,
-  and every node takes the place of the one before it (node ``i`` is where the head was
-  ``i`` steps ago). It lives ``on`` s, and goes when its every node has left the field.
+* a **curvy** laser is a chain of up to ``nodes`` nodes: each step its head (node 0) moves
+  ``speed`` along a heading that turns at ``turn`` and wobbles ``wave`` degrees every
+  ``period`` s, and every ``spacing`` steps the trail takes a node where the head was the
+  step before, every node moving back one place (with ``spacing`` 1, node ``i`` is where the
+  head was ``i`` steps ago). It lives ``on`` s, and goes when its every node has left the field.
 
 A laser's shape is :mod:`broadsword.collision.lasers`' (a bevel-joined thick polyline, width
 ``width`` at its origin or head, ``tip`` at the far end, linear between). It hits the player
@@ -223,10 +224,12 @@ class Lasers:
         vx, vy = detmath.velocity_deg(heading, s.speed * DT)
         p.head[i, 0] += vx
         p.head[i, 1] += vy
-        n = min(int(p.count[i]) + 1, s.nodes)
-        p.nodes[i, 1:n] = p.nodes[i, : n - 1].copy()
+        n = int(p.count[i])
+        if age % s.spacing == 0 or n == 1:  # the trail takes a new node; the head moves on from it
+            n = min(n + 1, s.nodes)
+            p.nodes[i, 1:n] = p.nodes[i, : n - 1].copy()
+            p.count[i] = n
         p.nodes[i, 0] = p.head[i]
-        p.count[i] = n
         at = p.nodes[i, :n]
         m = CULL_MARGIN
         inside = (at[:, 0] > -m) & (at[:, 0] < FIELD[0] + m) & (at[:, 1] > -m) & (at[:, 1] < FIELD[1] + m)

@@ -100,6 +100,21 @@ def test_curvy__nodes_trail_the_head_and_two_runs_agree_bit_for_bit():
     np.testing.assert_array_equal(runs[0], runs[1])
 
 
+def test_curvy__spacing_takes_a_node_every_few_steps_from_the_heads_path():
+    spec = LaserSpec(0, LaserKind.CURVY, angle=170.0, speed=150.0, nodes=24, spacing=3, wave=25.0, on=5.0, every=60)
+    w = laser_world(spec)
+    step_until(w, lambda w, ev: w.lasers.pool.n)
+    origin = w.lasers.pool.head[0].copy()
+    head = {0: origin}
+    for age in range(1, 41):
+        w.step(IDLE)
+        head[age] = w.lasers.pool.head[0].copy()
+    p = w.lasers.pool
+    assert int(p.count[0]) == 15  # the first step's node, then one every 3 steps (ages 3..39)
+    expected = [head[40]] + [head[41 - 3 * j] for j in range(1, 14)] + [origin]
+    np.testing.assert_array_equal(p.nodes[0, :15], np.array(expected))
+
+
 # ------------------------------------------------------------------------- hits, grazes, bombs
 def test_hit__is_a_miss_like_a_bullets():
     w = laser_world(straight())
@@ -226,9 +241,20 @@ def test_level__reads_each_kind(tmp_path):
     s = aimed.boss.phases[0].lasers[0]
     assert (s.part, s.kind, s.aim, s.angle, s.count, s.spread, s.warn) == (0, LaserKind.STRAIGHT, True, 0.0, 3, 40, 0.8)
     assert s.width == s.tip == 10.0 and [d.value for d in s.difficulties] == ["hard"]
-    curvy = load(tmp_path, 'part = 1\nkind = "curvy"\nspeed = 90\nnodes = 64\nwidth = 8\ntip = 1\nwave = 20')
+    curvy = load(
+        tmp_path, 'part = 1\nkind = "curvy"\nspeed = 90\nnodes = 64\nspacing = 2\nwidth = 8\ntip = 1\nwave = 20'
+    )
     s = curvy.boss.phases[0].lasers[0]
-    assert (s.kind, s.angle, s.speed, s.nodes, s.width, s.tip, s.wave) == (LaserKind.CURVY, 180.0, 90, 64, 8, 1, 20)
+    assert (s.kind, s.angle, s.speed, s.nodes, s.spacing, s.width, s.tip, s.wave) == (
+        LaserKind.CURVY,
+        180.0,
+        90,
+        64,
+        2,
+        8,
+        1,
+        20,
+    )
 
 
 @pytest.mark.parametrize(
@@ -244,6 +270,7 @@ def test_level__reads_each_kind(tmp_path):
         ("part = 1\nwarn = 0.1", "warn", "must lie in [0.25, 10]"),
         ("part = 1\nwidth = nan", "width", "must be finite"),
         ('part = 1\nkind = "curvy"\nnodes = 65', "nodes", "must lie in [2, 64]"),
+        ('part = 1\nkind = "curvy"\nspacing = 0', "spacing", "must lie in [1, 8]"),
         ("part = 1\ncolour = 'red'", "colour", "unknown field"),
     ],
 )

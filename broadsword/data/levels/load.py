@@ -220,7 +220,7 @@ LASERS_MAX, LASER_FAN_MAX = 16, 16
 LASER_KIND_KEYS = {
     LaserKind.STRAIGHT: ("length", "warn"),
     LaserKind.BEAM: ("length", "warn", "turn"),
-    LaserKind.CURVY: ("turn", "speed", "nodes", "wave", "period"),
+    LaserKind.CURVY: ("turn", "speed", "nodes", "spacing", "wave", "period"),
 }
 LASER_KINDS = tuple(k.value for k in LaserKind)
 
@@ -252,6 +252,7 @@ def _laser(f: Table, parts: int) -> LaserSpec:
         turn=f.num("turn", d.turn, -720, 720),
         speed=f.num("speed", d.speed, 10, 1000),
         nodes=f.int("nodes", d.nodes, 2, LASER_NODES),
+        spacing=f.int("spacing", d.spacing, 1, 8),
         wave=f.num("wave", d.wave, 0, 180),
         period=f.num("period", d.period, 0.1, 60),
         difficulties=_difficulties(f),

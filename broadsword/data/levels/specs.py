@@ -191,7 +191,7 @@ class LaserSpec:
 
     ``length`` and ``warn`` are for straight lasers and beams, ``turn`` (degrees per second)
     turns a beam while it is on and a curvy laser's head all its life; ``speed``, ``nodes``,
-    ``wave`` and ``period`` shape a curvy laser (its head wobbles ``wave`` degrees each way
+    ``spacing``, ``wave`` and ``period`` shape a curvy laser (its head wobbles ``wave`` degrees each way
     every ``period`` s). ``width`` is the full width at the origin (a curvy laser's head),
     ``tip`` at the far end (its tail): equal for a uniform laser, else tapered."""
 
@@ -211,6 +211,7 @@ class LaserSpec:
     turn: float = 0.0  # degrees per second
     speed: float = 180.0  # px/s, a curvy laser's head
     nodes: int = 32  # a curvy laser's
+    spacing: int = 1  # steps of the head's path between two of a curvy laser's nodes
     wave: float = 0.0  # degrees
     period: float = 1.0  # s
     difficulties: frozenset[Difficulty] = frozenset(Difficulty)
