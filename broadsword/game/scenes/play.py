@@ -227,5 +227,5 @@ class Play:
             from .pause import Pause
 
             paused = isinstance(app.stack.top, Pause)
+            draw_laser_armatures(surf, self.world)  # under the overlay's panel
             app.overlay.draw(surf, record.result if record is not None else None, app.fps, paused)
-            draw_laser_armatures(surf, self.world)
