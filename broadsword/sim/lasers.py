@@ -60,7 +60,6 @@ CULL_MARGIN = 32.0
 STAR_SPACING, STARS_MAX = 48.0, 12
 #: At most this many lasers at once; a phase that would fire more fires fewer.
 LASERS_LIMIT = 256
-KIND_CODE = {k: i for i, k in enumerate(LaserKind)}
 
 
 def frames(seconds: float, least: int = 1) -> int:

@@ -360,3 +360,26 @@ def test_recording__a_laser_fight_replays_to_the_same_state_every_frame(tmp_path
     rec = r.recording()
     s = run_headless("", rec.frames, 0, False, rec, str(tmp_path / "run.json"))[0]
     assert s["replay_matches"] is True and s["state_hash"] == r.world.state_hash()
+
+
+def test_snapshot__format_1_is_still_read_with_no_laser_in_play():
+    """A snapshot written before lasers (version 1: no ``lasers`` section) restores, and the
+    world it makes has none in play."""
+    import zlib
+
+    from broadsword.sim.snapshot import MAGIC
+
+    a = laser_world(straight())
+    step_until(a, lambda w, ev: w.frame >= 30)
+    snaps = Snapshots(a)
+    data = snaps.save(a)
+    assert a.lasers.pool.n == 0
+    body = data[: data.index(b"\x06\x00\x00\x00lasers")]
+    body = (
+        body[: len(MAGIC)] + (1).to_bytes(8, "little") + (len(body) + 4).to_bytes(8, "little") + body[len(MAGIC) + 16 :]
+    )
+    old = body + zlib.crc32(body).to_bytes(4, "little")
+    b = laser_world(straight())
+    step_until(b, lambda w, ev: w.lasers.pool.n)
+    snaps.restore(b, old)
+    assert b.lasers.pool.n == 0 and snaps.save(b) == data
