@@ -5,6 +5,8 @@
     broadsword --headless --level LEVEL --frames N --seed S --autopilot
                                                  no window; last line of stdout is JSON
     broadsword --headless --replay run.json      replay a recording (and check its hash)
+    broadsword --headless ... --hit-log hits.json  also write what hit the player, hit by hit, as JSON
+    broadsword --headless --level L --practice P start at boss phase P (0: the stage's start)
     broadsword --replay run.json                 watch a recording on screen (pause, F2 step, F1 overlay)
     broadsword --list-levels
     broadsword --version
@@ -33,13 +35,18 @@ import os
 import sys
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
 
 from . import __version__
 from .argtypes import LAB_BULLETS_MAX, LAB_SHIPS_MAX, frame_list, lab_size, natural, nonempty, seed
 from .data import DataError, list_levels, load_level, recordings, resolve_level
 from .data.difficulty import Difficulty
 from .data.recordings import Recording, load_recording
-from .fileio import check_writable
+from .fileio import check_writable, write_atomic
+
+if TYPE_CHECKING:
+    from .runner.hits import HitCollector
+    from .runner.practice import PracticeChoice
 
 
 @dataclass(frozen=True)
@@ -98,6 +105,26 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         help="--headless --replay: report the state hash after each of these frames of the run "
         '(the JSON\'s hashes: {"F": hash})',
     )
+    ap.add_argument(
+        "--hit-log",
+        metavar="FILE",
+        default=None,
+        help="--headless: write every hit on the player (what hit, both polygons, the edges that crossed or "
+        "the containment, the tiers that passed) to FILE as JSON (docs/FORMATS.md, 'Hit log')",
+    )
+    ap.add_argument(
+        "--practice",
+        type=natural,
+        metavar="PHASE",
+        help="--headless: start at the start of the boss's phase PHASE (1-based; 0: the stage's start), "
+        "reached as the autopilot reaches it on the difficulty (one pass, kept in the cache directory), with "
+        "the lives, bombs and power it had there unless --lives, --bombs, --power say otherwise; the JSON adds "
+        "practice, phase, origin (the world frame there) and defaults. Exit 2 for a phase the stage has not, "
+        "1 if the autopilot does not reach it",
+    )
+    ap.add_argument("--lives", type=natural, help="--practice: start with these lives (1-9)")
+    ap.add_argument("--bombs", type=natural, help="--practice: start with these bombs (0-9)")
+    ap.add_argument("--power", type=natural, help="--practice: start with this power (100-400; 100 is 1.00)")
     ap.add_argument(
         "--list-levels",
         action="store_true",
@@ -210,6 +237,14 @@ def _run_play(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
             return 2
+        if args.hit_log is not None and not args.headless:
+            print("broadsword: --hit-log needs --headless (in a window, a miss shows what hit)", file=sys.stderr)
+            return 2
+        if args.hit_log is not None and (why := check_writable(args.hit_log)):
+            print(f"broadsword: --hit-log {args.hit_log!r}: {why}", file=sys.stderr)
+            return 2
+        if (practice := _practice_choice(args, replay)) is False:
+            return 2
         if args.hashes is not None and not (args.headless and replay):
             print("broadsword: --hashes needs --headless and --replay", file=sys.stderr)
             return 2
@@ -225,7 +260,9 @@ def _run_play(args: argparse.Namespace) -> int:
             os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
             frames = args.frames if args.frames is not None else (replay.frames if replay else 600)
             from .headless import run_headless
+            from .runner.hits import HitCollector
 
+            hits = HitCollector()
             summary, recording = run_headless(
                 level,
                 frames,
@@ -236,8 +273,13 @@ def _run_play(args: argparse.Namespace) -> int:
                 args.rotation,
                 Difficulty(args.difficulty or Difficulty.NORMAL),
                 args.hashes or (),
+                watch=[hits],
+                practice=practice or None,
+                say=lambda line: print(f"broadsword: {line}", file=sys.stderr),
             )
             saved = _save_recording(args.record, recording) if args.record else True
+            if args.hit_log is not None:
+                saved = _save_hit_log(args.hit_log, hits) and saved
             for warning in summary["warnings"]:
                 print(f"broadsword: warning: {warning}", file=sys.stderr)
             print(json.dumps(summary))
@@ -248,6 +290,34 @@ def _run_play(args: argparse.Namespace) -> int:
     except (DataError, KernelChoiceError) as exc:
         print(f"broadsword: {exc}", file=sys.stderr)
         return 2
+    except ValueError as exc:  # a practice: a phase the stage has not (2), or one the autopilot never reached (1)
+        from .runner.practice import PhaseNotReached, PracticeError
+
+        if not isinstance(exc, PracticeError):
+            raise
+        print(f"broadsword: {exc}", file=sys.stderr)
+        return 1 if isinstance(exc, PhaseNotReached) else 2
+
+
+def _practice_choice(args: argparse.Namespace, replay: Recording | None) -> PracticeChoice | None | Literal[False]:
+    """The practice ``--practice`` asks for (None: none); False, said on stderr, when the
+    options do not go together."""
+    loadout = {"lives": args.lives, "bombs": args.bombs, "power": args.power}
+    if args.practice is None:
+        given = [f"--{k}" for k, v in loadout.items() if v is not None]
+        if given:
+            print(f"broadsword: {', '.join(given)}: only with --practice", file=sys.stderr)
+            return False
+        return None
+    if not args.headless or replay is not None:
+        print(
+            "broadsword: --practice needs --headless and no --replay (in the window: the title's Practice)",
+            file=sys.stderr,
+        )
+        return False
+    from .runner.practice import PracticeChoice
+
+    return PracticeChoice(args.practice, **loadout)
 
 
 class KernelChoiceError(Exception):
@@ -313,6 +383,19 @@ def _save_recording(dest: str, recording: Recording) -> bool:
             )
             return False
         print(f"broadsword: --record {dest}: cannot write ({why}); saved the run as {rescue} instead", file=sys.stderr)
+        return False
+    return True
+
+
+def _save_hit_log(dest: str, hits: HitCollector) -> bool:
+    """Write the run's hit log (a :class:`~.runner.hits.HitCollector`'s) to ``dest``
+    atomically; say why on standard error if it cannot."""
+    from .runner.hits import hit_log_document
+
+    try:
+        write_atomic(dest, (json.dumps(hit_log_document(hits.hits), indent=1) + "\n").encode())
+    except OSError as exc:
+        print(f"broadsword: --hit-log {dest}: cannot write ({exc.strerror or exc})", file=sys.stderr)
         return False
     return True
 

@@ -10,6 +10,9 @@ before a long run, and :func:`write_atomic` never replaces anything but a regula
 :func:`write_atomic` names its temporary ``.<name>.<random>.tmp`` beside the target;
 :func:`remove_stale_temps` removes exactly such names, and only its caller knows when that
 is safe (while holding the lock every writer of the target takes).
+
+:func:`cache_home` is where disposable files live (rendered music, practice starts): the one
+place every layer finds it.
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ import errno
 import os
 import re
 import stat
+import sys
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -262,3 +266,26 @@ def _fsync_dir(directory: Path) -> None:
         pass
     finally:
         os.close(fd)
+
+
+def cache_home() -> Path:
+    """Directory for Broadsword's disposable files (rendered music, practice starts).
+
+    Precedence: ``$BROADSWORD_CACHE_DIR`` (as given, ``~`` expanded); else
+    ``$XDG_CACHE_HOME/broadsword`` (absolute paths only, as the XDG spec requires); else on
+    Windows ``%LOCALAPPDATA%/broadsword/cache``, on macOS ``~/Library/Caches/broadsword``;
+    else ``~/.cache/broadsword``. A variable set but empty counts as unset.
+    """
+    override = os.environ.get("BROADSWORD_CACHE_DIR")
+    if override:
+        return Path(override).expanduser()
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    if xdg and Path(xdg).is_absolute():
+        return Path(xdg) / "broadsword"
+    if sys.platform == "win32":
+        local = os.environ.get("LOCALAPPDATA")
+        base = Path(local) if local else Path.home() / "AppData" / "Local"
+        return base / "broadsword" / "cache"
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Caches" / "broadsword"
+    return Path.home() / ".cache" / "broadsword"

@@ -7,11 +7,22 @@ so a headless run and a windowed one record and play back the same way.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from .data.difficulty import Difficulty
 from .data.recordings import Recording
-from .runner import Observer, PeakBullets, Runner, StageStart, StateHashes, TierTally
+from .runner import Observer, PeakBullets, Runner, StageStart, StateHashes, TierTally, open_stage
+from .runner.practice import (
+    PracticeCache,
+    PracticeChoice,
+    PracticeError,
+    StartUnfit,
+    boss_phases,
+    check_phase,
+    practice_info,
+    practice_stage,
+    prepare,
+)
 from .sim import IDLE, Pilot, Settings, World
 
 
@@ -29,6 +40,10 @@ def run_headless(
     rotation: str | None = None,
     difficulty: Difficulty = Difficulty.NORMAL,
     hashes: Sequence[int] = (),
+    watch: Sequence[Observer] = (),
+    practice: PracticeChoice | None = None,
+    practice_cache: PracticeCache | None = None,
+    say: Callable[[str], None] | None = None,
 ) -> tuple[dict, Recording]:
     """Play at most ``frames`` steps with no window; return the summary (DESIGN.md's JSON)
     and the run's :class:`Recording`.
@@ -41,16 +56,30 @@ def run_headless(
     and, when a checkpoint's hash differed, ``first_mismatch``. ``rotation``, when given,
     replaces the level's ``scene.rotation``; ``difficulty`` picks the stage's values for it.
     ``hashes``: the run's frames after which to report the state hash (``hashes``: frame ->
-    hash; frames never reached are left out).
+    hash; frames never reached are left out). ``watch``: more observers of the run (the hit
+    log's :class:`~broadsword.runner.hits.HitCollector`).
+
+    With ``practice``, the stage starts at the start of the boss phase it names (docs: the
+    practice starts, from ``practice_cache`` or made by one autopilot pass, ``say`` told so
+    in a line), with its lives, bombs and power (the autopilot's there by default); ``frames``
+    counts the steps played from there. The summary adds ``practice``, ``phase``,
+    ``origin`` (the world frame the phase starts at) and ``defaults`` (the autopilot's
+    lives, bombs and power there). :class:`~broadsword.runner.practice.PracticeError` for a
+    phase the stage does not have or values out of range, before any play;
+    :class:`~broadsword.runner.practice.PhaseNotReached` if the autopilot does not reach it.
     """
     tally, peak, hashed = TierTally(), PeakBullets(), StateHashes(hashes)
-    observers: list[Observer] = [tally, peak, hashed]
+    extra: dict = {}
+    observers: list[Observer] = [tally, peak, hashed, *watch]
     if replay is not None:
         runner = Runner.replaying(replay, replay_path, observers=observers)
         runner.play_back(replay_path, frames=frames)
     else:
         start = StageStart(level_ref, seed, Settings(rotation=rotation, difficulty=difficulty))
-        runner = Runner.open(start, observers=observers)
+        if practice is None:
+            runner = Runner.open(start, observers=observers)
+        else:
+            runner, extra = _practice_runner(start, practice, practice_cache, say, observers)
         runner.play(Pilot() if use_autopilot else _idle, frames)
     world = runner.world
     summary = world.summary()
@@ -70,6 +99,7 @@ def run_headless(
     )
     if hashes:
         summary["hashes"] = {str(f): hashed.hashes[f] for f in hashes if f in hashed.hashes}
+    summary.update(extra)
     pb = runner.playback
     if pb is not None:
         summary["recorded_frames"] = pb.rec.frames
@@ -80,3 +110,34 @@ def run_headless(
             m = pb.mismatch
             summary["first_mismatch"] = {"frame": m.frame, "expected": m.expected, "got": m.got}
     return summary, runner.recording()
+
+
+def _practice_runner(
+    start: StageStart,
+    choice: PracticeChoice,
+    cache: PracticeCache | None,
+    say: Callable[[str], None] | None,
+    observers: Sequence[Observer],
+) -> tuple[Runner, dict]:
+    """A runner at the start of the practice ``choice`` names, and what the summary adds."""
+    stage = open_stage(start)
+    check_phase(boss_phases(stage), choice.phase)  # usage errors before a long autopilot pass
+    if (problem := choice.problem()) is not None:
+        raise PracticeError(problem)
+    cache = cache or PracticeCache.default()
+    at = prepare(stage, cache, say).start(choice.phase)
+    try:
+        stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
+    except StartUnfit as exc:  # kept by a game whose snapshots differ: made again, once
+        if say is not None:
+            say(f"{exc}: it is made again")
+        at = prepare(open_stage(start), cache, say, fresh=True).start(choice.phase)
+        stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
+    d = at.loadout
+    extra = {
+        "practice": True,
+        "phase": choice.phase,
+        "origin": at.frame,
+        "defaults": {"lives": d.lives, "bombs": d.bombs, "power": d.power},
+    }
+    return Runner(stage, observers, info=practice_info(choice.phase)), extra

@@ -60,6 +60,9 @@ def test_bench__quick_run_writes_every_section(tmp_path, capsys):
     lasers = {r["model"]: r for r in doc["lasers"]}  # issue 23: the exact test and the engines' models
     assert {"exact", "rect_per_segment", "circle_per_node", "capsule_per_segment", "tapered_capsule"} <= set(lasers)
     assert all({"false_hits", "false_misses", "median_ms"} <= set(r) for r in lasers.values())
+    frame = doc["laser_frame"]  # issue 23: lasers through the pipeline
+    assert (frame["lasers"], frame["nodes"], frame["bullets"], frame["ships"]) == (200, 64, 5000, 100)
+    assert frame["median_ms"] > 0 and frame["tiers"]["armature"]["laser_pairs_in"] > 0
     for key in ("scaling", "bin_size", "rotation_table", "stability", "fidelity", "outliers"):
         assert key in doc, key
     before, after = doc["outliers"]["table"]  # the bomb no longer coarsens the grid

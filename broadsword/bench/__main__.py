@@ -18,7 +18,8 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    whole game frame's; then the limit corpus (broadsword/bench/pattern_limits.py), the
    engine's and the whole game step's mean and worst ms per file, and the worst over it;
    lasers: the exact test against other engines' models (false hits and misses, cost) on
-   one corpus (:mod:`.lasers`);
+   one corpus (:mod:`.lasers`), and a frame of 200 curvy lasers of 64 nodes, 5,000 bullets
+   and 100 ships through the pipeline (:mod:`.laser_frame`);
 4. snapshots: size, save and restore time at the bullet-hell stage's peak and at 10,000
    bullets; seeking a 5-minute run (``--quick``: 15 s) by snapshots and stepping;
 5. how cost grows with object count (fitted exponents), the bin-size curve, the rotation
@@ -452,6 +453,12 @@ def main(argv: list[str] | None = None) -> int:
 
     lasers = run_laser_models(args.quick, args.seed, _progress("lasers against the engines' models"))
     print(lasers_markdown(lasers), flush=True)
+    from .laser_frame import markdown as laser_frame_markdown
+    from .laser_frame import run_laser_frame
+
+    print("  lasers through the pipeline ...", file=sys.stderr, flush=True)
+    laser_frame = run_laser_frame(args.quick, args.seed)
+    print(laser_frame_markdown(laser_frame), flush=True)
 
     from .snapshots import markdown as snapshots_markdown
     from .snapshots import run_seek, run_snapshots
@@ -493,6 +500,7 @@ def main(argv: list[str] | None = None) -> int:
             "patterns": patterns,
             "pattern_limits": pattern_limits,
             "lasers": lasers,
+            "laser_frame": laser_frame,
             "snapshot": snapshot,
             "seek": seek,
             **sections,

@@ -15,9 +15,11 @@ the game. Modules, one idea each:
   one module per method; ``base`` holds the protocol and its statistics)
 * ``narrow``      the exact narrow phase over many pairs at once
 * ``lasers``      lasers: polylines with a width, as pieces (convex quads) collided exactly
+* ``laserframe``  lasers in the pipeline: a frame's pieces as objects of every tier, and what they hit
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
 * ``tiers``       every tier in one registry, and the one rule for their order
 * ``frame``       one frame's typed record: the objects in, the result out
+* ``explain``     why one pair touches or not (crossing edges, containment) and which tiers passed it
 * ``pipeline``    the tiered pipeline a scene configures
 * ``debugdraw``   the debug-draw protocol (no renderer), and what a frame looks like through it
 * ``scenarios``   seeded reference scenes (tests, the lab and the benchmark)
@@ -40,11 +42,25 @@ from .broadphase import (
     TreeLayout,
     auto_bin_size,
 )
+from .explain import (
+    ContactKind,
+    Containment,
+    EdgeCrossing,
+    Explanation,
+    Side,
+    TierVerdict,
+    Verdict,
+    explain,
+    posed_polygon,
+    tiers_passed,
+)
 from .frame import FrameObjects, FrameResult, TierStats
 from .kdop import kdops, kdops_overlap
+from .laserframe import LaserPieces, LaserResult
 from .lasers import (
     LASER_NODES_MAX,
     Laser,
+    LaserSet,
     laser_pieces,
     laser_touches,
     laser_touches_swept,
@@ -82,12 +98,25 @@ __all__ = [
     "TierKind",
     "TreeLayout",
     "check_kernel",
+    "ContactKind",
+    "Containment",
+    "EdgeCrossing",
+    "Explanation",
+    "Side",
+    "TierVerdict",
+    "Verdict",
+    "explain",
+    "posed_polygon",
+    "tiers_passed",
     "warm_kernel",
     "check_tiers",
     "kdops",
     "kdops_overlap",
     "LASER_NODES_MAX",
     "Laser",
+    "LaserSet",
+    "LaserPieces",
+    "LaserResult",
     "laser_pieces",
     "laser_touches",
     "laser_touches_swept",

@@ -20,8 +20,19 @@ import numpy as np
 
 from .broadphase.base import GridLayout, TreeLayout
 from .frame import FrameResult
+from .lasers import LaserSet
 
-__all__ = ["RGB", "Colours", "DebugDraw", "FrameColours", "draw_frame", "draw_layout", "posed_polygons"]
+__all__ = [
+    "RGB",
+    "Colours",
+    "DebugDraw",
+    "FrameColours",
+    "draw_frame",
+    "draw_layout",
+    "draw_lasers",
+    "laser_piece_colours",
+    "posed_polygons",
+]
 
 RGB = tuple[int, int, int]
 #: One colour for the whole batch, or one per item.
@@ -64,6 +75,13 @@ class FrameColours:
     grid: RGB = (50, 80, 130)
     heat_low: RGB = (20, 50, 110)
     heat_high: RGB = (90, 170, 255)
+    #: Laser pieces by the furthest tier a pair of theirs survived: none (the broad phase
+    #: paired them with nothing), then the broad phase to the tier before the last (whose
+    #: pairs went to the exact test) shading from ``laser_first`` to ``laser_last``;
+    #: touching pieces in ``hit``.
+    laser_none: RGB = (70, 60, 90)
+    laser_first: RGB = (150, 110, 255)
+    laser_last: RGB = (255, 170, 60)
 
     def of_layer(self, layer: np.ndarray) -> list[RGB]:
         """(m,) layer ids -> one colour each."""
@@ -90,6 +108,51 @@ def posed_polygons(result: FrameResult) -> tuple[np.ndarray, list[np.ndarray]]:
         objects.append(members)
         polys.append(np.stack([posed.xs[k].T, posed.ys[k].T], axis=2))
     return np.concatenate(objects), polys
+
+
+def laser_piece_colours(result: FrameResult, colours: FrameColours) -> list[RGB]:
+    """One colour per laser piece of ``result`` (:attr:`FrameResult.lasers`): the tier
+    decision it met (:meth:`LaserResult.furthest_tier
+    <broadsword.collision.laserframe.LaserResult.furthest_tier>`), ``colours.hit`` where it
+    touches an object. Empty for a frame without lasers."""
+    lasers = result.lasers
+    if lasers is None:
+        return []
+    tiers = result.tiers
+    reached = lasers.furthest_tier(tiers)
+    lo, hi = np.array(colours.laser_first, float), np.array(colours.laser_last, float)
+    share = np.minimum(reached / max(len(tiers) - 2, 1), 1.0)  # the tier before the last: tested exactly
+    shade = np.rint(lo + share[:, None] * (hi - lo)).astype(int)
+    out: list[RGB] = [(r, g, b) for r, g, b in shade.tolist()]
+    for j in np.flatnonzero(reached < 0).tolist():
+        out[j] = colours.laser_none
+    for j in np.unique(lasers.piece_hits[:, 1]).tolist():
+        out[j] = colours.hit
+    return out
+
+
+def draw_lasers(draw: DebugDraw, result: FrameResult, colours: FrameColours) -> None:
+    """Every laser piece of ``result`` as its polygon, coloured by the tier decision it met
+    (:func:`laser_piece_colours`; the pieces of lasers whose box met no object, which the
+    pipeline never made, in ``colours.laser_none``), and a line from each laser hit's object to the centre of
+    the piece it touched first. Nothing for a frame without lasers."""
+    lasers = result.lasers
+    if lasers is None:
+        return
+    culled = np.flatnonzero(~lasers.tested)
+    all_lasers = result.objects.lasers
+    if len(culled) and isinstance(all_lasers, LaserSet):  # no piece was made: make them to draw
+        x, y, _ = all_lasers.subset(culled).pieces()
+        draw.polygons(np.stack([x.T, y.T], axis=2), colours.laser_none)
+    p = lasers.pieces
+    if not p.count:
+        return
+    draw.polygons(np.stack([p.x.T, p.y.T], axis=2), laser_piece_colours(result, colours))
+    if len(lasers.hits):
+        obj, laser, local = lasers.hits.T
+        piece = np.searchsorted(p.laser, laser) + local  # pieces lie laser by laser
+        centre = np.column_stack([p.x[:, piece].mean(axis=0), p.y[:, piece].mean(axis=0)])
+        draw.segments(result.objects.positions[obj], centre, colours.hit, width=3)
 
 
 def draw_layout(draw: DebugDraw, layout: GridLayout | TreeLayout | None, colours: FrameColours) -> None:
@@ -123,8 +186,9 @@ def draw_layout(draw: DebugDraw, layout: GridLayout | TreeLayout | None, colours
 def draw_frame(draw: DebugDraw, result: FrameResult, colours: FrameColours) -> None:
     """Draw what each tier of ``result`` saw: the broad phase's layout, the bounding circles
     (``circle`` tier) and boxes (``aabb``), every posed armature in its layer's colour
-    (swept volumes in ``colours.swept``), the candidate pairs as thin lines between centres
-    and the hits as thick red ones with a ring on the second object."""
+    (swept volumes in ``colours.swept``), the laser pieces by the tier decision they met
+    (:func:`draw_lasers`), the candidate pairs as thin lines between centres and the hits
+    as thick red ones with a ring on the second object."""
     draw_layout(draw, result.broad.layout, colours)
     objects = result.objects
     layer = objects.layer
@@ -142,6 +206,7 @@ def draw_frame(draw: DebugDraw, result: FrameResult, colours: FrameColours) -> N
         tint = colours.of_layer(layer[who])
         swept = objects.swept[who].tolist() if objects.swept is not None else [False] * len(who)
         draw.polygons(batch, [colours.swept if s else c for s, c in zip(swept, tint)])
+    draw_lasers(draw, result, colours)
     pos = objects.positions
     if len(result.candidates):
         draw.segments(pos[result.candidates[:, 0]], pos[result.candidates[:, 1]], colours.candidate)

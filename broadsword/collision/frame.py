@@ -9,13 +9,15 @@ one record and never the pipeline's insides.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from . import arguments
 from .broadphase.base import BroadPhaseStats
+from .laserframe import LaserResult
+from .lasers import Laser, LaserSet
 from .layers import LayerTable
 from .posing import Posed
 
@@ -50,6 +52,14 @@ class FrameObjects:
     swept : (n,) bool
         Objects to sweep from their previous pose (the "quick gun" fix); all ``False``
         when none is given.
+    lasers : LaserSet
+        The frame's lasers (given as a :class:`~broadsword.collision.lasers.LaserSet` or a
+        sequence of :class:`~broadsword.collision.lasers.Laser`, packed), tested as their
+        pieces against the objects their layer tests (never against other lasers); empty
+        when none is given. A laser is taken where it is: a fast object crossing it is
+        caught by sweeping the object.
+    laser_layer : (L,) int64
+        Layer id of each laser (``L`` lasers); empty when there are none.
     """
 
     armature: np.ndarray
@@ -59,6 +69,8 @@ class FrameObjects:
     prev_positions: np.ndarray | None = None
     prev_angles: np.ndarray | None = None
     swept: np.ndarray | None = None
+    lasers: LaserSet | Sequence[Laser] = ()
+    laser_layer: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         # The library's boundary: types, shapes and finiteness by arguments.py's rules (ids
@@ -81,6 +93,22 @@ class FrameObjects:
                 raise ValueError(f"{name}: {n} layer ids but {len(a)} {name} (nothing is broadcast)")
         if swept.any() and (self.prev_positions is None or self.prev_angles is None):
             raise ValueError("prev_positions and prev_angles (last frame's poses) are needed for swept objects")
+        lasers = self.lasers
+        if not isinstance(lasers, LaserSet):
+            given = arguments.sequence(lasers, "lasers", "Laser objects (or a LaserSet)")
+            for i, laser in enumerate(given):
+                arguments.instance(laser, f"lasers[{i}]", Laser, "a Laser (make one with Laser.of(nodes, width))")
+            lasers = LaserSet.pack(given)
+        put(self, "lasers", lasers)
+        if self.laser_layer is None and lasers:
+            raise ValueError(f"laser_layer: {len(lasers)} lasers need one layer id each")
+        laser_layer = np.empty(0, dtype=np.int64) if self.laser_layer is None else self.laser_layer
+        laser_layer = arguments.ids(laser_layer, "laser_layer", None)
+        if len(laser_layer) != len(lasers):
+            raise ValueError(
+                f"laser_layer: {len(lasers)} lasers but {len(laser_layer)} layer ids (nothing is broadcast)"
+            )
+        put(self, "laser_layer", laser_layer)
 
     @property
     def n(self) -> int:
@@ -94,12 +122,22 @@ class TierStats:
 
     The ``pose`` row counts objects posed instead of pairs; the ``layers`` row counts all
     object pairs in and the pairs the layer table allows out (arithmetic only, no work).
+
+    A frame with lasers counts each laser piece as an object: ``pairs_in`` and
+    ``pairs_out`` include the (object, piece) pairs, and ``laser_pairs_in`` and
+    ``laser_pairs_out`` say how many of them those are. On the ``pose`` row, in: the objects
+    and every laser's pieces, out: the objects and the pieces made (those of the lasers whose
+    box meets an object they test; the broad phase pairs the rest with nothing). Two pieces
+    never make a pair: the ``layers`` row's ``pairs_in`` counts the object pairs and every
+    (object, piece) pair.
     """
 
     name: str
     pairs_in: int
     pairs_out: int
     ms: float
+    laser_pairs_in: int = 0
+    laser_pairs_out: int = 0
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,6 +170,10 @@ class FrameResult:
         The table that chose which pairs were tested.
     tier_pairs : mapping str -> (m, 2) int64
         Each tier's surviving pairs, when the pipeline keeps them; empty otherwise.
+    lasers : LaserResult or None
+        What the lasers hit, and their pieces' pairs tier by tier (``None`` in a frame
+        without lasers). ``hits``, ``candidates``, ``tier_pairs``, ``posed`` and ``boxes``
+        above hold the objects only.
     """
 
     hits: np.ndarray
@@ -144,6 +186,7 @@ class FrameResult:
     rotation: str
     layers: LayerTable
     tier_pairs: Mapping[str, np.ndarray] = field(default_factory=dict)
+    lasers: LaserResult | None = None
 
     @property
     def ms(self) -> float:

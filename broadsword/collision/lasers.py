@@ -44,6 +44,7 @@ still collides by edge crossing and containment of its points.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -58,6 +59,7 @@ from .posing import _sweep
 __all__ = [
     "LASER_NODES_MAX",
     "Laser",
+    "LaserSet",
     "laser_pieces",
     "laser_touches",
     "laser_touches_swept",
@@ -69,6 +71,13 @@ __all__ = [
 LASER_NODES_MAX = 4096
 
 _MAX = float(np.finfo(np.float64).max)
+
+#: Segments whose larger direction component lies in [LO, HI] (or is 0) get the same normal
+#: bits unscaled: scaling by a power of two commutes with correctly rounded operations while
+#: nothing leaves the normal range, and here only the smaller component's square can (to a
+#: subnormal or zero), below 2**-62 of the larger's square: rounded away in the sum, scaled
+#: or not. So the frexp/ldexp scaling runs only where a coordinate is extreme.
+_SCALE_FREE_LO, _SCALE_FREE_HI = 2.0**-480, 2.0**480
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,16 +108,7 @@ class Laser:
         n = len(p)
         if not 2 <= n <= LASER_NODES_MAX:
             raise ValueError(f"nodes must hold 2 to {LASER_NODES_MAX} points, got {n}")
-        w = np.asarray(width, dtype=object)
-        if w.ndim == 0:
-            w = arguments.reals([width], "width", 1)
-            w = np.full(n, w[0])
-        else:
-            w = arguments.reals(width, "width", n)
-        if (w < 0).any():
-            i = int(np.flatnonzero(w < 0)[0])
-            raise ValueError(f"width must be >= 0, got {float(w[i])!r} at node {i}")
-        p, w = p.copy(), w.astype(np.float64, copy=True)
+        p, w = p.copy(), _widths(width, "width", n)
         p.flags.writeable = w.flags.writeable = False
         return cls(p, w)
 
@@ -125,6 +125,130 @@ class Laser:
         return x, y
 
 
+def _widths(width, name: str, n: int) -> np.ndarray:
+    """``(n,)`` float64 widths, a fresh array: one real for all, or ``n`` reals; each
+    finite and ``>= 0`` (errors name ``name`` and the node)."""
+    if np.asarray(width, dtype=object).ndim == 0:
+        w = np.full(n, arguments.reals([width], name, 1)[0])
+    else:
+        w = arguments.reals(width, name, n).astype(np.float64, copy=True)
+    if (w < 0).any():
+        i = int(np.flatnonzero(w < 0)[0])
+        raise ValueError(f"{name} must be >= 0, got {float(w[i])!r} at node {i}")
+    return w
+
+
+@dataclass(frozen=True, eq=False)
+class LaserSet:
+    """Many lasers packed in three arrays, checked once: what a game keeps from frame to
+    frame and hands :meth:`Pipeline.step <broadsword.collision.Pipeline.step>` (building a
+    :class:`Laser` for each of 200 lasers every frame checks 200 times).
+
+    Attributes
+    ----------
+    nodes : (N, 2) float64, read-only
+        Every laser's nodes, one laser after another (finite).
+    widths : (N,) float64, read-only
+        The full width at each node (finite, ``>= 0``).
+    starts : (L,) int64, read-only
+        Where each laser begins in ``nodes``: 0 first, increasing, each laser 2 to
+        :data:`LASER_NODES_MAX` nodes.
+
+    Laser ``i`` is ``self[i]``, a :class:`Laser` with the same pieces, bit for bit.
+    """
+
+    nodes: np.ndarray
+    widths: np.ndarray
+    starts: np.ndarray
+
+    @classmethod
+    def of(cls, nodes, widths, starts) -> LaserSet:
+        """Lasers from packed ``nodes`` ((N, 2) reals), ``widths`` (one real, or (N,)
+        reals) and ``starts`` ((L,) integers); ``ValueError`` (or ``ArgumentTypeError``)
+        naming the argument for anything else."""
+        p = arguments.points(nodes, "nodes").copy()
+        w = _widths(widths, "widths", len(p))
+        s = arguments.ids(starts, "starts", None).astype(np.int64, copy=True)
+        if len(p) and not len(s):
+            raise ValueError(f"starts: {len(p)} nodes but no laser starts")
+        if len(s):
+            counts = np.diff(np.append(s, len(p)))
+            bad = np.flatnonzero((counts < 2) | (counts > LASER_NODES_MAX))
+            if s[0] != 0:
+                raise ValueError(f"starts must begin with 0, got {int(s[0])}")
+            if bad.size:
+                i = int(bad[0])
+                raise ValueError(
+                    f"starts: laser {i} has {int(counts[i])} nodes (from {int(s[i])}); "
+                    f"a laser has 2 to {LASER_NODES_MAX}"
+                )
+        for a in (p, w, s):
+            a.flags.writeable = False
+        return cls(p, w, s)
+
+    @classmethod
+    def pack(cls, lasers: Sequence[Laser]) -> LaserSet:
+        """The lasers of a sequence of :class:`Laser` (already checked), packed."""
+        if not lasers:
+            return cls(np.empty((0, 2)), np.empty(0), np.empty(0, dtype=np.int64))
+        counts = np.fromiter((la.n for la in lasers), dtype=np.int64, count=len(lasers))
+        starts = np.zeros(len(lasers), dtype=np.int64)
+        np.cumsum(counts[:-1], out=starts[1:])
+        nodes = np.concatenate([la.nodes for la in lasers])
+        widths = np.concatenate([la.widths for la in lasers])
+        for a in (nodes, widths, starts):
+            a.flags.writeable = False
+        return cls(nodes, widths, starts)
+
+    def __len__(self) -> int:
+        return len(self.starts)
+
+    def __getitem__(self, i: int) -> Laser:
+        ends = np.append(self.starts[1:], len(self.nodes))
+        return Laser(self.nodes[self.starts[i] : ends[i]], self.widths[self.starts[i] : ends[i]])
+
+    @property
+    def counts(self) -> np.ndarray:
+        """(L,) int64: each laser's nodes."""
+        return np.diff(np.append(self.starts, len(self.nodes)))
+
+    def subset(self, chosen: np.ndarray) -> LaserSet:
+        """The lasers ``chosen`` ((k,) ascending indices), packed (the same bits each)."""
+        counts = np.take(self.counts, chosen)
+        starts = np.zeros(len(chosen), dtype=np.int64)
+        np.cumsum(counts[:-1], out=starts[1:])
+        rows = np.repeat(np.take(self.starts, chosen) - starts, counts) + np.arange(int(counts.sum()))
+        return LaserSet(np.take(self.nodes, rows, axis=0), np.take(self.widths, rows), starts)
+
+    def boxes(self) -> np.ndarray:
+        """(L, 4) float64: a closed box around each laser's pieces, clamped to the doubles.
+
+        Its nodes' box grown by ``hb = h (1 + 2**-40)``, ``h`` the laser's largest half
+        width, each bound one rounded operation: every corner is ``p + fl(h_i u)`` with
+        ``|u| <= 1 + 3 eps``, so ``|fl(h_i u)| <= fl(hb)`` and, rounding being monotone,
+        ``fl(p + fl(h_i u)) <= fl(max p + fl(hb))`` (and alike below). A piece replaced by
+        its clamped box lies inside the doubles, as the clamped bound does."""
+        x, y = self.nodes[:, 0], self.nodes[:, 1]
+        hb = np.maximum.reduceat(self.widths, self.starts) * 0.5 * (1.0 + 2.0**-40)
+        with np.errstate(over="ignore"):
+            out = np.column_stack(
+                [
+                    np.minimum.reduceat(x, self.starts) - hb,
+                    np.minimum.reduceat(y, self.starts) - hb,
+                    np.maximum.reduceat(x, self.starts) + hb,
+                    np.maximum.reduceat(y, self.starts) + hb,
+                ]
+            )
+        return np.clip(out, -_MAX, _MAX, out=out)
+
+    def pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every laser's pieces, ``(x, y, owner)``, as :func:`laser_pieces` gives them."""
+        if not len(self):
+            e = np.empty((4, 0))
+            return e, e.copy(), np.empty(0, dtype=np.int64)
+        return laser_pieces(self.nodes, self.widths, self.starts)
+
+
 def _normals(x: np.ndarray, y: np.ndarray, seg_chain: np.ndarray, seg_first: np.ndarray, seg_last: np.ndarray):
     """Unit normals ``(ux, uy)``, ``(s,)`` each, of ``s`` segments from ``(x[0], y[0])`` to
     ``(x[1], y[1])`` (``x``, ``y``: (2, s)), by the module docstring's rules. A zero-length
@@ -136,8 +260,12 @@ def _normals(x: np.ndarray, y: np.ndarray, seg_chain: np.ndarray, seg_first: np.
         if far.any():  # ends of opposite sign near the largest double: halve first
             dx[far] = 0.5 * x[1][far] - 0.5 * x[0][far]
             dy[far] = 0.5 * y[1][far] - 0.5 * y[0][far]
-    _, e = np.frexp(np.maximum(np.abs(dx), np.abs(dy)))
-    sx, sy = np.ldexp(dx, -e), np.ldexp(dy, -e)  # exact; the larger magnitude in [0.5, 1)
+    big = np.maximum(np.abs(dx), np.abs(dy))
+    if ((big >= _SCALE_FREE_LO) & (big <= _SCALE_FREE_HI) | (big == 0)).all():
+        sx, sy = dx, dy  # the scaling would change no bit (see _SCALE_FREE_LO); frexp is slow
+    else:
+        _, e = np.frexp(big)
+        sx, sy = np.ldexp(dx, -e), np.ldexp(dy, -e)  # exact; the larger magnitude in [0.5, 1)
     length = np.sqrt(sx * sx + sy * sy)
     has = length > 0
     ux, uy = np.zeros_like(dx), np.ones_like(dy)  # (0, 1): a chain with no length at all
@@ -196,45 +324,52 @@ def laser_pieces(
     """
     n_all = len(nodes)
     starts = np.zeros(1, dtype=np.int64) if starts is None else np.asarray(starts, dtype=np.int64)
-    ends = np.append(starts[1:], n_all)  # one past each laser's last node
-    counts = ends - starts
     lasers = len(starts)
+    counts = np.empty_like(starts)  # nodes per laser
+    counts[:-1] = np.diff(starts)
+    counts[-1] = n_all - starts[-1]
     x, y = nodes[:, 0], nodes[:, 1]
     h = 0.5 * widths  # exact (half of a double is a double, barring subnormals: rounded once)
-    # segments: every node but each laser's last starts one
-    seg_start = np.delete(np.arange(n_all), ends - 1)
-    seg_chain = np.repeat(np.arange(lasers), counts - 1)
-    seg_first = starts - np.arange(lasers)  # segment index of each laser's first segment
+    # Segments: laser l's nodes are starts[l] .., its segments starts[l] - l ..
+    seg_first = starts - np.arange(lasers)
     seg_last = seg_first + counts - 2
-    a, b = seg_start, seg_start + 1
-    ux, uy = _normals(np.stack([x[a], x[b]]), np.stack([y[a], y[b]]), seg_chain, seg_first, seg_last)
-    # joins: interior nodes, between a laser's consecutive segments s-1 and s
-    join_seg = np.setdiff1d(np.arange(len(seg_start)), seg_first)  # a join's second segment
-    join_node = seg_start[join_seg]
-    join_chain = seg_chain[join_seg]
-    segs, joins = len(seg_start), len(join_seg)
-    px, py = np.empty((4, segs + joins)), np.empty((4, segs + joins))
+    seg_chain = np.repeat(np.arange(lasers), counts - 1)
+    seg_start = np.arange(n_all - lasers) + np.take(starts - seg_first, seg_chain)  # first node of each
+    ux, uy = _normals(
+        np.stack([np.take(x, seg_start), np.take(x, seg_start + 1)]),
+        np.stack([np.take(y, seg_start), np.take(y, seg_start + 1)]),
+        seg_chain,
+        seg_first,
+        seg_last,
+    )
+    # Every piece in output order (laser by laser, segments then joins) as two nodes and two
+    # segments: corners n0 + h u(s0), n1 + h u(s1), n1 - h u(s0), n0 - h u(s1). A segment
+    # piece s: nodes s's ends, both normals its own; a join at node i: n0 = n1 = i, s0 and s1
+    # the segments before and after it.
+    owner = np.repeat(np.arange(lasers), 2 * counts - 3)
+    t = np.arange(len(owner)) - np.take(2 * starts - 3 * np.arange(lasers), owner)  # index within the laser
+    j = t - np.take(counts - 1, owner)  # join index (>= 0 for joins)
+    join = j >= 0
+    local = np.where(join, j, t)
+    s0 = np.take(seg_first, owner) + local
+    s1 = s0 + join
+    n0 = np.take(starts, owner) + local + join
+    n1 = n0 + ~join
+    x0, y0, h0 = np.take(x, n0), np.take(y, n0), np.take(h, n0)
+    x1, y1, h1 = np.take(x, n1), np.take(y, n1), np.take(h, n1)
+    ux0, uy0, ux1, uy1 = np.take(ux, s0), np.take(uy, s0), np.take(ux, s1), np.take(uy, s1)
+    px, py = np.empty((4, len(owner))), np.empty((4, len(owner)))
     with np.errstate(over="ignore", invalid="ignore"):
-        # segment pieces: p_i + h_i u_i, p_i+1 + h_i+1 u_i, p_i+1 - h_i+1 u_i, p_i - h_i u_i
-        ax, ay, bx, by = h[a] * ux, h[a] * uy, h[b] * ux, h[b] * uy
-        px[0, :segs], py[0, :segs] = x[a] + ax, y[a] + ay
-        px[1, :segs], py[1, :segs] = x[b] + bx, y[b] + by
-        px[2, :segs], py[2, :segs] = x[b] - bx, y[b] - by
-        px[3, :segs], py[3, :segs] = x[a] - ax, y[a] - ay
-        # joins at p_i (0 < i < n-1): p + h u_i-1, p + h u_i, p - h u_i-1, p - h u_i
-        xi, yi, hi = x[join_node], y[join_node], h[join_node]
-        prev, cur = join_seg - 1, join_seg
-        vx0, vy0, vx1, vy1 = hi * ux[prev], hi * uy[prev], hi * ux[cur], hi * uy[cur]
-        j = slice(segs, segs + joins)
-        px[0, j], py[0, j] = xi + vx0, yi + vy0
-        px[1, j], py[1, j] = xi + vx1, yi + vy1
-        px[2, j], py[2, j] = xi - vx0, yi - vy0
-        px[3, j], py[3, j] = xi - vx1, yi - vy1
+        np.add(x0, h0 * ux0, out=px[0])
+        np.add(y0, h0 * uy0, out=py[0])
+        np.add(x1, h1 * ux1, out=px[1])
+        np.add(y1, h1 * uy1, out=py[1])
+        np.subtract(x1, h1 * ux0, out=px[2])
+        np.subtract(y1, h1 * uy0, out=py[2])
+        np.subtract(x0, h0 * ux1, out=px[3])
+        np.subtract(y0, h0 * uy1, out=py[3])
     _box_unbounded(px, py)
-    owner = np.concatenate([seg_chain, join_chain])
-    # each laser's pieces together: its segments, then its joins
-    order = np.argsort(owner, kind="stable")
-    return px[:, order], py[:, order], owner[order]
+    return px, py, owner
 
 
 def pieces_touching(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> np.ndarray:

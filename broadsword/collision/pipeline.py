@@ -8,6 +8,10 @@ place, last. Every tier is conservative, so the hits of a scene that ends with
 whatever tiers come before. A scene without ``armature`` accepts its last tier's pairs as
 hits (cheaper, approximate).
 
+Lasers (:class:`~broadsword.collision.lasers.Laser`) go through the same tiers as their
+pieces, one object each (:mod:`broadsword.collision.laserframe`): ``step(..., lasers=[...],
+laser_layer=[...])``; what they hit comes back in :attr:`FrameResult.lasers`.
+
 Update order (paper, section 1.4): call :meth:`Pipeline.step` once per frame *after every
 object has moved*. Registering objects in bins while others still have to move lets two
 objects that overlap for a single update pass through each other.
@@ -20,12 +24,14 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import _pose_kernel, arguments, bounds
+from . import _pose_kernel, arguments, bounds, laserframe
 from ._kernel import Kernel, check_kernel
 from ._warm import warm_kernel
 from .armature import Armature
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
+from .laserframe import laser_table
+from .lasers import Laser, LaserSet
 from .layers import LayerTable
 from .narrow import collide_pairs
 from .pixels import MaskCache
@@ -128,6 +134,7 @@ class Pipeline:
         self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
+        self.laser_table = laser_table(self.layers)  # the table with a shadow layer for laser pieces
 
     def step(
         self,
@@ -138,6 +145,8 @@ class Pipeline:
         prev_positions: np.ndarray | None = None,
         prev_angles: np.ndarray | None = None,
         swept: np.ndarray | None = None,
+        lasers: LaserSet | Sequence[Laser] = (),
+        laser_layer: np.ndarray | None = None,
     ) -> FrameResult:
         """Run every tier on one frame's poses. Call after all movement of the frame.
 
@@ -153,6 +162,14 @@ class Pipeline:
             Last frame's poses, for the objects in ``swept``.
         swept : (n,) bool, optional
             Objects to sweep from their previous pose (fast movers: the "quick gun" fix).
+        lasers : LaserSet or sequence of Laser, optional
+            The frame's lasers (a :class:`LaserSet` is checked once for all: the cheaper
+            form for many lasers a frame), each tested as its pieces against the objects its layer
+            tests (never against another laser). An object touches a laser exactly when it
+            touches one of its pieces; a fast object is caught crossing a laser between
+            frames by sweeping the object. Results: :attr:`FrameResult.lasers`.
+        laser_layer : (L,) int, optional
+            Layer id of each laser; required with ``lasers``.
 
         Raises
         ------
@@ -161,9 +178,14 @@ class Pipeline:
             a non-finite or non-real value, an id that is not an integer or is out of range
             (:mod:`broadsword.collision.arguments` has the rules). Read-only arrays (memory
             maps, ``np.frombuffer``, frozen views) are accepted, with the same answers on
-            both kernels (copied where a compiled kernel needs a writeable array).
+            both kernels (copied where a compiled kernel needs a writeable array). A
+            laser that is not a ``Laser``, a ``laser_layer`` of the wrong length or out
+            of range, or lasers in a pipeline with the ``pixel`` tier (it has masks for
+            armatures only).
         """
-        return self.run(FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept))
+        return self.run(
+            FrameObjects(armature, layer, positions, angles, prev_positions, prev_angles, swept, lasers, laser_layer)
+        )
 
     @staticmethod
     def _refuse_overflow(boxes: np.ndarray) -> None:
@@ -190,9 +212,22 @@ class Pipeline:
             layer, "layer", len(self.layers.names), f"the layer table has {len(self.layers.names)} layers"
         )
         n = len(layer)
-        stats = [TierStats("layers", n * (n - 1) // 2, self.layers.possible_pairs(layer), 0.0)]
-        tier_pairs = {}
         clock = time.perf_counter
+        lasers = self._lasers(objects)
+        laser_layer = objects.laser_layer
+        assert laser_layer is not None  # FrameObjects: an array, empty without lasers
+        p_all = 0  # pieces of every laser of the frame
+        if lasers is None:
+            table = self.layers
+            stats = [TierStats("layers", n * (n - 1) // 2, table.possible_pairs(layer), 0.0)]
+        else:
+            table = self.laser_table
+            piece_layer = np.repeat(laser_layer, 2 * lasers.counts - 3) + len(self.layers.names)
+            p_all = len(piece_layer)
+            alone = self.layers.possible_pairs(layer)
+            allowed = table.possible_pairs(np.concatenate([layer, piece_layer]))
+            stats = [TierStats("layers", n * (n - 1) // 2 + n * p_all, allowed, 0.0, n * p_all, allowed - alone)]
+        tier_pairs = {}
 
         t0 = clock()
         swept = objects.swept if objects.swept is not None and objects.swept.any() else None
@@ -219,30 +254,42 @@ class Pipeline:
             # more than the skipped posing costs (docs/PERFORMANCE.md).
             if compiled is None:
                 boxes = bounds.aabbs(posed)
-            stats.append(TierStats("pose", n, n, (clock() - t0) * 1e3))
-            t0 = clock()
         else:
             boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
+        # The pieces of the lasers near an object they test join the frame as objects
+        # n .. n + p - 1 (laserframe.py).
+        joined = None
+        all_posed, all_boxes, all_layer, p = posed, boxes, layer, 0
+        if lasers is not None:
+            aligned = Tier.OBB in self.tiers
+            joined = laserframe.join(posed, boxes, layer, lasers, laser_layer, self.layers, self.workspace, aligned)
+            all_posed, all_boxes, all_layer, p = joined.posed, joined.boxes, joined.layer, joined.pieces.count
+        if self.needs_vertices:
+            stats.append(TierStats("pose", n + p_all, n + p, (clock() - t0) * 1e3, p_all, p))
+            t0 = clock()
         try:
-            pairs, broad = self.broad_phase.query(boxes, layer, self.layers)
+            pairs, broad = self.broad_phase.query(all_boxes, all_layer, table)
         except ValueError:
             self._refuse_overflow(boxes)
             raise
         candidates = pairs
-        stats.append(TierStats(self.tiers[0].value, stats[0].pairs_out, len(pairs), (clock() - t0) * 1e3))
+        stats.append(self._stats(self.tiers[0].value, stats[0], pairs, n, clock() - t0, joined is not None))
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0].value] = pairs
 
-        inp = TierInput(objects, posed, boxes, self.workspace, self.masks, self.kernel)
+        inp = TierInput(objects, all_posed, all_boxes, self.workspace, self.masks, self.kernel)
         for tier in self.tiers[1:]:
             t0 = clock()
-            n_in = len(pairs)
             keep = TIERS[tier].keep
             assert keep is not None  # check_tiers: only the first tier is a broad phase
+            before = stats[-1]
             pairs = pairs[keep(inp, pairs)]
-            stats.append(TierStats(tier.value, n_in, len(pairs), (clock() - t0) * 1e3))
+            stats.append(self._stats(tier.value, before, pairs, n, clock() - t0, joined is not None))
             if self.keep_tier_pairs:
                 tier_pairs[tier.value] = pairs
+        laser_result = None
+        if joined is not None:
+            pairs, candidates, tier_pairs, laser_result = laserframe.result(joined, n, pairs, candidates, tier_pairs)
         return FrameResult(
             pairs,
             tuple(stats),
@@ -254,4 +301,27 @@ class Pipeline:
             self.rotation,
             self.layers,
             tier_pairs,
+            laser_result,
         )
+
+    def _lasers(self, objects: FrameObjects) -> LaserSet | None:
+        """The frame's lasers, their layers checked; None without lasers."""
+        if not len(objects.lasers):
+            return None
+        if self.masks is not None:
+            raise ValueError("lasers: the pixel tier cannot test lasers (it has masks for armatures only)")
+        lasers, layer = objects.lasers, objects.laser_layer
+        assert isinstance(lasers, LaserSet) and layer is not None  # as FrameObjects packs them
+        names = len(self.layers.names)
+        arguments.in_range(layer, "laser_layer", names, f"the layer table has {names} layers")
+        return lasers
+
+    @staticmethod
+    def _stats(name: str, before: TierStats, pairs: np.ndarray, n: int, seconds: float, lasers: bool) -> TierStats:
+        """A tier's row: the pairs ``before`` let out went in, ``pairs`` came out; in a frame
+        with ``lasers``, also how many of each were (object, piece) pairs (the pieces are
+        the objects from ``n`` on)."""
+        if not lasers:
+            return TierStats(name, before.pairs_out, len(pairs), seconds * 1e3)
+        out = int(np.count_nonzero((pairs[:, 0] >= n) | (pairs[:, 1] >= n)))
+        return TierStats(name, before.pairs_out, len(pairs), seconds * 1e3, before.laser_pairs_out, out)

@@ -101,6 +101,19 @@ def decode_input(b: int) -> tuple[int, int, bool, bool, bool]:
     return (b & 3) - 1, (b >> 2 & 3) - 1, bool(b >> 4 & 1), bool(b >> 5 & 1), bool(b >> 6 & 1)
 
 
+def _makes_input(b: int) -> bool:
+    try:
+        decode_input(b)
+    except ValueError:
+        return False
+    return True
+
+
+#: For each byte value, 1 if no input makes it (:func:`decode_input` refuses it), else 0: a
+#: stage's inputs are checked with one ``bytes.translate``, not a call a frame.
+_NOT_INPUT = bytes(0 if _makes_input(b) else 1 for b in range(256))
+
+
 # ---------------------------------------------------------------------- the record
 class RunKind(Enum):
     """What a recorded run was."""
@@ -355,9 +368,10 @@ def _inputs(doc: dict, path: Path, pre: str) -> bytes:
         inputs = bytes.fromhex(hexed)
     except ValueError:
         raise DataError(path, pre + "inputs", "must be a hex string, two digits a frame") from None
-    for i, b in enumerate(inputs):
+    i = inputs.translate(_NOT_INPUT).find(1)  # the first byte no input makes (in C: a 5-minute stage in ~0.1 ms)
+    if i >= 0:
         try:
-            decode_input(b)
+            decode_input(inputs[i])
         except ValueError as exc:
             raise DataError(path, pre + "inputs", f"frame {i}: {exc}") from None
     frames = len(inputs)

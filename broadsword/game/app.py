@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pygame
@@ -33,7 +34,10 @@ from .feedback import Feedback
 from .mute_icon import draw_mute_indicator
 from .options import load_options, save_options
 from .overlay import Overlay
+from .practice_run import PracticeRun
 from .render import Renderer
+from .replaylib import ReplayLibrary
+from .replays import Replays, keep_run
 from .run import Run, StageTitles, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
@@ -121,6 +125,8 @@ class App:
         self.scores = (scores or HighScores()).load()
         self.controls = Controls(bindings)
         self.levels = list_levels()
+        self.replays = Replays(ReplayLibrary(self.data / "replays", self.levels))  # kept and saved runs
+        self.after_replay: Callable[[], None] | None = None  # a replay's end, done (None: close, as --replay)
         self.error: str | None = None  # the last level load failure, one line, shown on the title
         self.custom_level: str | None = None
         if start_level is not None and start_level not in self.levels:
@@ -190,7 +196,9 @@ class App:
         self.close()
 
     def close(self) -> None:
-        """The window goes first, at once; then audio and the rest (slower to shut down)."""
+        """The run in play is kept (a window closed mid-run); the window goes first, at once;
+        then audio and the rest (slower to shut down)."""
+        keep_run(self)
         Window.close()
         pygame.quit()
 
@@ -269,11 +277,14 @@ class App:
 
     def panel_info(self) -> PanelInfo:
         """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
-        recording plays, "DEMO" while the autopilot does, none while the player plays."""
+        recording plays, "DEMO" while the autopilot does, "PRACTICE" in a practice, none
+        while the player plays a run."""
         play = self.play
         mark = None
         if play is not None and play.watched:
             mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
+        elif play is not None and play.practice is not None:
+            mark = Mark.PRACTICE
         difficulty = self.world.settings.difficulty if self.world is not None else self.difficulty
         held = None
         if play is not None and self.options.input_display:
@@ -308,12 +319,14 @@ class App:
             self.play_stage(stage, run)
         return True
 
-    def play_stage(self, stage: Stage, run: Run | None = None, runner: Runner | None = None) -> Play:
+    def play_stage(
+        self, stage: Stage, run: Run | None = None, runner: Runner | None = None, practice: PracticeRun | None = None
+    ) -> Play:
         """Play ``stage`` (a world already made) as the only scene: in ``runner`` (whose
-        stage in play it is), else as a new run."""
+        stage in play it is), else as a new run; ``practice``: as that practice."""
         self.error = None
         self.runner = runner if runner is not None else Runner(stage)
-        play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty))
+        play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty), practice=practice)
         self.stack.reset(play)
         return play
 
@@ -350,6 +363,9 @@ class App:
         self.painter = Painter(self.screen)
 
     def to_title(self) -> None:
+        """Back to the title; a run quit in the middle is kept first (:func:`.replays.keep_run`)."""
+        keep_run(self)
+        self.after_replay = None
         self.stack.reset(Title(self))
 
     def report(self, exc: DataError) -> None:

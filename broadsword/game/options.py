@@ -1,5 +1,5 @@
-"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape (and
-whether a stage has been played here yet, for the first run's hints).
+"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape, showing
+what hit on a miss (and whether a stage has been played here yet, for the first run's hints).
 
 Kept as ``options.json`` in the user's data directory (beside the high scores and the
 controls), written atomically (:mod:`.settingsfile`). Read value by value: a bad value (a
@@ -43,6 +43,7 @@ class Options:
     played: bool = False  # a stage has been played here: the first run's hints are not shown again
     speed: int = 100  # the game speed, % (SPEED_MIN..100)
     input_display: bool = False  # show the input held (arrows, fire, slow, bomb) on the side panel
+    show_hits: bool = True  # on a miss, freeze a moment and show what hit (game/hitview.py)
 
     def __post_init__(self):
         object.__setattr__(self, "difficulty", Difficulty(self.difficulty))
@@ -52,7 +53,7 @@ class Options:
                 raise ValueError(f"{name}: must be a whole number in [0, {VOLUME_STEPS}], got {v!r}")
         if type(self.speed) is not int or not SPEED_MIN <= self.speed <= 100 or self.speed % SPEED_STEP:
             raise ValueError(f"speed: must be {SPEED_MIN} to 100 in steps of {SPEED_STEP}, got {self.speed!r}")
-        for name in ("fullscreen", "always_hitbox", "played", "input_display"):
+        for name in ("fullscreen", "always_hitbox", "played", "input_display", "show_hits"):
             if type(getattr(self, name)) is not bool:
                 raise ValueError(f"{name}: must be true or false, got {getattr(self, name)!r}")
 

@@ -3,7 +3,8 @@
 The window shows one frame surface, ``FRAME`` px: the field (``FIELD``) at its left, this
 panel (``PANEL_WIDTH`` x field height) at its right. In play the panel shows the stage's title
 and difficulty, score and high score, lives, bombs, power, graze, items and the point value,
-the boss with its phase, and a "REPLAY" or "DEMO" mark when nobody is playing; on every other
+the boss with its phase, and a "REPLAY" or "DEMO" mark when nobody is playing ("PRACTICE" in a
+practice); on every other
 screen it shows the game's name, the difficulty and its best score.
 
 Drawing only: it reads the world, never changes it.
@@ -44,10 +45,12 @@ BAR_H = 8  # the power bar's height, px
 
 
 class Mark(Enum):
-    """Who is playing, when it is not the player: shown large on the panel."""
+    """Who is playing, when it is not the player, or what the play is (a practice): shown
+    large on the panel."""
 
     REPLAY = "REPLAY"
     DEMO = "DEMO"
+    PRACTICE = "PRACTICE"
 
 
 @dataclass(frozen=True)

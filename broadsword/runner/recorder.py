@@ -2,14 +2,15 @@
 state digests by part, and a checkpoint hash every ``CHECKPOINT_EVERY`` frames.
 
 A stage whose world does not start at frame 0 (restored from a snapshot: a practice start,
-a take-over) is recorded with that start state, a snapshot taken when it begins, so its
-replay starts there."""
+a take-over), and every stage of a practice (whose loadout may differ from the level's at
+frame 0), is recorded with that start state, a snapshot taken when it begins, so its replay
+starts there."""
 
 from __future__ import annotations
 
 import dataclasses
 
-from ..data.recordings import CHECKPOINT_EVERY, PLAIN_RUN, Recording, RecordingInfo, StageRecording
+from ..data.recordings import CHECKPOINT_EVERY, PLAIN_RUN, Recording, RecordingInfo, RunKind, StageRecording
 from ..sim import Input
 from ..sim.hashing import Part
 from ..sim.snapshot import save as save_snapshot
@@ -22,7 +23,7 @@ PARTS = tuple(p.value for p in Part)
 class _StageTape:
     """One stage being recorded."""
 
-    def __init__(self, stage: Stage):
+    def __init__(self, stage: Stage, keep_start: bool = False):
         world = stage.world
         self.world, self.level_ref, self.level_sha256 = world, stage.level_ref, stage.digest
         self.settings = {"rotation": world.rotation, "difficulty": world.settings.difficulty.value}
@@ -30,7 +31,7 @@ class _StageTape:
         self.digests = bytearray()
         self.checkpoints: list[tuple[int, str]] = []
         self.origin = world.frame
-        self.snapshot = save_snapshot(world) if world.frame else b""
+        self.snapshot = save_snapshot(world) if world.frame or keep_start else b""
         self.toggles_before = len(world.toggles)  # a restored world's toggles so far are in its snapshot
 
     def stepped(self, inp: Input, digests: bytes) -> None:
@@ -70,7 +71,8 @@ class Recorder:
         self._tapes: list[_StageTape] = []
 
     def begin(self, stage: Stage) -> None:
-        self._tapes.append(_StageTape(stage))
+        # a practice may change the player at frame 0 (its lives, bombs, power): its start is kept too
+        self._tapes.append(_StageTape(stage, keep_start=self.info.kind is RunKind.PRACTICE))
 
     def stepped(self, inp: Input, digests: bytes) -> None:
         self._tapes[-1].stepped(inp, digests)

@@ -14,6 +14,7 @@ import numpy as np
 from .bombs import BOSS_DAMAGE
 from .collide import CollisionRecord, Group
 from .events import Events
+from .hitlog import Outcome
 from .items import STAR_SCORE, ItemKind, point_value
 from .player import POWER_STEP
 from .stage_parts import StageParts
@@ -83,6 +84,7 @@ class Combat:
         if len(struck):
             w.player.strike()
             ev.player_struck = True
+            w.hit_log.struck(record, w.kinds, w.frame + 1)  # an observation: changes no state
 
     def _collect(self, taken: np.ndarray, ev: Events) -> None:
         """The items the graze shape touched: power, points, stars."""
@@ -124,6 +126,7 @@ class Combat:
         w = self.world
         p = w.player
         ev.player_hit = True
+        w.hit_log.resolve(Outcome.MISS, ev)
         ev.kills.append((float(p.pos[0]), float(p.pos[1]), "player"))
         # Mercy: clear enemy bullets around the wreck before respawning.
         eb = w.enemy_bullets

@@ -3,6 +3,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .hitlog import HitRecord
 
 
 @dataclass
@@ -12,7 +16,8 @@ class Events:
     ``kills`` holds ``(x, y, sprite)`` of everything destroyed (``"player"`` for the player's
     ship, ``"boss"`` for each part of a boss that dies); ``damaged`` holds ``(x, y)`` of
     ships hit but not killed; ``bonuses`` ``(name, points)`` awarded this step (a boss
-    phase's, the stage's).
+    phase's, the stage's); ``hit`` the player's hit whose death-bomb window closed this
+    step (a life lost, or saved by a bomb: :mod:`.hitlog`), an observation.
     """
 
     hits: int = 0  # hit pairs the pipeline reported (all layers)
@@ -32,3 +37,4 @@ class Events:
     boss_killed: bool = False
     level_complete: bool = False
     game_over: bool = False
+    hit: HitRecord | None = None  # what hit the player, when a hit was resolved this step

@@ -16,6 +16,7 @@ from .bombs import GRACE_S
 from .boss import PhaseEnd
 from .events import Events
 from .field import DT
+from .hitlog import Outcome
 from .items import ItemKind
 from .scoring import CLEAR_BONUS, NO_BOMB_BONUS, NO_MISS_BONUS
 from .stage_parts import StageParts
@@ -50,6 +51,8 @@ class Progress:
         if not p.alive or p.bombs <= 0 or w.bomb.active:
             return False
         p.bombs -= 1
+        if p.stricken:  # the death-bomb: the hit is saved
+            w.hit_log.resolve(Outcome.SAVED, ev)
         p.stricken = 0
         p.invulnerable = max(p.invulnerable, BOMB_FRAMES * DT + GRACE_S)
         w.bomb.start()

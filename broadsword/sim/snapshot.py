@@ -359,6 +359,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
         frozenset(
             {"level", "seed", "settings", "kinds", "layers", "difficulty", "rank", "fires", "start_lives"}
             | {"combat", "collision"}  # stateless; the last frame's record (rebuilt by the next step)
+            | {"hit_log"}  # what hit the player: an observation (a restore drops a pending hit)
         ),
     ),
     "Player": (frozenset(f[0] for f in PLAYER_FIELDS), frozenset({"spec"})),
@@ -388,7 +389,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     "Pipeline": (  # the kernel is not state: numpy and numba give the same bits
         frozenset({"rotation"}),
         frozenset({"armatures", "broad_phase", "keep_tier_pairs", "kernel", "layers", "masks", "needs_vertices"})
-        | frozenset({"tiers", "workspace"}),
+        | frozenset({"tiers", "workspace", "laser_table"}),
     ),
 }
 
@@ -538,6 +539,7 @@ class Snapshots:
                 world.carry, world.toggles, world.warnings = carry, toggles, warnings
                 world.rng.bit_generator.state = rng
                 world.collision = None
+                world.hit_log.pending = None  # a hit before the snapshot: its outcome is not logged
 
             apply.append(world_part)
         simple: tuple[tuple[str, Any, tuple[Field, ...]], ...] = (

@@ -12,7 +12,9 @@ from .bombs import Bomb
 from .boss import Boss
 from .bullets import EnemyBullets
 from .events import Events
+from .hitlog import HitLog
 from .items import Items
+from .kinds import Kinds
 from .player import Player
 from .pool import Pool
 from .scoring import Score
@@ -33,6 +35,9 @@ class StageParts(Protocol):
     over: bool
     start_lives: int
     difficulty: DifficultySpec
+    kinds: Kinds
+    frame: int
+    hit_log: HitLog  # an observation: what hit the player (never state)
 
     def damage_boss(self, amount: int, ev: Events) -> None:
         """Hurt the boss; a phase that ends goes through the stage's rules."""

@@ -35,6 +35,7 @@ from .combat import Combat
 from .emitters import EnemyGuns
 from .events import Events
 from .field import DT, FIELD
+from .hitlog import HitLog
 from .input import Input
 from .items import Items
 from .kinds import ALWAYS, Kinds
@@ -99,6 +100,9 @@ class World:
         The id of each game layer in the pipeline's table.
     collision : CollisionRecord or None
         The last frame's collision, for the overlay and tests.
+    hit_log : HitLog
+        What hit the player, hit by hit (:mod:`.hitlog`): an observation like
+        ``collision``, not part of the state (not hashed, not in snapshots).
     toggles : list of ToggleEvent
         Every live switch made, with its frame (for recordings).
     """
@@ -153,6 +157,7 @@ class World:
         self.bomb = Bomb(self.kinds.base[BOMB])
         self.combat = Combat(self)
         self.collision: CollisionRecord | None = None
+        self.hit_log = HitLog()  # what hit the player: an observation, never state (not hashed or snapshotted)
         self.toggles: list[ToggleEvent] = []
         self.warnings: list[str] = []  # a limit reached, once each (the game says so)
         self._bomb_held = False

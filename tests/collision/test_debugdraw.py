@@ -102,3 +102,22 @@ def test_draw_layout__trees_draw_their_nodes():
     draw_layout(rec, r.broad.layout, COLOURS)
     (call,) = rec.calls
     assert call[0] == "boxes" and len(call[1]) == len(r.broad.layout.nodes) >= 2
+
+
+def test_draw_frame__draws_laser_pieces_by_their_tier_decision():
+    from broadsword.collision import Laser
+
+    pipe = Pipeline(SHAPES, TABLE, tiers=("bins", "aabb", "armature"), keep_tier_pairs=True, bin_size=40)
+    # through the ship; across its corner, 1.4 px off (aabb keeps it, no touch); far away
+    lasers = [Laser.of([(40, 50), (60, 50)], 2), Laser.of([(56, 34), (64, 42)], 2), Laser.of([(300, 0), (390, 0)], 2)]
+    r = pipe.step([0], [0], [(50.0, 50.0)], [0.0], lasers=lasers, laser_layer=[1, 1, 1])
+    rec = RecordingDraw()
+    draw_frame(rec, r, COLOURS)
+    culled, pieces = rec.of("polygons")[-2:]  # the far laser met no box: drawn from its nodes
+    assert r.lasers.tested.tolist() == [True, True, False]
+    assert len(culled[1]) == 1 and culled[2] == COLOURS.laser_none
+    assert np.array_equal(culled[1][0], np.array([(300, 1), (390, 1), (390, -1), (300, -1)], float))
+    assert len(pieces[1]) == 2 and pieces[2] == [COLOURS.hit, COLOURS.laser_last]
+    assert np.array_equal(pieces[1][0], np.array([(40, 51), (60, 51), (60, 49), (40, 49)], float))
+    line = [s for s in rec.of("segments") if s[4] == 3 and s[3] == COLOURS.hit][0]  # object -> the piece it hit
+    assert line[1].tolist() == [[50.0, 50.0]] and line[2].tolist() == [[50.0, 50.0]]

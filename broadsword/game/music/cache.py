@@ -14,13 +14,12 @@ from __future__ import annotations
 import hashlib
 import io
 import os
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from ...fileio import read_capped
+from ...fileio import cache_home, read_capped
 from .renderer import loop_samples
 from .songs import Song
 from .tracks import Track
@@ -31,29 +30,6 @@ _SOURCES = ("notes.py", "instruments.py", "grooves.py", "songs.py", "compose.py"
 
 #: An .npy header is at most this many bytes (numpy pads it to 64; 4 KiB is generous).
 NPY_HEADER_MAX = 4096
-
-
-def cache_home() -> Path:
-    """Directory for Broadsword's disposable files.
-
-    Precedence: ``$BROADSWORD_CACHE_DIR`` (as given, ``~`` expanded); else
-    ``$XDG_CACHE_HOME/broadsword`` (absolute paths only, as the XDG spec requires); else on
-    Windows ``%LOCALAPPDATA%/broadsword/cache``, on macOS ``~/Library/Caches/broadsword``;
-    else ``~/.cache/broadsword``. A variable set but empty counts as unset.
-    """
-    override = os.environ.get("BROADSWORD_CACHE_DIR")
-    if override:
-        return Path(override).expanduser()
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    if xdg and Path(xdg).is_absolute():
-        return Path(xdg) / "broadsword"
-    if sys.platform == "win32":
-        local = os.environ.get("LOCALAPPDATA")
-        base = Path(local) if local else Path.home() / "AppData" / "Local"
-        return base / "broadsword" / "cache"
-    if sys.platform == "darwin":
-        return Path.home() / "Library" / "Caches" / "broadsword"
-    return Path.home() / ".cache" / "broadsword"
 
 
 def _code_digest() -> bytes:

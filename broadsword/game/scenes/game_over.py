@@ -1,4 +1,5 @@
-"""The run's end: game over, or every stage cleared (the final results). Next, the name
+"""The run's end: game over, or every stage cleared (the final results). The run is kept
+among the recent replays (:mod:`..replays`) and S saves it under a name. Next, the name
 entry when the score makes the table (never for an autopilot or a replay), else the title."""
 
 from __future__ import annotations
@@ -7,6 +8,8 @@ import pygame
 
 from .. import ui
 from ..controls import Action
+from ..replays import keep_run
+from .save_replay import SAVE_KEY, can_save_last, draw_save_line, save_last_run
 
 
 class GameOver:
@@ -22,12 +25,16 @@ class GameOver:
         run = play.run
         # A cleared run's last stage is already in its totals (the results screen added it).
         self.totals = run.totals if victory else run.totals.plus(world, cleared=False)
+        keep_run(app)
 
     @property
     def qualifies(self) -> bool:
         return not self.play.watched and self.score > 0 and self.app.scores.qualifies(self.score, self.difficulty)
 
     def handle(self, event: pygame.event.Event) -> bool:
+        if event.type == pygame.KEYDOWN and event.key == SAVE_KEY and can_save_last(self.app):
+            save_last_run(self.app)
+            return True
         if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:
             self.next()
             return True
@@ -59,6 +66,7 @@ class GameOver:
             p.text(label, y, 22, ui.DIM, x=surf.get_width() / 2 - 8, anchor="midright")
             p.text(value, y, 22, ui.WHITE, x=surf.get_width() / 2 + 8, anchor="midleft")
         p.text("Enter to enter your name" if self.qualifies else "Enter for the title", 560, colour=ui.DIM)
+        draw_save_line(self.app, 590)
 
     def victory_lines(self) -> tuple[str, str]:
         """A cleared run's heading and line: every stage only when the run played them all

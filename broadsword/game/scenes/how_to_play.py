@@ -62,7 +62,8 @@ def page_text(page: int, b: Bindings) -> list[str]:
         f"Game over? Up to {CONTINUES} continues: play on from where you fell, with all your "
         "lives, but the score restarts at the number of continues used (its last digit counts "
         "them), so a continued score never beats a clean one.",
-        f"Pause: {keys_label(b, Action.PAUSE)}. The high scores keep each difficulty apart.",
+        f"Pause: {keys_label(b, Action.PAUSE)}; H there shows what hit you last (a miss shows it "
+        "too, for a moment). The high scores keep each difficulty apart.",
     ]
 
 

@@ -12,6 +12,23 @@ from .. import ui
 from ..scores import NAME_MAX, Entry
 
 
+def edit_line(text: str, event: pygame.event.Event, limit: int, upper: bool = False) -> str | None:
+    """``text`` after the key ``event`` typed into it: Backspace takes the last character
+    off, a printable character is added (upper-cased if ``upper``) while ``text`` is shorter
+    than ``limit``. None for any other event (Enter, Esc, F11... keep their meaning)."""
+    if event.type != pygame.KEYDOWN:
+        return None
+    if event.key == pygame.K_BACKSPACE:
+        return text[:-1]
+    if event.key in (pygame.K_RETURN, pygame.K_KP_ENTER, pygame.K_ESCAPE):
+        return None
+    if event.unicode and event.unicode.isprintable():
+        if len(text) >= limit:
+            return text
+        return text + (event.unicode.upper() if upper else event.unicode)
+    return None
+
+
 class NameEntry:
     opaque = False
 
@@ -20,17 +37,15 @@ class NameEntry:
         self.name = ""
 
     def handle(self, event: pygame.event.Event) -> bool:
-        if event.type != pygame.KEYDOWN:
+        typed = edit_line(self.name, event, NAME_MAX, upper=True)
+        if typed is not None:
+            self.name = typed
+        elif event.type != pygame.KEYDOWN:
             return False
-        if event.key in (pygame.K_RETURN, pygame.K_KP_ENTER):
+        elif event.key in (pygame.K_RETURN, pygame.K_KP_ENTER):
             self.save()
-        elif event.key == pygame.K_BACKSPACE:
-            self.name = self.name[:-1]
         elif event.key == pygame.K_ESCAPE:
             self.app.to_title()
-        elif event.unicode and event.unicode.isprintable():
-            if len(self.name) < NAME_MAX:
-                self.name += event.unicode.upper()
         else:
             return False  # F11 and the like keep their meaning
         return True

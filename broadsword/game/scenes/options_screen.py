@@ -1,6 +1,6 @@
 """The options: difficulty, music and sound volumes, fullscreen, always showing the hit
 shape, the game speed (50-100 %: the wall clock only, so replays stay exact), the input
-display, and rebinding every gameplay action to a key and a pad button.
+display, showing what hit on a miss, and rebinding every gameplay action to a key and a pad button.
 
 Up/Down choose a row, Left/Right change it; on an action's row, Enter adds a key or pad button
 to the ones it has and Backspace replaces them all (then press the key or button; Esc
@@ -41,6 +41,7 @@ ROWS = (
         Row("Always show hit shape", "always_hitbox"),
         Row("Game speed", "speed"),
         Row("Input display", "input_display"),
+        Row("Show what hit me", "show_hits"),
     ]
     + [Row(a.title, action=a) for a in REBINDABLE]
     + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")]
@@ -49,6 +50,10 @@ ROWS = (
 
 #: The rows of options (the rebindable actions follow them).
 OPTION_ROWS = sum(1 for r in ROWS if r.option)
+#: The first row's centre and the lowest a row may reach (the help line is below), px; the
+#: rows' spacing: 26 px, or less when that many rows (and the two 10 px gaps) would not fit.
+TOP_Y, BOTTOM_Y = 110, 556
+ROW_STEP = min(26, (BOTTOM_Y - TOP_Y - 20) // (len(ROWS) - 1))
 
 
 class OptionsScene:
@@ -163,10 +168,15 @@ class OptionsScene:
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
         for i, row in enumerate(ROWS):
-            y = 110 + 26 * i + (10 if i >= OPTION_ROWS else 0) + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
+            y = (
+                TOP_Y
+                + ROW_STEP * i
+                + (10 if i >= OPTION_ROWS else 0)
+                + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
+            )
             chosen = i == self.row
             if chosen:
-                pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))
+                pygame.draw.rect(surf, (40, 50, 100), (12, y - ROW_STEP // 2, w - 24, ROW_STEP - 1))
             colour = ui.GOLD if chosen else ui.WHITE
             p.text(row.label, y, colour=colour, x=w * 0.45, anchor="midright")
             p.text(self.value(row), y, colour=ui.CREAM if chosen else ui.DIM, x=w * 0.45 + 14, anchor="midleft")

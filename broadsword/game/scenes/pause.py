@@ -1,14 +1,19 @@
-"""The pause screen, over the frozen stage: resume, step one frame (F2), or quit to the title."""
+"""The pause screen, over the frozen stage: resume, step one frame (F2), see what hit you last
+(H: the stage's last miss, drawn by :func:`~..hitview.draw_hit`), or quit to the title."""
 
 from __future__ import annotations
 
 import pygame
 
+from ...sim.hitlog import HitRecord
 from .. import ui
 from ..controls import Action
+from ..hitview import draw_hit, inset_rect, mark_on_field
 
 #: The PAUSED heading's centre, px down the field.
 PAUSED_Y = 320
+#: The heading's centre over the last hit's inset, px down the field.
+HIT_Y = 130
 
 
 class Pause:
@@ -17,6 +22,7 @@ class Pause:
     def __init__(self, app, play):
         self.app, self.play = app, play
         self.step_once = False
+        self.show_hit = False  # H: the stage's last hit, enlarged
 
     def handle(self, event: pygame.event.Event) -> bool:
         actions = self.app.controls.actions(event)
@@ -29,6 +35,8 @@ class Pause:
             self.app.overlay.visible = not self.app.overlay.visible
         elif event.type == pygame.KEYDOWN and event.key == pygame.K_q:
             self.app.to_title()
+        elif event.type == pygame.KEYDOWN and event.key == pygame.K_h and self.last_hit is not None:
+            self.show_hit = not self.show_hit
         else:
             return False
         return True
@@ -40,9 +48,22 @@ class Pause:
         self.play.step()
         return 1
 
+    @property
+    def last_hit(self) -> HitRecord | None:
+        """The stage's last hit on the player (a miss or a save), or None."""
+        return self.play.world.hit_log.last
+
     def draw(self, surf: pygame.Surface) -> None:
         p = self.app.painter
         p.veil(110)
+        hit = self.last_hit
+        keys = "Esc / P resume   F2 step a frame   " + ("H what hit you   " if hit is not None else "") + "Q quit"
+        if self.show_hit and hit is not None:
+            p.text("PAUSED: what hit you last (H hides)", HIT_Y, colour=ui.GOLD)
+            mark_on_field(surf, hit)
+            draw_hit(surf, inset_rect(surf.get_size()), hit, p.font(20))
+            p.text(keys, inset_rect(surf.get_size()).bottom + 24)
+            return
         # at the field's middle: clear of the F1 panel's graph (it ends near y 270)
         p.text("PAUSED", PAUSED_Y, ui.BIG)
-        p.text("Esc / P resume   F2 step a frame   Q quit to title", PAUSED_Y + 50)
+        p.text(keys, PAUSED_Y + 50)

@@ -18,9 +18,11 @@ import pygame
 from ...data import DataError
 from ...runner import Playback, Runner
 from ...sim import DT, Input, Pilot, World
+from ...sim.hitlog import Outcome
 from .. import heap
 from ..controls import Action, Controls
 from ..lasers import draw_laser_armatures
+from ..practice_run import PracticeRun
 
 #: Slow motion (F3) runs the world at this share of real time.
 SLOW_MOTION = 0.25
@@ -104,8 +106,11 @@ class Play:
 
     opaque = True
 
-    def __init__(self, app, runner: Runner, run, source: InputSource | None = None):
+    def __init__(
+        self, app, runner: Runner, run, source: InputSource | None = None, practice: PracticeRun | None = None
+    ):
         self.app, self.run, self.runner = app, run, runner
+        self.practice = practice  # a practice: it ends when its phase does (or the lives run out)
         self.world = runner.world
         self.level_ref = runner.stage.level_ref
         if source is None:
@@ -167,7 +172,16 @@ class Play:
         ev = self.runner.step(inp)
         self.source.stepped(world)
         self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
-        if isinstance(self.source, ReplayInput):
+        if ev.hit is not None and ev.hit.outcome is Outcome.MISS and self.app.options.show_hits and not self.app.demo:
+            from .hit_freeze import HitFreeze
+
+            self.app.stack.push(HitFreeze(self.app, self, ev.hit))  # what hit: a wall-clock freeze, never state
+        if self.practice is not None and (outcome := self.practice.outcome(ev, world)) is not None:
+            from .practice_result import PracticeResult
+
+            self.ended = True
+            self.app.stack.push(PracticeResult(self.app, self.practice, outcome))
+        elif isinstance(self.source, ReplayInput):
             playback = self.source.playback
             if playback.divergence is not None or playback.done:
                 playback.end_stage(world)

@@ -2,7 +2,8 @@
 first frame that differs and the part of the state, as the headless JSON says).
 
 The stage stays underneath, frozen at the last frame played; Esc or Enter closes the game
-(the viewer's only job was this recording), F1 still shows the overlay.
+(the viewer's only job was this recording), or goes back to the replay list the replay was
+chosen from; F1 still shows the overlay.
 """
 
 from __future__ import annotations
@@ -53,7 +54,11 @@ class ReplayEnd:
     def handle(self, event: pygame.event.Event) -> bool:
         actions = self.app.controls.actions(event)
         if actions & {Action.CONFIRM, Action.BACK}:
-            self.app.running = False
+            back, self.app.after_replay = self.app.after_replay, None
+            if back is not None:
+                back()  # watched from the replay list: back to it
+            else:
+                self.app.running = False
         elif Action.OVERLAY in actions:
             self.app.overlay.visible = not self.app.overlay.visible
         else:
@@ -69,4 +74,5 @@ class ReplayEnd:
         p.text("REPLAY MATCHES" if self.ok else "REPLAY DIFFERS", 250, ui.HEADING + 12, ui.GOOD if self.ok else ui.BAD)
         for i, line in enumerate(self.lines):
             p.text(line, 300 + 24 * i, colour=ui.WHITE if i == 0 else ui.DIM)
-        p.text("Enter or Esc: close   F1: overlay", 400, colour=ui.DIM)
+        back = "back to the list" if self.app.after_replay is not None else "close"
+        p.text(f"Enter or Esc: {back}   F1: overlay", 400, colour=ui.DIM)

@@ -2,6 +2,7 @@
 
 The sim pays the bonuses (:class:`broadsword.sim.progress.Progress`); this screen lists
 what it paid (``progress.bonuses``) and says why a no-miss or no-bomb bonus was not paid.
+After the last stage the run has ended: it is kept among the recent replays and S saves it.
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ import pygame
 from ...sim.scoring import NO_BOMB_BONUS, NO_MISS_BONUS
 from .. import ui
 from ..controls import Action
+from ..replays import keep_run
+from .save_replay import SAVE_KEY, can_save_last, draw_save_line, save_last_run
 
 #: The bonuses a stage's end may pay, as ``Progress`` names them.
 NO_MISS, NO_BOMB = "no miss", "no bomb"
@@ -21,6 +24,8 @@ class Results:
 
     def __init__(self, app, play):
         self.app, self.play = app, play
+        if self.final:  # the run ends here
+            keep_run(app)
 
     @property
     def final(self) -> bool:
@@ -63,6 +68,9 @@ class Results:
         return rows
 
     def handle(self, event: pygame.event.Event) -> bool:
+        if event.type == pygame.KEYDOWN and event.key == SAVE_KEY and self.final and can_save_last(self.app):
+            save_last_run(self.app)
+            return True
         if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE}:
             self.next()
             return True
@@ -94,3 +102,5 @@ class Results:
             p.text(label, y, colour=colour, x=surf.get_width() / 2 - 8, anchor="midright")
             p.text(value, y, colour=colour, x=surf.get_width() / 2 + 8, anchor="midleft")
         p.text("Enter for the final results" if self.final else "Enter for the next stage", 560, colour=ui.DIM)
+        if self.final:
+            draw_save_line(self.app, 590)

@@ -1,5 +1,5 @@
-"""The title: choose the stage (Left/Right) and the difficulty (Up/Down), then play; the
-options and the high scores are a key away. A level that failed to load is shown here,
+"""The title: choose the stage (Left/Right) and the difficulty (Up/Down), then play; practice
+(P), the replays (R), the options and the high scores are a key away. A level that failed to load is shown here,
 in a panel where the controls list goes, so another can be picked."""
 
 from __future__ import annotations
@@ -20,8 +20,9 @@ ERROR_X, ERROR_Y = 20, 334
 #: A warning on the title (a file not used, a save that failed): at most this many lines, in this font size.
 MESSAGE_LINES, MESSAGE_SIZE = 4, 18
 DIFFICULTIES = list(Difficulty)
-#: The key that opens "How to play".
-HOW_TO_PLAY_KEY = pygame.K_i
+#: The keys that open "How to play", the replays and practice (a stage or a boss phase, with
+#: chosen lives, bombs and power).
+HOW_TO_PLAY_KEY, REPLAYS_KEY, PRACTICE_KEY = pygame.K_i, pygame.K_r, pygame.K_p
 #: The first-run hint's colour (gold, pulsing) and place.
 HINT_Y = 232
 
@@ -79,6 +80,14 @@ class Title:
             from .armatures import ArmatureList
 
             app.stack.push(ArmatureList(app))
+        elif key == REPLAYS_KEY:
+            from .replay_list import ReplayList
+
+            app.stack.push(ReplayList(app))
+        elif key == PRACTICE_KEY:
+            from .practice_menu import PracticeMenu
+
+            app.stack.push(PracticeMenu(app))
         elif key == pygame.K_o:
             from .options_screen import OptionsScene
 
@@ -119,7 +128,7 @@ class Title:
         p.text(f"Stage: {name}   {hint}", 258, colour=ui.CREAM)
         p.text(f"Difficulty: < {app.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
         p.text(
-            f"{confirm_label(app.controls.bindings)} play   O options   H scores   E edit hit shapes   Esc quit",
+            f"{confirm_label(app.controls.bindings)} play   P practice   R replays   O options   H scores   E hit shapes   Esc quit",
             310,
             colour=ui.DIM,
         )
