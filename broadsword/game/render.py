@@ -1,4 +1,4 @@
-"""Drawing the world: starfield, ships, bullets, effects, the boss bar and the title card.
+"""Drawing the world: starfield, ships, bullets, lasers (:mod:`.lasers`), effects, the boss bar and the title card.
 
 Positions are interpolated between the last two simulation steps by ``alpha`` (Game
 Programming Patterns, "Game Loop"), so motion is smooth at any display rate. Effects
@@ -21,6 +21,7 @@ from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .backdrop import Backdrop
 from .bullets import BulletSprites
 from .hud import boss_name, draw_boss_bar, draw_midboss_bar, warning_due
+from .lasers import draw_lasers
 from .sprites import SpriteBank
 
 LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
@@ -131,6 +132,7 @@ class Renderer:
         self._bullets(surf, world.items.pool, world, alpha)
         self._bullets(surf, world.player_bullets, world, alpha)
         self._bomb(surf, world)
+        draw_lasers(surf, world, self.tick)
         self._player(surf, world, alpha, show_armature)
         self._bullets(surf, world.enemy_bullets, world, alpha)
         self._effects(surf)

@@ -11,8 +11,9 @@ It plays as a person would (issue 12, "balance is measured"):
 
 Each decision weighs the nine stick directions at both speeds: the ship is imagined
 flying that way (after the moves already pressed and not yet felt) while every bullet
-near it flies straight on, and the choice with the least danger, plus a pull toward a
-target to shoot and the home row, wins. Everything is a pure function of what it saw, so
+near it flies straight on (and every laser and warning line is where it is, a beam turning
+on at its rate), and the choice with the least danger, plus a pull toward a target to
+shoot and the home row, wins. Everything is a pure function of what it saw, so
 a run with the autopilot is as reproducible as a recording.
 """
 
@@ -38,6 +39,9 @@ NEAR = 150.0
 #: A predicted pass closer than this (px, centre to centre) is a hit; closer than
 #: CAREFUL costs in proportion.
 HIT, CAREFUL = 9.0, 26.0
+#: A laser is judged as a bullet this many px wide reaching across it: a pass within HIT of
+#: its edge plus this is a hit.
+LASER_EDGE = 4.0
 #: Bomb when the best choice still passes within HIT of something.
 BOMB_WHEN_TRAPPED = True
 HOME_Y = SPAWN[1]
@@ -69,6 +73,7 @@ class Pilot:
         best, best_cost, best_min = None, np.inf, np.inf
         target = self._target_x(world, p.pos)
         future = self._future(threats, speeds, lead)
+        beams = world.lasers.segments_ahead(lead + frames)
         weight = 1.0 / (1.0 + 0.15 * np.arange(HORIZON))[:, None]  # the nearer future counts more
         for slow in (False, True):
             speed = (spec.slow_speed if slow else spec.speed) * DT
@@ -78,6 +83,9 @@ class Pilot:
                 path = start + step * frames[:, None]  # (H, 2)
                 np.clip(path, (12.0, 16.0), (FIELD[0] - 12.0, FIELD[1] - 16.0), out=path)
                 cost, closest = self._danger(path, future, weight)
+                if len(beams[2]):
+                    more, near = self._laser_danger(path, beams, weight)
+                    cost, closest = cost + more, min(closest, near)
                 cost += self._preference(path[-1], target, world)
                 if cost < best_cost:
                     best, best_cost, best_min = (int(d[0]), int(d[1]), slow), cost, closest
@@ -126,6 +134,22 @@ class Pilot:
         near = np.clip(CAREFUL - dist, 0.0, None)
         cost = float((near * near * weight).sum()) + 1e6 * float((dist < HIT).sum())
         return cost, closest
+
+    @staticmethod
+    def _laser_danger(path, beams, weight) -> tuple[float, float]:
+        """As :meth:`_danger`, for the lasers' segments ``beams`` (``a, b`` (H, S, 2), ``half``
+        (S,)): the distance from each point of ``path`` (H, 2) to each segment, less its half
+        width, plus :data:`LASER_EDGE`."""
+        a, b, half = beams
+        ab = b - a
+        d = path[:, None, :] - a
+        den = ab[..., 0] * ab[..., 0] + ab[..., 1] * ab[..., 1]
+        t = np.clip((d[..., 0] * ab[..., 0] + d[..., 1] * ab[..., 1]) / np.maximum(den, 1e-12), 0.0, 1.0)
+        e = d - ab * t[..., None]
+        dist = np.sqrt(e[..., 0] * e[..., 0] + e[..., 1] * e[..., 1]) - half + LASER_EDGE
+        near = np.clip(CAREFUL - dist, 0.0, None)
+        cost = float((near * near * weight).sum()) + 1e6 * float((dist < HIT).sum())
+        return cost, float(dist.min())
 
     def _target_x(self, world: World, pos) -> float:
         """Under the lowest enemy above (the nearest threat, and the quickest to reach with

@@ -30,7 +30,7 @@ def _quantised(a) -> bytes:
 def state_hash(world) -> str:
     """Hex SHA-256 of the world's state: the tallies, the boss, the player, the bomb, and
     every pool's count, positions (to 1/256 px) and armature kinds (and the ships' hit
-    points).
+    points), and the lasers in play (their ages and nodes), if any.
 
     Game state is computed with correctly rounded operations only (DESIGN.md,
     Determinism), so the quantisation is not what makes the digest portable; it keeps the
@@ -69,6 +69,11 @@ def state_hash(world) -> str:
         h.update(_quantised(pool.pos))
         h.update(pool.arm.astype(np.int64).tobytes())
     h.update(world.ships.pool.hp.astype(np.int64).tobytes())
+    lasers = world.lasers.pool
+    if lasers.n:  # a stage with no laser in play digests as it did before lasers existed
+        h.update(np.int64(lasers.n).tobytes())
+        h.update(lasers.age.astype(np.int64).tobytes())
+        h.update(_quantised(lasers.nodes))
     return h.hexdigest()
 
 
@@ -78,7 +83,7 @@ class Part(Enum):
     and snapshots"). Their order is the order of :func:`part_digests`."""
 
     PLAYER = "player"  # the ship: where, lives, bombs, power, the death-bomb window...
-    BULLETS = "bullets"  # enemy and player bullets, the pattern emitters (numeric columns, live rows)
+    BULLETS = "bullets"  # enemy and player bullets, the pattern emitters, the lasers (numeric columns, live rows)
     ENEMIES = "enemies"  # the wave ships, and the waves sent
     BOSS = "boss"  # the boss's phase, clock, hit points, pose, and its parts
     ITEMS = "items"
@@ -175,6 +180,8 @@ def _part(world, part: Part, h: _Crc) -> None:
         _columns(h, world.guns.engine.emitters)
         _attrs(h, world.guns, ("ship_uid_seen", "boss_phase"))
         _attrs(h, world.guns.engine, ("frame", "target", "fired", "budget", "deferred", "_resume"))
+        if world.lasers.pool.n:  # none in play: the digest is what it was before lasers
+            _columns(h, world.lasers.pool)
     elif part is Part.ENEMIES:
         _columns(h, world.ships.pool)
         _attrs(h, world.ships, ("next_uid",))  # the rest is the level's, fixed

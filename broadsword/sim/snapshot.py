@@ -2,7 +2,7 @@
 
 :meth:`Snapshots.save` writes everything that can change what happens next -- every pool,
 the BulletML machines (their stacks, repeats, waits and ``sequence`` memory), the boss and
-its phase, progress, scoring, the player, items, the bomb, the wave timeline, both random
+its phase, progress, scoring, the player, items, the bomb, the lasers, the wave timeline, both random
 streams (numpy PCG64 states), the rotation mode in force, the toggles and warnings so far,
 the frame counters -- in the explicit, versioned byte format of docs/FORMATS.md
 ("Snapshots"). :meth:`Snapshots.restore` puts it into a world made from the same level,
@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..collision import ROTATION_MODES
-from ..data.levels import Level
+from ..data.levels import LASER_NODES, Level
 from ..patterns.bulletml import Pattern
 from ..patterns.bulletml.expr import Expr
 from ..patterns.bulletml.runstate import (
@@ -53,8 +53,12 @@ from .settings import Carry, Toggle, ToggleEvent
 from .snapbytes import Reader, Writer
 from .world import World
 
-#: The snapshot format this game writes and reads (docs/FORMATS.md, "Snapshots").
-FORMAT_VERSION = 2
+#: The snapshot format this game writes (docs/FORMATS.md, "Snapshots"); it reads this one
+#: and version 2 (written before lasers: no ``lasers`` section, none in play). Version 1
+#: zeroed bits the part digests see (a stopped channel's ends, a dirty row's cached step),
+#: so a world restored from it could differ: it is refused.
+FORMAT_VERSION = 3
+READS = (2, 3)
 #: The first 8 bytes of every snapshot.
 MAGIC = b"BSWDSNAP"
 #: Warnings and toggles a snapshot may list, and rows a pool without a limit may hold.
@@ -365,6 +369,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
             {f[0] for f in WORLD_FIELDS}
             | {"rng", "carry", "toggles", "warnings", "player", "score", "progress", "gun", "timeline"}
             | {"ships", "boss", "parts", "enemy_bullets", "player_bullets", "guns", "items", "bomb", "collide"}
+            | {"lasers"}
         ),
         frozenset(
             {"level", "seed", "settings", "kinds", "layers", "difficulty", "rank", "fires", "start_lives"}
@@ -387,6 +392,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     ),
     "Items": (frozenset({"pool"}), frozenset({"arm_of"})),
     "Bomb": (frozenset(f[0] for f in BOMB_FIELDS), frozenset({"base_kind"})),
+    "Lasers": (frozenset({"pool"}), frozenset({"specs", "first", "difficulty"})),
     "EnemyGuns": (frozenset({f[0] for f in GUNS_FIELDS} | {"boss_phase", "engine"}), frozenset({"fires"})),
     "Engine": (
         frozenset({f[0] for f in ENGINE_FIELDS} | {"scope", "emitters", "bullets", "_resume"}),
@@ -504,6 +510,8 @@ class Snapshots:
                 w.i64(row)
             _put_rng(w, eng.scope.rng)
             _put_columns(w, eng.emitters, table)
+        with w.section("lasers"):
+            _put_columns(w, world.lasers.pool)
         w.parts[at_length] = (w.size() + 4).to_bytes(8, "little", signed=True)
         crc = 0
         for part in w.parts:
@@ -518,7 +526,7 @@ class Snapshots:
         is set: a ``ValueError`` leaves ``world`` as it was."""
         table, digest = self._for(world)
         r = Reader(data)
-        self._header(r, world, data, digest)
+        version = self._header(r, world, data, digest)
         apply: list[Callable[[], None]] = []  # what to set, once everything has been read
         with r.section("world") as s:
             top = _get_fields(s, world, WORLD_FIELDS)
@@ -619,15 +627,27 @@ class Snapshots:
                 _fill(eng.emitters, emitters)
 
             apply.append(guns_part)
+        lasers = world.lasers
+        if version >= 3:
+            with r.section("lasers") as s:
+                got = _get_columns(s, lasers.pool)
+                _check_index(s, got[2], "which", len(lasers.specs))
+                _check_index(s, got[2], "phase", len(boss.spec.phases) if boss is not None else 0)
+                _check_index(s, got[2], "part", len(boss.spec.parts) if boss is not None else 0)
+                _check_index(s, got[2], "count", LASER_NODES + 1)
+                apply.append(partial(_fill, lasers.pool, got))
+        else:
+            apply.append(lasers.pool.clear)
         r.expect_end()
         for part in apply:
             part()
 
-    def _header(self, r: Reader, world: World, data: bytes, digest: bytes) -> None:
+    def _header(self, r: Reader, world: World, data: bytes, digest: bytes) -> int:
+        """Check the header against ``world``; returns the format version."""
         if len(data) < len(MAGIC) + 16 or bytes(r.take(len(MAGIC), "magic")) != MAGIC:
             raise ValueError("snapshot: not a Broadsword snapshot (it does not start with the snapshot magic bytes)")
         version = r.i64("format version")
-        if version != FORMAT_VERSION:
+        if version not in READS:
             age = "an older" if version < FORMAT_VERSION else "a newer"
             raise ValueError(
                 f"snapshot: format version {version} is {age} format than this game's {FORMAT_VERSION}; it cannot be read"
@@ -650,6 +670,7 @@ class Snapshots:
             raise ValueError(
                 f"snapshot: level {level!r}'s data or the armatures differ from those the snapshot was made with"
             )
+        return version
 
 
 def save(world: World) -> bytes:

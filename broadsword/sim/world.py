@@ -4,15 +4,16 @@
 section 1.4). It orders small systems, each in its own module:
 
 0. the bomb button, and the death-bomb window (:mod:`.bombs`, :mod:`.progress`);
-1. move: the player (:mod:`.player`), wave ships (:mod:`.motion`), the boss (:mod:`.boss`),
-   every bullet and item (:mod:`.items`);
+1. move: the player (:mod:`.player`), wave ships (:mod:`.motion`), the boss (:mod:`.boss`)
+   and its lasers (:mod:`.lasers`), every bullet and item (:mod:`.items`);
 2. collide the new poses -- all of them, after all movement -- in one pipeline call
    (:mod:`.collide`);
 3. apply what collided: damage, deaths, grazes, items, the bomb's work, score
-   (:mod:`.combat`; mark, then compact);
+   (:mod:`.combat`; mark, then compact); then the lasers against the player (:mod:`.lasers`,
+   exact, outside the pipeline: the player is one ship);
 4. spawn: the player's gun (:mod:`.weapons`), the wave timeline and the boss's arrival
    (:mod:`.waves`, :mod:`.boss`), the enemies' BulletML patterns (:mod:`.emitters`); run the boss's
-   phase clock; cull what left the field; extends and the stage's end (:mod:`.progress`).
+   phase clock and its lasers; cull what left the field; extends and the stage's end (:mod:`.progress`).
 
 It returns the frame's :class:`~broadsword.sim.events.Events`. The same level, seed,
 settings, toggles and inputs give the same :meth:`World.state_hash` on every run.
@@ -38,6 +39,7 @@ from .hitlog import HitLog
 from .input import Input
 from .items import Items
 from .kinds import ALWAYS, Kinds
+from .lasers import Lasers
 from .layers import LayerIds, game_layer_table
 from .player import POWER_MAX, POWER_MIN, Player
 from .progress import Progress
@@ -86,6 +88,8 @@ class World:
     enemy_bullets : EnemyBullets
         The enemies' bullets: the BulletML engine's store (``guns.engine.bullets``).
     player_bullets : Pool
+    lasers : Lasers
+        The boss's lasers in play (:mod:`.lasers`).
     guns : EnemyGuns
         Every firing ship's and boss part's pattern.
     items : Items
@@ -148,6 +152,7 @@ class World:
         self.enemy_bullets = enemy_bullets(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
         self.guns = EnemyGuns(self.enemy_bullets, self.fires, self.seed)
         self.player_bullets = bullet_pool(PLAYER_BULLETS, PLAYER_BULLETS_LIMIT)
+        self.lasers = Lasers(level, self.settings.difficulty)
         self.items = Items(self.kinds.base)
         self.bomb = Bomb(self.kinds.base[BOMB])
         self.combat = Combat(self)
@@ -206,6 +211,7 @@ class World:
                 self.combat.lose_life(ev)
         self._move(inp)
         self.combat.apply(self.detect(), ev)
+        self.lasers.collide(self, ev)
         self._spawn(inp, ev)
         if self.boss is not None:
             how = self.boss.tick()
@@ -243,6 +249,7 @@ class World:
         self.ships.move(self.player.pos)
         if self.boss:
             self.boss.move()
+        self.lasers.move(self.boss, self.bomb.active, self.items)
         self.guns.engine.advance()  # enemy bullets: their patterns' changes and commands, then the move
         move_bullets(self.player_bullets)
         self.items.move(self.player.pos, self.player.alive)
@@ -256,6 +263,7 @@ class World:
         self.guns.sync_ships(self.ships.pool, [w.fire for w in self.level.waves], self.kinds.base)
         self.guns.sync_boss(self.boss, self.kinds.base)
         ev.enemy_shots += self.guns.fire(self.player.pos.copy(), self.player.alive)
+        self.lasers.fire(self.boss, self.player.pos, self.player.alive, self.bomb.active)
 
     def _cull(self) -> None:
         cull_bullets(self.enemy_bullets)
@@ -269,6 +277,7 @@ class World:
             (self.player_bullets, "player bullets"),
             (self.ships.pool, "ships"),
             (self.items.pool, "items"),
+            (self.lasers.pool, "lasers"),
         ):
             message = f"more than {pool.limit:,} {what} at once: the rest were not made"
             if pool.refused and message not in self.warnings:

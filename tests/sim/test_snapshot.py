@@ -181,6 +181,7 @@ def _objects(w: World) -> dict[str, object]:
         "WaveShips": w.ships,
         "Items": w.items,
         "Bomb": w.bomb,
+        "Lasers": w.lasers,
         "EnemyGuns": w.guns,
         "Engine": w.guns.engine,
         "CollisionStep": w.collide,
@@ -203,6 +204,7 @@ def test_coverage__every_attribute_is_kept_or_declared_static():
         assert not kept & static, name
         assert set(vars(obj)) == kept | static, f"{name}: not covered {set(vars(obj)) - kept - static}"
     pools = [w.ships.pool, w.parts, w.enemy_bullets, w.player_bullets, w.items.pool, w.guns.engine.emitters]
+    pools.append(w.lasers.pool)
     for pool in pools:  # rows and refusals are kept; the column layout and limit are code
         assert set(vars(pool)) == {"_spec", "_data", "n", "limit", "refused"}
     # the BulletML machine's parts: every slot is written by runstate
@@ -374,7 +376,7 @@ def test_refused__not_a_snapshot():
         _restore_into_fresh(b"{json: true}" + bytes(100))
 
 
-@pytest.mark.parametrize("version", [0, FORMAT_VERSION + 1])
+@pytest.mark.parametrize("version", [0, 1, FORMAT_VERSION + 1])
 def test_refused__other_format_version(version):
     data = bytearray(_sample())
     data[len(MAGIC) : len(MAGIC) + 8] = version.to_bytes(8, "little")

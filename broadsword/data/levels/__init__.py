@@ -11,6 +11,7 @@ from .load import (
     load_level,
 )
 from .specs import (
+    LASER_NODES,
     PATHS,
     PATTERNS,
     THEMES,
@@ -20,6 +21,8 @@ from .specs import (
     Drops,
     FireKind,
     FireSpec,
+    LaserKind,
+    LaserSpec,
     Level,
     PathKind,
     PathSpec,
@@ -31,6 +34,7 @@ from .specs import (
 
 __all__ = [
     "FIRE_KEYS",
+    "LASER_NODES",
     "LEVEL_MAX_BYTES",
     "OFFSET_MAX",
     "PARTS_MAX",
@@ -44,6 +48,8 @@ __all__ = [
     "Drops",
     "FireKind",
     "FireSpec",
+    "LaserKind",
+    "LaserSpec",
     "Level",
     "PathKind",
     "PathSpec",

@@ -24,6 +24,7 @@ from ..resources import read_toml
 from ..table import MISSING, Table
 from .specs import (
     BOSS_DROPS,
+    LASER_NODES,
     PATHS,
     PATTERNS,
     THEMES,
@@ -33,6 +34,8 @@ from .specs import (
     Drops,
     FireKind,
     FireSpec,
+    LaserKind,
+    LaserSpec,
     Level,
     PathKind,
     PathSpec,
@@ -211,6 +214,65 @@ def _phase_fire(p: Table, parts: int) -> tuple[tuple[int, FireSpec], ...]:
     return tuple(sorted(out.items()))
 
 
+#: A phase has at most this many ``[[boss.phase.laser]]`` entries, each a fan of at most LASER_FAN_MAX.
+LASERS_MAX, LASER_FAN_MAX = 16, 16
+#: The keys only some kinds of laser read.
+LASER_KIND_KEYS = {
+    LaserKind.STRAIGHT: ("length", "warn"),
+    LaserKind.BEAM: ("length", "warn", "turn"),
+    LaserKind.CURVY: ("turn", "speed", "nodes", "spacing", "wave", "period"),
+}
+LASER_KINDS = tuple(k.value for k in LaserKind)
+
+
+def _laser(f: Table, parts: int) -> LaserSpec:
+    """One ``[[boss.phase.laser]]`` (see docs/FORMATS.md, "Lasers")."""
+    d = LaserSpec(0)
+    kind = LaserKind(f.str("kind", d.kind.value, LASER_KINDS))
+    mine = LASER_KIND_KEYS[kind]
+    for key in sorted({k for ks in LASER_KIND_KEYS.values() for k in ks} - set(mine)):
+        if key in f.doc:
+            raise f.error(key, f"not for a {kind.value} laser (it reads {', '.join(mine)})")
+    width = f.num("width", d.width, 1, 64)
+    aim = f.bool("aim", d.aim)
+    spec = LaserSpec(
+        part=f.int("part", MISSING, 1, max(1, parts)) - 1,
+        kind=kind,
+        angle=f.num("angle", 0.0 if aim else d.angle, -360, 360),  # aimed: a turn off the aim
+        aim=aim,
+        count=f.int("count", d.count, 1, LASER_FAN_MAX),
+        spread=f.num("spread", d.spread, 0, 360),
+        length=f.num("length", d.length, 8, 2000),
+        width=width,
+        tip=f.num("tip", width, 0, 64),
+        warn=f.num("warn", d.warn, 0.25, 10),  # never less: a straight laser is always seen coming
+        on=f.num("on", d.on, 0.1, 30),
+        every=f.num("every", d.every, 0.25, 120),
+        delay=f.num("delay", d.delay, 0, 600),
+        turn=f.num("turn", d.turn, -720, 720),
+        speed=f.num("speed", d.speed, 10, 1000),
+        nodes=f.int("nodes", d.nodes, 2, LASER_NODES),
+        spacing=f.int("spacing", d.spacing, 1, 8),
+        wave=f.num("wave", d.wave, 0, 180),
+        period=f.num("period", d.period, 0.1, 60),
+        difficulties=_difficulties(f),
+    )
+    if spec.count > 1 and "spread" not in f.doc:
+        raise f.error("spread", f"a fan of {spec.count} lasers needs a spread (degrees across it)")
+    f.done()
+    return spec
+
+
+def _phase_lasers(p: Table, parts: int) -> tuple[LaserSpec, ...]:
+    """A phase's ``[[boss.phase.laser]]`` entries: ``part`` (1-based) and the laser it fires."""
+    raw = p.raw("laser", [])
+    if not isinstance(raw, list):
+        raise p.error("laser", f"must be an array of tables ([[boss.phase.laser]]), got {shown(raw)}")
+    if len(raw) > LASERS_MAX:
+        raise p.error("laser", f"must be at most {LASERS_MAX} lasers a phase, got {len(raw)}")
+    return tuple(_laser(Table(doc, p.path, f"{p.where}.laser[{j}]"), parts) for j, doc in enumerate(raw))
+
+
 def _phases(t: Table, parts: int) -> tuple[BossPhaseSpec, ...]:
     """``[[boss.phase]]``: each phase's hp, time, bonus and what its parts fire (none: one
     phase of ``boss.hp``); ``parts`` is how many ``[[boss.part]]`` there are."""
@@ -232,6 +294,7 @@ def _phases(t: Table, parts: int) -> tuple[BossPhaseSpec, ...]:
                 p.int("bonus", d.bonus, 0, 10**8),
                 _phase_fire(p, parts),
                 p.str("name", ""),
+                _phase_lasers(p, parts),
             )
         )
         p.done()

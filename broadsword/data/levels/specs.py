@@ -169,6 +169,57 @@ class BossPart:
 SILENT = FireSpec()
 
 
+class LaserKind(str, Enum):
+    """How a laser moves (``kind`` of a ``[[boss.phase.laser]]``); each is drawn, collided and
+    moved by :mod:`broadsword.sim.lasers`."""
+
+    STRAIGHT = "straight"  # a warning line, then on for a while, then gone
+    BEAM = "beam"  # a straight laser that turns about its origin while on
+    CURVY = "curvy"  # a chain of nodes trailing a moving head
+
+
+#: A curvy laser has at most this many nodes (the sim keeps a fixed row of them per laser).
+LASER_NODES = 64
+
+
+@dataclass(frozen=True)
+class LaserSpec:
+    """One laser (or fan of lasers) a boss part fires in a phase, every ``every`` s from
+    ``delay`` s after the phase starts. Angles are BulletML headings (degrees, 0 = up,
+    clockwise on screen: 180 is straight down); ``aim`` adds the heading to the player
+    (a level file's aimed laser has ``angle`` 0 unless it says).
+
+    ``length`` and ``warn`` are for straight lasers and beams, ``turn`` (degrees per second)
+    turns a beam while it is on and a curvy laser's head all its life; ``speed``, ``nodes``,
+    ``spacing``, ``wave`` and ``period`` shape a curvy laser (its head wobbles ``wave`` degrees each way
+    every ``period`` s). ``width`` is the full width at the origin (a curvy laser's head),
+    ``tip`` at the far end (its tail): equal for a uniform laser, else tapered."""
+
+    part: int  # 0-based, into BossSpec.parts
+    kind: LaserKind = LaserKind.STRAIGHT
+    angle: float = 180.0
+    aim: bool = False
+    count: int = 1
+    spread: float = 0.0  # degrees across the fan
+    length: float = 480.0  # px
+    width: float = 10.0  # px
+    tip: float = 10.0  # px
+    warn: float = 1.0  # s of warning line before a straight laser or beam turns on
+    on: float = 1.5  # s on (a curvy laser: its whole life)
+    every: float = 4.0  # s between firings
+    delay: float = 1.0  # s after the phase starts
+    turn: float = 0.0  # degrees per second
+    speed: float = 180.0  # px/s, a curvy laser's head
+    nodes: int = 32  # a curvy laser's
+    spacing: int = 1  # steps of the head's path between two of a curvy laser's nodes
+    wave: float = 0.0  # degrees
+    period: float = 1.0  # s
+    difficulties: frozenset[Difficulty] = frozenset(Difficulty)
+
+    def __post_init__(self):
+        object.__setattr__(self, "kind", LaserKind(self.kind))  # a name from a file or a test
+
+
 @dataclass(frozen=True)
 class BossPhaseSpec:
     """One phase of a boss fight: the damage that ends it, the seconds it lasts at most
@@ -184,6 +235,7 @@ class BossPhaseSpec:
     bonus: int = 10_000
     fire: tuple[tuple[int, FireSpec], ...] = ()
     name: str = ""  # shown on the boss bar while the phase lasts ("": "phase N")
+    lasers: tuple[LaserSpec, ...] = ()  # what the parts fire besides bullets
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,7 @@ from ...sim import DT, Input, Pilot, World
 from ...sim.hitlog import Outcome
 from .. import heap
 from ..controls import Action, Controls
+from ..lasers import draw_laser_armatures
 from ..practice_run import PracticeRun
 
 #: Slow motion (F3) runs the world at this share of real time.
@@ -247,4 +248,5 @@ class Play:
             from .pause import Pause
 
             paused = isinstance(app.stack.top, Pause)
+            draw_laser_armatures(surf, self.world)  # under the overlay's panel
             app.overlay.draw(surf, record.result if record is not None else None, app.fps, paused)

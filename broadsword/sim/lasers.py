@@ -1,0 +1,328 @@
+"""Lasers in play: straight lasers, rotating beams and curvy lasers fired by boss parts.
+
+A boss phase's ``[[boss.phase.laser]]`` entries (:class:`~broadsword.data.levels.LaserSpec`,
+docs/FORMATS.md "Lasers") fire from their part every ``every`` s from ``delay`` s into the
+phase, counted by the boss's phase clock (``Boss.phase_frames``), so firing needs no state
+of its own. Each laser in play is a row of :attr:`Lasers.pool`:
+
+* a **straight** laser is a warning line for ``warn`` s (drawn, never collided), then on for
+  ``on`` s, then gone; it runs from its part (it follows the part) ``length`` px along its
+  heading;
+* a **beam** is a straight laser that, once on, turns about its part at ``turn`` degrees a
+  second;
+* a **curvy** laser is a chain of up to ``nodes`` nodes: each step its head (node 0) moves
+  ``speed`` along a heading that turns at ``turn`` and wobbles ``wave`` degrees every
+  ``period`` s, and every ``spacing`` steps the trail takes a node where the head was the
+  step before, every node moving back one place (with ``spacing`` 1, node ``i`` is where the
+  head was ``i`` steps ago). It lives ``on`` s, and goes when its every node has left the field.
+
+A laser's shape is :mod:`broadsword.collision.lasers`' (a bevel-joined thick polyline, width
+``width`` at its origin or head, ``tip`` at the far end, linear between). It hits the player
+exactly: its pieces against the player's hit polygon swept back along this step's move
+(:func:`~broadsword.collision.lasers.swept_polygon`), so a ship crossing a laser between two
+steps is hit. A hit is a miss like a bullet's (the death-bomb window opens; a bomb in it
+saves the ship). A laser inside the graze shape (and not hitting) counts one graze, then
+again every ``GRAZE_EVERY`` steps while it stays there. A bomb cancels every laser on the
+field (each leaves stars along it) and no laser fires while it lasts; a phase's lasers end
+with the phase.
+
+Every number is computed with correctly rounded operations and :mod:`~broadsword.collision.detmath`
+angles, so lasers replay bit for bit.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..collision import detmath
+from ..collision.lasers import laser_pieces, swept_polygon
+from ..collision.narrow import polygons_collide_padded
+from ..data.difficulty import Difficulty
+from ..data.levels import LASER_NODES, LaserKind, LaserSpec, Level
+from .boss import Boss
+from .emitters import on_field
+from .events import Events
+from .field import DT, FIELD
+from .items import ItemKind, Items
+from .pool import Pool
+
+if TYPE_CHECKING:
+    from .world import World
+
+#: A laser inside the graze shape counts a graze at most once in this many steps.
+GRAZE_EVERY = 8
+#: A curvy laser whose every node is this far past the field's edges is gone, px.
+CULL_MARGIN = 32.0
+#: A cancelled straight laser leaves a star every this many px along it (at most STARS_MAX).
+STAR_SPACING, STARS_MAX = 48.0, 12
+#: At most this many lasers at once; a phase that would fire more fires fewer.
+LASERS_LIMIT = 256
+
+
+def frames(seconds: float, least: int = 1) -> int:
+    """Whole steps in ``seconds`` (at least ``least``)."""
+    return max(least, round(seconds / DT))
+
+
+def laser_pool(capacity: int = 8) -> Pool:
+    """The lasers in play: ``which`` (index into :attr:`Lasers.specs`), ``phase`` (the boss
+    phase that fired it), ``part`` (the boss part it comes from), ``age`` (steps since it was
+    fired), ``heading`` (its heading when fired, degrees), ``head`` ((2,): a curvy laser's
+    head), ``nodes`` ((LASER_NODES, 2): its chain, the first ``count`` rows in use; a
+    straight laser's origin and end) and ``graze_wait`` (steps before it may count a graze)."""
+    return Pool(
+        capacity=capacity,
+        limit=LASERS_LIMIT,
+        which=((), int),
+        phase=((), int),
+        part=((), int),
+        age=((), int),
+        heading=((), float),
+        head=((2,), float),
+        nodes=((LASER_NODES, 2), float),
+        count=((), int),
+        graze_wait=((), int),
+    )
+
+
+def part_row(parts: Pool, part: int) -> int | None:
+    """The row of boss part ``part`` in ``parts`` (kept in part order), or None if it is gone."""
+    i = int(np.searchsorted(parts.part, part))
+    return i if i < parts.n and int(parts.part[i]) == part else None
+
+
+class Lasers:
+    """The level's lasers: the specs of every boss phase (``specs``, flat, phase after phase;
+    ``first[p]`` is phase ``p``'s first) and the pool of lasers in play."""
+
+    def __init__(self, level: Level, difficulty: Difficulty):
+        phases = level.boss.phases if level.boss is not None else ()
+        self.specs: tuple[LaserSpec, ...] = tuple(s for ph in phases for s in ph.lasers)
+        self.first = np.cumsum([0] + [len(ph.lasers) for ph in phases]).tolist()
+        self.difficulty = difficulty
+        self.pool = laser_pool()
+
+    # ------------------------------------------------------------------ what each is now
+    def spec_of(self, row: int) -> LaserSpec:
+        return self.specs[int(self.pool.which[row])]
+
+    def warning(self, row: int) -> bool:
+        """Row ``row`` is a straight laser or beam still showing its warning line."""
+        s = self.spec_of(row)
+        return s.kind is not LaserKind.CURVY and int(self.pool.age[row]) < frames(s.warn)
+
+    def live_rows(self) -> list[int]:
+        """The rows that collide now: on (past their warning), with at least two nodes."""
+        p = self.pool
+        return [i for i in range(p.n) if int(p.count[i]) >= 2 and not self.warning(i)]
+
+    def widths(self, row: int) -> np.ndarray:
+        """(count,) float64: the full width at each node of row ``row``, ``width`` at the
+        first node to ``tip`` at the last, linear in the node's index."""
+        s, n = self.spec_of(row), int(self.pool.count[row])
+        if s.tip == s.width:
+            return np.full(n, s.width)
+        return s.width + (s.tip - s.width) * (np.arange(n, dtype=np.float64) / (n - 1))
+
+    def chains(self, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(nodes (N, 2), widths (N,), starts (L,))`` of ``rows``, for
+        :func:`~broadsword.collision.lasers.laser_pieces`."""
+        p = self.pool
+        counts = [int(p.count[i]) for i in rows]
+        nodes = np.concatenate([p.nodes[i, :c] for i, c in zip(rows, counts, strict=True)])
+        widths = np.concatenate([self.widths(i) for i in rows])
+        starts = np.cumsum([0] + counts[:-1]).astype(np.int64)
+        return nodes, widths, starts
+
+    def pieces(self, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The pieces of ``rows``: ``x, y`` (4, P) and each piece's index into ``rows`` (P,)."""
+        if not rows:
+            return np.empty((4, 0)), np.empty((4, 0)), np.empty(0, dtype=np.int64)
+        return laser_pieces(*self.chains(rows))
+
+    def segments_ahead(self, ahead: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Where the lasers' segments will be ``ahead`` (H,) steps from now, as a player sees
+        them going (for the autopilot): warning lines as the lasers they announce, beams
+        turning on at their rate, straight and curvy lasers where they are. Returns ``a, b``
+        (H, S, 2), each segment's ends at each time, and ``half`` (S,), its largest half width."""
+        p = self.pool
+        ahead = np.asarray(ahead, dtype=np.float64)
+        a_all, b_all, half = [], [], []
+        for i in range(p.n):
+            s, n = self.spec_of(i), int(p.count[i])
+            if n < 2:
+                continue
+            nodes = p.nodes[i, :n]
+            a = np.broadcast_to(nodes[:-1], (len(ahead), n - 1, 2))
+            b = np.broadcast_to(nodes[1:], (len(ahead), n - 1, 2))
+            if s.kind is LaserKind.BEAM:
+                lit = np.maximum(int(p.age[i]) + ahead - frames(s.warn), 0.0)
+                vx, vy = detmath.velocity_deg(float(p.heading[i]) + s.turn * (lit * DT), s.length)
+                b = a + np.stack([vx, vy], axis=1)[:, None, :]
+            a_all.append(a)
+            b_all.append(b)
+            half.append(np.full(n - 1, 0.5 * max(s.width, s.tip)))
+        if not half:
+            empty = np.empty((len(ahead), 0, 2))
+            return empty, empty, np.empty(0)
+        return np.concatenate(a_all, axis=1), np.concatenate(b_all, axis=1), np.concatenate(half)
+
+    # ------------------------------------------------------------------ the step
+    def move(self, boss: Boss | None, bomb_active: bool, items: Items) -> None:
+        """Age every laser and put it where it is this step; end those whose time is up,
+        whose phase or part is gone; a bomb cancels all of them (stars along the lit ones)."""
+        p = self.pool
+        if not p.n:
+            return
+        if bomb_active:
+            self.cancel(items)
+            return
+        if boss is None or not boss.fighting:
+            p.clear()
+            return
+        parts = boss.parts
+        keep = np.ones(p.n, dtype=bool)
+        for i in range(p.n):
+            s = self.spec_of(i)
+            p.age[i] += 1
+            age = int(p.age[i])
+            row = part_row(parts, s.part)
+            if int(p.phase[i]) != boss.phase or row is None:
+                keep[i] = False
+            elif s.kind is LaserKind.CURVY:
+                keep[i] = age < frames(s.on) and self._curve(i, s, age)
+            else:
+                keep[i] = age < frames(s.warn) + frames(s.on)
+                if keep[i]:
+                    self._straight(i, s, age, parts.pos[row])
+        if not keep.all():
+            p.keep(keep)
+
+    def _straight(self, i: int, s: LaserSpec, age: int, origin: np.ndarray) -> None:
+        """Row ``i``, a straight laser or beam, from ``origin`` along its heading now."""
+        p = self.pool
+        heading = float(p.heading[i])
+        lit = age - frames(s.warn)
+        if s.kind is LaserKind.BEAM and lit > 0:
+            heading += s.turn * (lit * DT)
+        vx, vy = detmath.velocity_deg(heading, s.length)
+        p.nodes[i, 0] = origin
+        p.nodes[i, 1, 0], p.nodes[i, 1, 1] = origin[0] + vx, origin[1] + vy
+        p.count[i] = 2
+
+    def _curve(self, i: int, s: LaserSpec, age: int) -> bool:
+        """Move row ``i``'s head and trail its nodes; False once every node is off the field."""
+        p = self.pool
+        t = age * DT
+        heading = float(p.heading[i]) + s.turn * t
+        if s.wave:
+            heading += s.wave * detmath.sin_deg(360.0 * (t / s.period))
+        vx, vy = detmath.velocity_deg(heading, s.speed * DT)
+        p.head[i, 0] += vx
+        p.head[i, 1] += vy
+        n = int(p.count[i])
+        if age % s.spacing == 0 or n == 1:  # the trail takes a new node; the head moves on from it
+            n = min(n + 1, s.nodes)
+            p.nodes[i, 1:n] = p.nodes[i, : n - 1].copy()
+            p.count[i] = n
+        p.nodes[i, 0] = p.head[i]
+        at = p.nodes[i, :n]
+        m = CULL_MARGIN
+        inside = (at[:, 0] > -m) & (at[:, 0] < FIELD[0] + m) & (at[:, 1] > -m) & (at[:, 1] < FIELD[1] + m)
+        return bool(inside.any())
+
+    def fire(self, boss: Boss | None, player: np.ndarray, player_alive: bool, bomb_active: bool) -> int:
+        """Fire the current phase's lasers that are due this step (by the boss's phase clock)
+        from parts on the field, while the player is alive and no bomb lasts. Returns how
+        many lasers were fired."""
+        if boss is None or not boss.fighting or not boss.parts.n or not player_alive or bomb_active:
+            return 0
+        k, made = boss.phase_frames, 0
+        for j in range(self.first[boss.phase], self.first[boss.phase + 1]):
+            s = self.specs[j]
+            start = frames(s.delay, least=0)
+            if self.difficulty not in s.difficulties or k < start or (k - start) % frames(s.every):
+                continue
+            row = part_row(boss.parts, s.part)
+            if row is None or not on_field(boss.parts.pos[row : row + 1])[0]:
+                continue
+            made += self._add(j, s, boss.phase, boss.parts.pos[row].copy(), player)
+        return made
+
+    def _add(self, j: int, s: LaserSpec, phase: int, origin: np.ndarray, player: np.ndarray) -> int:
+        base = s.angle
+        if s.aim:
+            base += detmath.heading_deg(float(player[0] - origin[0]), float(player[1] - origin[1]))
+        c = s.count
+        headings = [base + (s.spread * (i / (c - 1)) - 0.5 * s.spread if c > 1 else 0.0) for i in range(c)]
+        nodes = np.zeros((c, LASER_NODES, 2))
+        nodes[:, 0] = origin
+        added = self.pool.add(
+            which=np.full(c, j),
+            phase=np.full(c, phase),
+            part=np.full(c, s.part),
+            age=np.zeros(c, dtype=np.int64),
+            heading=np.array(headings, dtype=np.float64),
+            head=np.repeat(origin[None, :], c, axis=0),
+            nodes=nodes,
+            count=np.ones(c, dtype=np.int64),
+            graze_wait=np.zeros(c, dtype=np.int64),
+        )
+        for i in range(self.pool.n - added, self.pool.n):  # where a straight laser will be
+            if s.kind is not LaserKind.CURVY:
+                self._straight(i, s, 0, origin)
+        return added
+
+    def cancel(self, items: Items) -> None:
+        """End every laser; each lit one leaves homing stars along it (as cancelled bullets do)."""
+        p = self.pool
+        for i in self.live_rows():
+            s = self.spec_of(i)
+            if s.kind is LaserKind.CURVY:
+                at = p.nodes[i, : int(p.count[i]) : 4]
+            else:
+                a, b = p.nodes[i, 0], p.nodes[i, 1]
+                k = min(STARS_MAX, max(1, math.ceil(s.length / STAR_SPACING)))
+                f = np.arange(1, k + 1, dtype=np.float64) / k
+                at = a + (b - a) * f[:, None]
+            inside = (at[:, 0] >= 0) & (at[:, 0] <= FIELD[0]) & (at[:, 1] >= 0) & (at[:, 1] <= FIELD[1])
+            items.drop_many(at[inside], ItemKind.STAR, homing=True)
+        p.clear()
+
+    def collide(self, world: World, ev: Events) -> None:
+        """The lit lasers against the player: a hit strikes the ship (swept along its move),
+        a graze counts (throttled per laser)."""
+        p = self.pool
+        if not p.n:
+            return
+        player = world.player
+        rows = self.live_rows() if player.alive else []
+        if rows:
+            px, py, owner = self.pieces(rows)
+            kinds, t = world.kinds, world.time
+            if player.vulnerable:
+                hit = kinds.shapes.armatures[int(kinds.current(kinds.base["player"], t))].vertices + player.pos
+                swept = swept_polygon(hit, player.pos - player.prev)
+                if touching(px, py, swept).any():
+                    player.strike()
+                    ev.player_struck = True
+            if world.level.scene.graze and not player.stricken:
+                shape = kinds.shapes.armatures[int(kinds.current(kinds.base["graze"], t))].vertices + player.pos
+                near = np.unique(owner[touching(px, py, shape)])
+                grazed = [rows[k] for k in near.tolist() if p.graze_wait[rows[k]] == 0]
+                if grazed:
+                    p.graze_wait[grazed] = GRAZE_EVERY  # counted down from this step on
+                    ev.grazes += len(grazed)
+                    world.score.graze(len(grazed))
+        p.graze_wait[:] = np.maximum(p.graze_wait - 1, 0)
+
+
+def touching(px: np.ndarray, py: np.ndarray, polygon: np.ndarray) -> np.ndarray:
+    """(P,) bool: which pieces (columns of ``px``, ``py``) touch ``polygon`` (k, 2), exactly."""
+    m = px.shape[1]
+    qx = np.repeat(polygon[:, :1], m, axis=1)
+    qy = np.repeat(polygon[:, 1:], m, axis=1)
+    return polygons_collide_padded(px, py, qx, qy)
