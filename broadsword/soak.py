@@ -1,26 +1,36 @@
 """``broadsword soak``: long headless play with the autopilot, watching memory and errors.
 
     broadsword soak [--level 3-broadsword] [--frames 216000] [--seed 0] [--warmup FRAMES]
-                    [--sample-every FRAMES] [--progress-every FRAMES] [--max-growth PCT] [--json FILE]
+                    [--sample-every FRAMES] [--progress-every FRAMES] [--max-growth PCT]
+                    [--minutes M] [--json FILE]
 
 The autopilot plays the level with no window. When a game ends (game over or level
 complete) a fresh :class:`~broadsword.sim.World` of the same level starts at once, with
 the next seed of a deterministic sequence (game 0 uses ``--seed`` itself, so it is the game
 ``broadsword --headless --seed S --autopilot`` plays), until ``--frames`` steps have been
-played in all. 216,000 frames is one hour of game time at 60 Hz.
+played in all. 216,000 frames is one hour of game time at 60 Hz. ``--minutes`` stops it
+sooner, after that much wall-clock time (on a loaded machine an hour of game time can take
+many hours); the summary says how many frames were played and that the clock stopped it.
 
 Memory is the process's resident set size (RSS), read from ``/proc/self/statm`` (Linux),
 or, where there is none, the peak RSS from :func:`resource.getrusage` (which can only
 rise, so a growth measured with it is still an upper bound). It is sampled every
-``--sample-every`` frames, at the end of the warm-up (the baseline) and after the last
-frame. The growth after warm-up is ``max(rss sampled after warm-up) / rss at warm-up - 1``
-in percent; the run fails when it exceeds ``--max-growth`` (5 by default) or when any
+``--sample-every`` frames, at the end of the warm-up and after the last frame. A game's
+RSS climbs to its densest part and falls back when the game ends, so the baseline is the
+warm-up's high-water mark, the largest sample up to and including the end of the warm-up
+(one instant could fall in a quiet part of a game); the growth after warm-up is
+``max(rss sampled after warm-up) / baseline - 1`` in percent: it measures whether the
+high-water mark still rises, as a leak makes it. Let the warm-up span at least one whole
+game (the default, a tenth of the run, spans about three of ``3-broadsword`` in an hour).
+The run fails when the growth exceeds ``--max-growth`` (5 by default) or when any
 exception escapes a step. Progress lines go to standard error; the last line of standard
 output is one JSON object (see :func:`soak` for its fields). Exit status: 0 pass, 1
 failure (exception or growth), 2 a level or asset file that does not load.
 
 Like the game, the command calls :func:`broadsword.collision.retain_heap` first, so the
-allocator behaves as it does in play.
+allocator behaves as it does in play, and :func:`broadsword.collision.release_heap` when a
+game has ended and the next one is made, as the game does when a stage has loaded
+(``game/heap.py``): the freed heap of the last game goes back to the system.
 """
 
 from __future__ import annotations
@@ -103,6 +113,7 @@ def soak(
     sample_every: int = 600,
     progress_every: int = 10_000,
     log=None,
+    max_wall_s: float | None = None,
 ) -> dict:
     """Play ``frames`` steps of ``level`` with the autopilot, restarting after each game.
 
@@ -115,14 +126,17 @@ def soak(
     seed : int
         Seed of game 0 (>= 0); later games use :func:`game_seed`.
     warmup : int or None
-        Frames after which the memory baseline is taken (0 <= warmup <= frames); ``None``
-        is a tenth of ``frames``.
+        Frames of warm-up (0 <= warmup <= frames): the memory baseline is the largest RSS
+        sample up to and including frame ``warmup``; ``None`` is a tenth of ``frames``.
     sample_every : int
         Frames between RSS samples (>= 1).
     progress_every : int
         Frames between progress lines written to ``log`` (0: none).
     log : text stream or None
         Where progress lines go (``None``: nowhere).
+    max_wall_s : float or None
+        Stop after this many seconds of wall-clock time even if frames are left (``None``:
+        play them all).
 
     Returns
     -------
@@ -133,17 +147,20 @@ def soak(
         ``longest_game_frames``, ``games_with_boss`` (games that lived to see their level's boss),
         ``run_hash`` (a digest of every finished game's state hash and of the last one's:
         same arguments, same digest), ``rss_source``, ``rss_start_bytes``,
-        ``rss_warmup_bytes``, ``rss_peak_bytes`` (largest sample), ``rss_final_bytes``,
-        ``growth_after_warmup_pct`` (largest sample after warm-up, the final reading
-        included, against the warm-up one; ``None`` when there is no sample after warm-up
-        or no RSS), ``final_growth_pct``,
+        ``rss_warmup_bytes`` (the baseline: the largest sample up to and including the end of
+        the warm-up, the start reading included), ``rss_peak_bytes`` (largest sample),
+        ``rss_final_bytes``, ``growth_after_warmup_pct`` (largest sample after warm-up, the
+        final reading included, against the baseline; ``None`` when there is no sample after
+        warm-up or no RSS), ``final_growth_pct`` (the final reading against the baseline),
         ``samples`` (RSS samples taken), ``gc_objects_warmup`` and ``gc_objects_final``
         (:func:`live_objects` at the end of warm-up and of the run),
         ``wall_s``, ``fps``, ``step_ms_max`` (slowest frame: autopilot and step, wall
         clock), ``steps_over_a_frame`` (steps slower than 1/60 s of wall clock: on a
-        shared machine, mostly other tenants), ``error`` (``None``, or the exception's
+        shared machine, mostly other tenants), ``stopped_by_clock`` (``max_wall_s`` ran out
+        before ``frames``), ``error`` (``None``, or the exception's
         traceback text as one string).
     """
+    from .collision import release_heap
     from .runner import Runner, StageStart, open_level
     from .sim import DT, Pilot
     from .sim.boss import BossState
@@ -174,9 +191,13 @@ def soak(
     world = runner.world
     pilot = Pilot()
     f = 0
+    stopped_by_clock = False
     try:
         while f < frames:
             t0 = clock()
+            if max_wall_s is not None and t0 - t_start >= max_wall_s:
+                stopped_by_clock = True
+                break
             runner.step(pilot(world))
             took = clock() - t0
             step_max = max(step_max, took)
@@ -196,14 +217,16 @@ def soak(
                     world = runner.world
                     pilot = Pilot()
                     games += 1
-            if f % sample_every == 0 or f == warmup or f == frames:
+                    release_heap()  # the last game is freed: give its heap back, as the game does
+            last = f == frames or (max_wall_s is not None and clock() - t_start >= max_wall_s)
+            if f % sample_every == 0 or f == warmup or last:
                 rss, _ = rss_bytes()
                 if rss is not None:
                     samples.append((f, rss))
                 if f == warmup:
-                    warm_rss = rss
+                    warm_rss = max([r for _, r in samples] + ([rss0] if rss0 else []), default=None)
                     gc_warm = live_objects()
-            if log is not None and progress_every and (f % progress_every == 0 or f == frames):
+            if log is not None and progress_every and (f % progress_every == 0 or last):
                 elapsed = clock() - t_start
                 fps = f / elapsed if elapsed > 0 else 0.0
                 rss = samples[-1][1] if samples else None
@@ -262,6 +285,7 @@ def soak(
         "fps": round(f / wall, 1) if wall > 0 else None,
         "step_ms_max": round(step_max * 1e3, 2),
         "steps_over_a_frame": slow_steps,
+        "stopped_by_clock": stopped_by_clock,
         "error": error,
     }
 
@@ -298,6 +322,12 @@ def _parser() -> argparse.ArgumentParser:
         default=MAX_GROWTH_PCT,
         help="allowed RSS growth after warm-up, percent, a finite number (default 5)",
     )
+    ap.add_argument(
+        "--minutes",
+        type=finite,
+        default=None,
+        help="stop after this much wall-clock time even if frames are left, a finite number > 0",
+    )
     ap.add_argument("--json", metavar="FILE", help="also write the summary to FILE")
     return ap
 
@@ -306,6 +336,9 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(sys.argv[1:] if argv is None else list(argv))
     if args.warmup is not None and args.warmup > args.frames:
         print(f"broadsword soak: --warmup ({args.warmup}) must not exceed --frames ({args.frames})", file=sys.stderr)
+        return 2
+    if args.minutes is not None and not args.minutes > 0:
+        print(f"broadsword soak: --minutes must be > 0, got {args.minutes:g}", file=sys.stderr)
         return 2
     if args.sample_every < 1:
         print("broadsword soak: --sample-every must be >= 1", file=sys.stderr)
@@ -324,7 +357,15 @@ def main(argv: list[str] | None = None) -> int:
         print(f"broadsword soak: {exc}", file=sys.stderr)
         return 2
     summary = soak(
-        level, armatures, args.frames, args.seed, args.warmup, args.sample_every, args.progress_every, log=sys.stderr
+        level,
+        armatures,
+        args.frames,
+        args.seed,
+        args.warmup,
+        args.sample_every,
+        args.progress_every,
+        log=sys.stderr,
+        max_wall_s=None if args.minutes is None else 60.0 * args.minutes,
     )
     growth = summary["growth_after_warmup_pct"]
     failures = []
@@ -348,7 +389,8 @@ def main(argv: list[str] | None = None) -> int:
     summary["ok"] = not failures
     print(
         f"broadsword soak: {'PASS' if summary['ok'] else 'FAIL (' + ', '.join(failures) + ')'}: "
-        f"{summary['frames']:,} frames, {summary['games']} games ({summary['games_over']} over, "
+        f"{summary['frames']:,} frames{' (stopped by --minutes)' if summary['stopped_by_clock'] else ''}, "
+        f"{summary['games']} games ({summary['games_over']} over, "
         f"{summary['levels_complete']} complete), RSS warm-up {_mib(summary['rss_warmup_bytes'])}, "
         f"peak {_mib(summary['rss_peak_bytes'])}, final {_mib(summary['rss_final_bytes'])}, "
         f"growth after warm-up {'n/a' if growth is None else f'{growth:.2f}%'}",

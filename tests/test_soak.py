@@ -59,6 +59,7 @@ FIELDS = {
     "fps",
     "step_ms_max",
     "steps_over_a_frame",
+    "stopped_by_clock",
     "error",
     "max_growth_pct",
     "ok",
@@ -228,3 +229,50 @@ def test_bad_arguments_and_levels_exit_2(tmp_path, capsys):
     assert str(unknown) in err and "wave[0].enemy" in err and len(err.strip().splitlines()) == 3
     with pytest.raises(SystemExit):
         soak_mod.main(["--frames", "-5"])
+
+
+def test_the_baseline_is_the_warm_ups_high_water_mark(monkeypatch, armatures, broadsword_level):
+    """A game's RSS rises to its densest part and falls back when the heap is released, so the
+    reading at the warm-up's last frame may be a trough: the baseline is the largest sample
+    of the warm-up, and only a high-water mark above it counts as growth."""
+    empty = dataclasses.replace(broadsword_level, waves=(), boss=None)
+    mib = 2**20
+    # start, then the samples at frames 10, 20, ..., 100 (50 is the warm-up's end), then the final reading
+    readings = iter([100, 100, 200, 100, 100, 100, 150, 150, 150, 150, 150, 150])
+    monkeypatch.setattr(soak_mod, "rss_bytes", lambda: (next(readings) * mib, "statm"))
+    s = soak_mod.soak(empty, armatures, frames=100, seed=0, warmup=50, sample_every=10)
+    assert s["samples"] == 10 and s["rss_warmup_bytes"] == 200 * mib and s["rss_peak_bytes"] == 200 * mib
+    assert s["growth_after_warmup_pct"] == s["final_growth_pct"] == -25.0  # 150 against 200, not against 100
+    readings = iter([100, 100, 200, 100, 100, 100, 150, 150, 150, 211, 150, 150])  # a new high-water mark
+    s = soak_mod.soak(empty, armatures, frames=100, seed=0, warmup=50, sample_every=10)
+    assert s["growth_after_warmup_pct"] == 5.5 and s["final_growth_pct"] == -25.0
+
+
+def test_the_soak_gives_each_finished_games_heap_back(monkeypatch, armatures, broadsword_level):
+    """Between games the soak calls ``release_heap()``, as the game does when a stage has loaded
+    (``game/heap.py``): under ``retain_heap()`` nothing else returns the last game's free pages."""
+    import broadsword.collision as collision
+
+    calls = []
+    monkeypatch.setattr(collision, "release_heap", lambda: calls.append(1) or True)
+    empty = dataclasses.replace(broadsword_level, waves=(), boss=None)
+    s = soak_mod.soak(empty, armatures, frames=30, seed=0, warmup=10, sample_every=10)
+    assert s["games"] == 30 and len(calls) == 29  # once for every game after the first
+
+
+def test_minutes_stops_the_soak_by_the_clock(armatures, broadsword_level, capsys):
+    """``--minutes`` bounds the wall-clock time (a loaded machine can take hours over an hour of
+    game time): the run stops there with a full summary that says so."""
+    empty = dataclasses.replace(broadsword_level, waves=(), boss=None)
+    s = soak_mod.soak(empty, armatures, frames=10**9, seed=0, warmup=0, sample_every=50, max_wall_s=0.5)
+    assert s["stopped_by_clock"] is True and s["error"] is None and 0 < s["frames"] < 10**9
+    assert s["rss_final_bytes"] and s["growth_after_warmup_pct"] is not None
+    full = soak_mod.soak(empty, armatures, frames=20, seed=0, warmup=0, max_wall_s=60.0)
+    assert full["stopped_by_clock"] is False and full["frames"] == 20
+    for bad in ("0", "-1"):
+        assert soak_mod.main(["--frames", "10", "--minutes", bad]) == 2
+    for bad in ("nan", "inf"):
+        with pytest.raises(SystemExit) as exc:
+            soak_mod.main(["--frames", "10", "--minutes", bad])
+        assert exc.value.code == 2
+    assert "--minutes" in capsys.readouterr().err

@@ -23,7 +23,7 @@ the game. Modules, one idea each:
 * ``pipeline``    the tiered pipeline a scene configures
 * ``debugdraw``   the debug-draw protocol (no renderer), and what a frame looks like through it
 * ``scenarios``   seeded reference scenes (tests, the lab and the benchmark)
-* ``workspace``   reused scratch buffers, and retain_heap() for applications
+* ``workspace``   reused scratch buffers; retain_heap() and release_heap() for applications
 """
 
 from ._kernel import Kernel, check_kernel
@@ -74,7 +74,7 @@ from .pixels import MaskCache, rasterise
 from .posing import ROTATION_MODES, ArmatureSet, Posed, pose, rotation_table
 from .predicates import orient, paper_segments_intersect, point_in_polygon, polygons_collide, segments_intersect
 from .tiers import BOUND_TIERS, BROAD_TIERS, EXACT_TIERS, LAST_TIERS, TIERS, Tier, TierKind, check_tiers
-from .workspace import Workspace, retain_heap
+from .workspace import Workspace, release_heap, retain_heap
 
 __all__ = [
     "AUTO_BIN_FACTOR",
@@ -142,6 +142,7 @@ __all__ = [
     "polygons_collide",
     "polygons_collide_padded",
     "pose",
+    "release_heap",
     "retain_heap",
     "rotation_table",
     "segments_intersect",

@@ -7,19 +7,25 @@ tuple per bullet), so full collections came every few seconds of play and took 5
 5,000 bullets: a visible hitch (docs/PERFORMANCE.md). :func:`settle` is called when a stage
 starts: it collects once, then freezes everything alive into the permanent generation,
 which collections skip; the frame's own garbage is still collected, young and cheap.
+It then gives the C heap's free pages back to the system
+(:func:`broadsword.collision.release_heap`): the last stage's are free now, and under
+``retain_heap()`` nothing else ever returns them (docs/RELIABILITY.md).
 """
 
 from __future__ import annotations
 
 import gc
 
+from ..collision import release_heap
+
 __all__ = ["settle"]
 
 
 def settle() -> None:
-    """Collect once and freeze every object alive now (call when a stage has loaded). The
-    previous stage's frozen objects are unfrozen first, so that those that have become
-    garbage since are still reclaimed."""
+    """Collect once, give the freed heap back to the system and freeze every object alive
+    now (call when a stage has loaded). The previous stage's frozen objects are unfrozen
+    first, so that those that have become garbage since are still reclaimed."""
     gc.unfreeze()
     gc.collect()
+    release_heap()
     gc.freeze()
