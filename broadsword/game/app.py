@@ -114,6 +114,7 @@ class App:
         self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
+        self.bank.use_palette(self.options.palette)  # the bullets' colours: drawing only
         self.renderer = Renderer(self.bank, seed)
         self.overlay = Overlay()
         self.audio = Audio(enabled=audio)
@@ -364,6 +365,8 @@ class App:
         self.options = dataclasses.replace(self.options, **changes)
         if "difficulty" in changes:
             self.saved_difficulty = self.options.difficulty
+        if "palette" in changes:
+            self.bank.use_palette(self.options.palette)
         try:
             save_options(
                 dataclasses.replace(self.options, difficulty=self.saved_difficulty), self.data / "options.json"

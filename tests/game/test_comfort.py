@@ -57,3 +57,29 @@ def test_input_display__shows_the_last_steps_input_when_on(tmp_path):
         assert {"FIRE", "SLOW", "BOMB"} <= set(app.panel.painter.said)
     finally:
         pygame.quit()
+
+
+def test_hit_shape__is_drawn_over_the_enemy_bullets(tmp_path):
+    """The hit shape (always shown, or in the precise mode) stays visible under a crowd: an
+    orb on the ship's centre does not hide it."""
+    import numpy as np
+
+    from broadsword.data import load_level, resolve_level
+    from broadsword.game.render import Renderer
+    from broadsword.game.sprites import SpriteBank
+    from broadsword.sim import FIELD, World
+    from broadsword.sim.bullets import add_bullets
+
+    pygame.init()
+    try:
+        bank = SpriteBank()
+        world = World(load_level(resolve_level("1-picket")), bank.armatures, seed=1)  # not stepped: no ships
+        world.player.invulnerable = 0.0
+        pos = world.player.pos.reshape(1, 2) + (0.0, -3.5)  # the orb (16 px) covers the hit shape (11 px tall)
+        add_bullets(world.enemy_bullets, pos, np.zeros((1, 2)), world.kinds.base["orb"])
+        surf = pygame.Surface((int(FIELD[0]), int(FIELD[1])))
+        Renderer(bank).draw(surf, world, 1.0, show_armature=True, title_card=False)
+        outline = (pygame.surfarray.array3d(surf) == (255, 60, 90)).all(axis=2)
+        assert outline.sum() >= 4
+    finally:
+        pygame.quit()
