@@ -170,7 +170,7 @@ class OptionsScene:
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
         for i, row in enumerate(ROWS):
-            y = 110 + 26 * i + (10 if i >= OPTION_ROWS else 0) + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
+            y = 104 + 24 * i + (10 if i >= OPTION_ROWS else 0) + (10 if i >= OPTION_ROWS + len(REBINDABLE) else 0)
             chosen = i == self.row
             if chosen:
                 pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))
