@@ -3,8 +3,11 @@
 A recording carries everything that can change the outcome (DESIGN.md, Recordings), so a
 replay is the same game or says why not. The file is UTF-8 JSON (docs/FORMATS.md):
 
-``version``        the format, 3 (a format-1 or 2 file gets a clear message, never a different game)
+``version``        the format, 4 (a format-3 file is read as a format-4 one with no ``info`` and no
+                   snapshots; a format-1 or 2 file gets a clear message, never a different game)
 ``game_version``   the Broadsword that made it; another version is refused with a message
+``info``           (optional) what the run was: ``{"kind": "run" | "practice" | "take_over", "name",
+                   "date", "score", "phase", "source", "speed"}`` (:class:`RecordingInfo`)
 ``parts``          the names of the state's parts, in the order of each frame's digests
 ``frames``         the frames of the whole run (the sum of its stages')
 ``stages``         one table a stage played, in play order:
@@ -15,6 +18,11 @@ replay is the same game or says why not. The file is UTF-8 JSON (docs/FORMATS.md
     ``seed``           a whole number in [0, 2**63)
     ``settings``       ``{"rotation": "lut" | "exact", "difficulty": "easy" | ...}``
     ``carry``          (optional) ``{"score", "lives", "continues", "power"}`` the stage began with
+    ``snapshot``       (optional) base64 of a zlib-compressed snapshot (broadsword.sim.snapshot): the
+                       stage starts from that state, not from its level's start (a practice start, a
+                       take-over)
+    ``origin``         (with ``snapshot``) the world's frame in the snapshot; the stage's toggles and
+                       checkpoints count the world's frames, from ``origin``
     ``toggles``        ``[[frame, name, value], ...]``: each live switch (F4's rotation, a
                        continue), applied before that frame's step, frames not decreasing
     ``frames``         the stage's number of inputs
@@ -23,8 +31,9 @@ replay is the same game or says why not. The file is UTF-8 JSON (docs/FORMATS.md
     ``checkpoints``    ``[[frame, hash], ...]``: the state hash after every ``CHECKPOINT_EVERY``-th step
     ``state_hash``     (optional) the hash after the stage's last step
 
-Frames inside a stage count from its start. Every field is checked; a broken file raises
-:class:`DataError` naming the file and field.
+Frames inside a stage count the world's frames: from 0, or from ``origin`` when the stage
+starts from a snapshot. Every field is checked; a broken file raises :class:`DataError`
+naming the file and field.
 """
 
 from __future__ import annotations
@@ -33,7 +42,9 @@ import base64
 import hashlib
 import json
 import re
+import zlib
 from dataclasses import dataclass, field
+from enum import Enum
 from pathlib import Path
 from typing import TypeGuard
 
@@ -45,7 +56,9 @@ from .levels import LEVEL_MAX_BYTES
 from .resources import read_bytes, read_text
 
 #: The format this game reads and writes.
-FORMAT_VERSION = 3
+FORMAT_VERSION = 4
+#: The older format read as this one (format 4 only added optional fields).
+MIGRATED_VERSION = 3
 #: A recording is at most this big (with eight parts, about 46 characters a frame: some
 #: 50 minutes at 60 fps; a 5-minute run is about 0.8 MiB).
 RECORDING_MAX_BYTES = 8 << 20
@@ -63,6 +76,11 @@ TOGGLES = {"rotation": ("lut", "exact"), "continue": ("yes",)}
 POWER_LIMIT = 10_000
 #: At most this many toggles (one a frame would already be absurd).
 TOGGLES_MAX = 100_000
+#: A stage's start snapshot is at most this big once decompressed (a snapshot at 10,000
+#: bullets is about 1 MiB: docs/PERFORMANCE.md).
+SNAPSHOT_MAX_BYTES = 64 << 20
+#: A name or source text in ``info`` is at most this long; a game speed lies in this range (%).
+INFO_TEXT_MAX, SPEED_RANGE = 200, (10, 100)
 _HEX_DIGEST = re.compile(r"[0-9a-f]{64}\Z")
 
 # ---------------------------------------------------------------------- the input byte
@@ -84,6 +102,46 @@ def decode_input(b: int) -> tuple[int, int, bool, bool, bool]:
 
 
 # ---------------------------------------------------------------------- the record
+class RunKind(Enum):
+    """What a recorded run was."""
+
+    RUN = "run"  # a game from a stage's start
+    PRACTICE = "practice"  # a practice start (a stage or a boss phase)
+    TAKE_OVER = "take_over"  # play taken over from a replay at one of its frames
+
+
+@dataclass(frozen=True)
+class RecordingInfo:
+    """What a recording says about its run, for lists and tables; none of it changes the
+    game. ``date`` is ISO 8601 (UTC) and ``name`` the name it was saved under, both filled
+    by the game; ``score`` the run's final score; ``phase`` a practice's boss phase (1-based;
+    0: a stage's start or not a practice); ``source`` what a take-over came from (e.g. the
+    replay's name and frame); ``speed`` the game speed it was played at (%, wall clock only)."""
+
+    kind: RunKind = RunKind.RUN
+    name: str = ""
+    date: str = ""
+    score: int = 0
+    phase: int = 0
+    source: str = ""
+    speed: int = 100
+
+    def to_json(self) -> dict:
+        return {
+            "kind": self.kind.value,
+            "name": self.name,
+            "date": self.date,
+            "score": self.score,
+            "phase": self.phase,
+            "source": self.source,
+            "speed": self.speed,
+        }
+
+
+#: The info of a plain run (the default; a format-3 file's).
+PLAIN_RUN = RecordingInfo()
+
+
 def _no_carry() -> dict:
     return {"score": 0, "lives": None, "continues": 0, "power": None}
 
@@ -104,10 +162,17 @@ class StageRecording:
     level_sha256: str = ""
     carry: dict = field(default_factory=_no_carry)
     digests: bytes = b""
+    snapshot: bytes = b""  # the stage's start state (uncompressed snapshot bytes); empty: its level's start
+    origin: int = 0  # the world's frame at the stage's start (the snapshot's)
 
     @property
     def frames(self) -> int:
         return len(self.inputs)
+
+    @property
+    def end(self) -> int:
+        """The world's frame after the stage's last input."""
+        return self.origin + len(self.inputs)
 
     def to_json(self, start: int) -> dict:
         doc = {
@@ -125,6 +190,9 @@ class StageRecording:
         }
         if self.level_sha256:
             doc["level_sha256"] = self.level_sha256
+        if self.snapshot:
+            doc["snapshot"] = base64.b64encode(zlib.compress(self.snapshot, 6)).decode()
+            doc["origin"] = self.origin
         return doc
 
 
@@ -136,6 +204,7 @@ class Recording:
     stages: tuple[StageRecording, ...]
     parts: tuple[str, ...] = ()
     game_version: str = __version__
+    info: RecordingInfo = PLAIN_RUN
 
     @property
     def frames(self) -> int:
@@ -160,6 +229,7 @@ class Recording:
         return {
             "version": FORMAT_VERSION,
             "game_version": self.game_version,
+            "info": self.info.to_json(),
             "parts": list(self.parts),
             "frames": self.frames,
             "stages": [st.to_json(at) for st, at in zip(self.stages, self.starts)],
@@ -228,11 +298,12 @@ def _carry(doc: dict, path: Path, pre: str) -> dict:
     return {"score": score, "lives": lives, "continues": continues, "power": power}
 
 
-def _toggles(doc: dict, path: Path, frames: int, pre: str) -> tuple[tuple[int, str, str], ...]:
+def _toggles(doc: dict, path: Path, origin: int, frames: int, pre: str) -> tuple[tuple[int, str, str], ...]:
+    """The stage's toggles; their frames are the world's, in [origin, origin + frames]."""
     raw = _field(doc, path, "toggles", list, "a list of [frame, name, value]", required=False, pre=pre) or []
     if len(raw) > TOGGLES_MAX:
         raise DataError(path, pre + "toggles", f"must be at most {TOGGLES_MAX:,} toggles, got {len(raw):,}")
-    out, last = [], 0
+    out, last, frames = [], origin, origin + frames
     for i, t in enumerate(raw):
         where = f"{pre}toggles[{i}]"
         if not (
@@ -253,8 +324,11 @@ def _toggles(doc: dict, path: Path, frames: int, pre: str) -> tuple[tuple[int, s
     return tuple(out)
 
 
-def _checkpoints(doc: dict, path: Path, frames: int, pre: str) -> tuple[tuple[int, str], ...]:
+def _checkpoints(doc: dict, path: Path, origin: int, frames: int, pre: str) -> tuple[tuple[int, str], ...]:
+    """The stage's checkpoints: at every world frame that is a multiple of ``CHECKPOINT_EVERY``
+    after ``origin``, up to ``origin + frames``."""
     raw = _field(doc, path, "checkpoints", list, "a list of [frame, hash]", required=False, pre=pre) or []
+    first, frames = (origin // CHECKPOINT_EVERY + 1) * CHECKPOINT_EVERY, origin + frames
     if len(raw) > frames // CHECKPOINT_EVERY + 1:
         raise DataError(
             path, pre + "checkpoints", f"must be at most one every {CHECKPOINT_EVERY} frames, got {len(raw):,}"
@@ -266,7 +340,7 @@ def _checkpoints(doc: dict, path: Path, frames: int, pre: str) -> tuple[tuple[in
             isinstance(c, list) and len(c) == 2 and _whole(c[0]) and isinstance(c[1], str) and _HEX_DIGEST.match(c[1])
         ):
             raise DataError(path, where, f"must be [frame, 64 hex digits], got {shown(c)}")
-        want = CHECKPOINT_EVERY * (i + 1)
+        want = first + CHECKPOINT_EVERY * i
         if c[0] != want or c[0] > frames:
             raise DataError(
                 path, where, f"frame must be {want} (every {CHECKPOINT_EVERY}, within {frames}), got {c[0]}"
@@ -310,8 +384,69 @@ def _digests(doc: dict, path: Path, frames: int, parts: int, pre: str) -> bytes:
     return digests
 
 
+def _snapshot(doc: dict, path: Path, pre: str) -> tuple[bytes, int]:
+    """The stage's start snapshot (uncompressed; empty if none) and its ``origin`` frame."""
+    text = _field(doc, path, "snapshot", str, "base64 text", required=False, pre=pre)
+    origin = _field(doc, path, "origin", int, "a whole number", required=text is not None, pre=pre)
+    if text is None:
+        if origin is not None:
+            raise DataError(path, pre + "origin", "given without a snapshot: a stage with no snapshot starts at 0")
+        return b"", 0
+    if not 0 <= origin < 2**31:
+        raise DataError(path, pre + "origin", f"must lie in [0, 2**31), got {shown(origin)}")
+    try:
+        packed = base64.b64decode(text, validate=True)
+    except ValueError:
+        raise DataError(path, pre + "snapshot", "must be base64 text") from None
+    unpack = zlib.decompressobj()
+    try:
+        data = unpack.decompress(packed, SNAPSHOT_MAX_BYTES)
+    except zlib.error as exc:
+        raise DataError(path, pre + "snapshot", f"not a compressed snapshot ({exc})") from None
+    if unpack.unconsumed_tail:
+        raise DataError(path, pre + "snapshot", f"more than {SNAPSHOT_MAX_BYTES >> 20} MiB once decompressed")
+    if not unpack.eof or unpack.unused_data:
+        raise DataError(path, pre + "snapshot", "truncated or padded (not one whole zlib stream)")
+    if not data:
+        raise DataError(path, pre + "snapshot", "empty")
+    return data, origin
+
+
+_INFO_TEXT = ("name", "date", "source")
+
+
+def _info(doc: dict, path: Path) -> RecordingInfo:
+    """The run's ``info`` (the defaults when a file has none, as format 3 files do)."""
+    raw = _field(doc, path, "info", dict, "a table (kind, name, date, score, phase, source, speed)", required=False)
+    if raw is None:
+        return PLAIN_RUN
+    known = {"kind", *_INFO_TEXT, "score", "phase", "speed"}
+    _unknown(raw, known, path, "info.")
+    kinds = [k.value for k in RunKind]
+    kind = raw.get("kind", RunKind.RUN.value)
+    if kind not in kinds:
+        raise DataError(path, "info.kind", f"must be one of {', '.join(kinds)}; got {shown(kind)}")
+    texts = {}
+    for key in _INFO_TEXT:
+        v = raw.get(key, "")
+        if not isinstance(v, str) or len(v) > INFO_TEXT_MAX:
+            raise DataError(path, f"info.{key}", f"must be text of at most {INFO_TEXT_MAX} characters, got {shown(v)}")
+        texts[key] = v
+    score, phase, speed = raw.get("score", 0), raw.get("phase", 0), raw.get("speed", 100)
+    if not _whole(score) or not 0 <= score < 2**63:
+        raise DataError(path, "info.score", f"must be a whole number in [0, 2**63), got {shown(score)}")
+    if not _whole(phase) or not 0 <= phase <= 99:
+        raise DataError(path, "info.phase", f"must be a whole number in [0, 99], got {shown(phase)}")
+    lo, hi = SPEED_RANGE
+    if not _whole(speed) or not lo <= speed <= hi:
+        raise DataError(path, "info.speed", f"must be a whole number in [{lo}, {hi}] (%), got {shown(speed)}")
+    return RecordingInfo(RunKind(kind), score=score, phase=phase, speed=speed, **texts)
+
+
 _STAGE_FIELDS = {
     "start",
+    "snapshot",
+    "origin",
     "level",
     "level_sha256",
     "seed",
@@ -324,7 +459,7 @@ _STAGE_FIELDS = {
     "checkpoints",
     "state_hash",
 }
-_RUN_FIELDS = {"version", "game_version", "parts", "frames", "stages"}
+_RUN_FIELDS = {"version", "game_version", "info", "parts", "frames", "stages"}
 
 
 def _unknown(doc: dict, known: set[str], path: Path, pre: str) -> None:
@@ -350,8 +485,9 @@ def _stage(doc, path: Path, i: int, start: int, parts: int) -> StageRecording:
     frames = len(inputs)
     settings = _settings(doc, path, pre)
     carry = _carry(doc, path, pre)
-    toggles = _toggles(doc, path, frames, pre)
-    checkpoints = _checkpoints(doc, path, frames, pre)
+    snapshot, origin = _snapshot(doc, path, pre)
+    toggles = _toggles(doc, path, origin, frames, pre)
+    checkpoints = _checkpoints(doc, path, origin, frames, pre)
     digests = _digests(doc, path, frames, parts, pre)
     state_hash = _field(doc, path, "state_hash", str, "64 hex digits", required=False, pre=pre) or ""
     if state_hash and not _HEX_DIGEST.match(state_hash):
@@ -360,7 +496,9 @@ def _stage(doc, path: Path, i: int, start: int, parts: int) -> StageRecording:
     if digest and not _HEX_DIGEST.match(digest):
         raise DataError(path, pre + "level_sha256", f"must be 64 hex digits, got {shown(digest)}")
     _unknown(doc, _STAGE_FIELDS, path, pre)
-    return StageRecording(level, seed, settings, inputs, toggles, checkpoints, state_hash, digest, carry, digests)
+    return StageRecording(
+        level, seed, settings, inputs, toggles, checkpoints, state_hash, digest, carry, digests, snapshot, origin
+    )
 
 
 def _parts(doc: dict, path: Path) -> tuple[str, ...]:
@@ -389,7 +527,7 @@ def load_recording(path: str | Path) -> Recording:
     if not isinstance(doc, dict):
         raise DataError(path, "", f"not a recording: must be a JSON object, got {shown(doc)}")
     version = doc.get("version")
-    if _whole(version) and 1 <= version < FORMAT_VERSION:
+    if _whole(version) and 1 <= version < MIGRATED_VERSION:
         raise DataError(
             path,
             "version",
@@ -397,12 +535,15 @@ def load_recording(path: str | Path) -> Recording:
             f"({__version__}) reads format {FORMAT_VERSION}: replay it with the game "
             "that made it",
         )
-    if not _whole(version) or version != FORMAT_VERSION:
+    if not _whole(version) or version not in (MIGRATED_VERSION, FORMAT_VERSION):
         raise DataError(
             path,
             "version",
-            f"must be {FORMAT_VERSION}, got {shown(version) if 'version' in doc else 'nothing (missing)'}",
+            f"must be {FORMAT_VERSION} (or {MIGRATED_VERSION}, read as {FORMAT_VERSION}), "
+            f"got {shown(version) if 'version' in doc else 'nothing (missing)'}",
         )
+    if version == MIGRATED_VERSION and "info" in doc:
+        raise DataError(path, "info", f"format {MIGRATED_VERSION} has no info (it came with format {FORMAT_VERSION})")
     made_by = _field(doc, path, "game_version", str, "a version string")
     parts = _parts(doc, path)
     raw = _field(doc, path, "stages", list, "a list of the run's stages")
@@ -417,6 +558,7 @@ def load_recording(path: str | Path) -> Recording:
         got = shown(doc["frames"]) if "frames" in doc else "nothing (missing)"
         raise DataError(path, "frames", f"must be the frames of every stage, {at}; got {got}")
     _unknown(doc, _RUN_FIELDS, path, "")
+    info = _info(doc, path)
     if made_by != __version__:
         raise DataError(
             path,
@@ -424,7 +566,7 @@ def load_recording(path: str | Path) -> Recording:
             f"made by Broadsword {shown(made_by)}; this is {__version__}, whose "
             "game may differ: replay it with the version that made it",
         )
-    return Recording(tuple(stages), parts, made_by)
+    return Recording(tuple(stages), parts, made_by, info)
 
 
 def check_level_digest(stage: StageRecording, index: int, rec_path: str | Path, level_path: str | Path) -> None:

@@ -57,9 +57,10 @@ class Playback:
         self.mismatch: Mismatch | None = None
         self._toggle = self._checkpoint = 0
         st = self.stage
-        while self._toggle < len(st.toggles) and st.toggles[self._toggle][0] < frame:
+        at = st.origin + frame  # the world's frame there
+        while self._toggle < len(st.toggles) and st.toggles[self._toggle][0] < at:
             self._toggle += 1
-        while self._checkpoint < len(st.checkpoints) and st.checkpoints[self._checkpoint][0] <= frame:
+        while self._checkpoint < len(st.checkpoints) and st.checkpoints[self._checkpoint][0] <= at:
             self._checkpoint += 1
 
     @property

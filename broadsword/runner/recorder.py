@@ -1,11 +1,18 @@
 """Recording a run as it is played: every stage's start, inputs, live toggles, each frame's
-state digests by part, and a checkpoint hash every ``CHECKPOINT_EVERY`` frames."""
+state digests by part, and a checkpoint hash every ``CHECKPOINT_EVERY`` frames.
+
+A stage whose world does not start at frame 0 (restored from a snapshot: a practice start,
+a take-over) is recorded with that start state, a snapshot taken when it begins, so its
+replay starts there."""
 
 from __future__ import annotations
 
-from ..data.recordings import CHECKPOINT_EVERY, Recording, StageRecording
+import dataclasses
+
+from ..data.recordings import CHECKPOINT_EVERY, PLAIN_RUN, Recording, RecordingInfo, StageRecording
 from ..sim import Input
 from ..sim.hashing import Part
+from ..sim.snapshot import save as save_snapshot
 from .stages import Stage
 
 #: The names of the state's parts, in the order of each frame's digests.
@@ -22,6 +29,9 @@ class _StageTape:
         self.inputs = bytearray()
         self.digests = bytearray()
         self.checkpoints: list[tuple[int, str]] = []
+        self.origin = world.frame
+        self.snapshot = save_snapshot(world) if world.frame else b""
+        self.toggles_before = len(world.toggles)  # a restored world's toggles so far are in its snapshot
 
     def stepped(self, inp: Input, digests: bytes) -> None:
         self.inputs.append(inp.to_byte())
@@ -31,7 +41,7 @@ class _StageTape:
 
     def recording(self) -> StageRecording:
         w = self.world
-        toggles = tuple((t.frame, t.toggle.value, t.value) for t in w.toggles)
+        toggles = tuple((t.frame, t.toggle.value, t.value) for t in w.toggles[self.toggles_before :])
         c = w.carry
         return StageRecording(
             self.level_ref,
@@ -44,15 +54,19 @@ class _StageTape:
             self.level_sha256,
             carry={"score": c.score, "lives": c.lives, "continues": c.continues, "power": c.power},
             digests=bytes(self.digests),
+            snapshot=self.snapshot,
+            origin=self.origin,
         )
 
 
 class Recorder:
     """Keeps a run's stages: :meth:`begin` when a stage starts (its settings are read then),
     :meth:`stepped` after every step of it with the step's input and the state's
-    :func:`~broadsword.sim.hashing.part_digests`; :meth:`recording` at any time."""
+    :func:`~broadsword.sim.hashing.part_digests`; :meth:`recording` at any time, its
+    ``info`` being ``info`` with the final score."""
 
-    def __init__(self):
+    def __init__(self, info: RecordingInfo = PLAIN_RUN):
+        self.info = info
         self._tapes: list[_StageTape] = []
 
     def begin(self, stage: Stage) -> None:
@@ -74,4 +88,7 @@ class Recorder:
 
     def recording(self) -> Recording:
         """The run so far: every stage begun, in order."""
-        return Recording(tuple(t.recording() for t in self._tapes), PARTS)
+        info = self.info
+        if self._tapes:
+            info = dataclasses.replace(info, score=int(self._tapes[-1].world.score.points))
+        return Recording(tuple(t.recording() for t in self._tapes), PARTS, info=info)

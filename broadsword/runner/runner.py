@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..data import DataError
-from ..data.recordings import Recording
+from ..data.recordings import PLAIN_RUN, Recording, RecordingInfo
 from ..sim import Events, Input, World
 from ..sim.hashing import part_digests
 from .observers import Observer
@@ -24,8 +24,8 @@ from .stages import Stage, StageStart, open_recorded, open_stage
 
 class Runner:
     """A run in play: ``stage`` (its ``world``), ``frame`` (the run's frames played, every
-    stage counted), ``recorder`` (the run so far), ``playback`` (the recording being
-    played, if one is) and ``observers``.
+    stage counted), ``recorder`` (the run so far, with ``info``: what kind of run it is),
+    ``playback`` (the recording being played, if one is) and ``observers``.
 
     A runner can start anywhere: ``stage`` may hold a world restored at its ``frame``
     (a seek), with a ``playback`` placed at the same frame."""
@@ -36,12 +36,13 @@ class Runner:
         observers: Sequence[Observer] = (),
         playback: Playback | None = None,
         frame: int = 0,
+        info: RecordingInfo = PLAIN_RUN,
     ):
         self.stage = stage
         self.observers = list(observers)
         self.playback = playback
         self.frame = frame
-        self.recorder = Recorder()
+        self.recorder = Recorder(info)
         self.recorder.begin(stage)
         self._began()
 

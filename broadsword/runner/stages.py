@@ -7,10 +7,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..data import check_level_sprites, data_dir, load_armatures, load_level, resolve_level
+from ..data import DataError, check_level_sprites, data_dir, load_armatures, load_level, resolve_level
 from ..data.levels import Level
 from ..data.recordings import StageRecording, check_level_digest, file_sha256
 from ..sim import Carry, Settings, World
+from ..sim.snapshot import restore as restore_snapshot
 
 
 @dataclass(frozen=True)
@@ -63,9 +64,22 @@ def open_stage(start: StageStart, armatures: dict | None = None) -> Stage:
 def open_recorded(rec: StageRecording, index: int, rec_path: str | Path, armatures: dict | None = None) -> Stage:
     """Stage ``index`` of a recording as it started: its level (checked against the digest
     it kept: a changed level is a :class:`~broadsword.data.DataError`), seed, settings and
-    carry."""
+    carry, then the start snapshot it kept, if any (a snapshot that does not fit the level,
+    or whose frame is not the stage's ``origin``, is a DataError naming ``snapshot``)."""
     path = resolve_level(rec.level)
     level = load_level(path)  # its size and kind checked before any digest reads it
     check_level_digest(rec, index, rec_path, path)
     start = StageStart.of(rec)
-    return open_level(level, shipped_armatures() if armatures is None else armatures, start, digest=file_sha256(path))
+    stage = open_level(level, shipped_armatures() if armatures is None else armatures, start, digest=file_sha256(path))
+    if rec.snapshot:
+        try:
+            restore_snapshot(stage.world, rec.snapshot)
+        except ValueError as exc:
+            raise DataError(rec_path, f"stages[{index}].snapshot", str(exc)) from None
+        if stage.world.frame != rec.origin:
+            raise DataError(
+                rec_path,
+                f"stages[{index}].origin",
+                f"is {rec.origin}, but the snapshot is at frame {stage.world.frame}",
+            )
+    return stage

@@ -64,6 +64,12 @@ INT_MAX = 1 << 62
 
 
 # ---------------------------------------------------------------------------- identity
+def start_rotation(world: World) -> str:
+    """The rotation mode ``world`` started in: its settings' or, when they leave it to the
+    level, the level's (the same world either way, so a snapshot fits both)."""
+    return world.settings.rotation or world.level.scene.rotation
+
+
 def level_patterns(level: Level) -> list[Pattern]:
     """Every BulletML pattern ``level`` can run, in a fixed order: the waves', the boss
     parts' own, then each boss phase's."""
@@ -423,7 +429,7 @@ class Snapshots:
         w.text(world.level.name)
         w.i64(world.seed)
         w.text(world.settings.difficulty.value)
-        w.text(world.settings.rotation or "")
+        w.text(start_rotation(world))
         w.raw(digest)
         with w.section("world"):
             _put_fields(w, world, WORLD_FIELDS)
@@ -619,7 +625,7 @@ class Snapshots:
         r.stop = len(data) - 4
         level, seed = r.text("level"), r.i64("seed")
         difficulty, rotation = r.text("difficulty"), r.text("rotation setting")
-        mine = (world.level.name, world.seed, world.settings.difficulty.value, world.settings.rotation or "")
+        mine = (world.level.name, world.seed, world.settings.difficulty.value, start_rotation(world))
         for what, theirs, ours in zip(
             ("level", "seed", "difficulty", "rotation setting"), (level, seed, difficulty, rotation), mine, strict=True
         ):
