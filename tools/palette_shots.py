@@ -56,6 +56,10 @@ def peak_shots(level: str, out: Path) -> None:
             if world.enemy_bullets.n > peak:
                 peak, frame, snap = world.enemy_bullets.n, world.frame, save(world)
         restore(world, snap)
+        app.stack.reset(play)  # the stage in play again, not the results screen its end brought
+        play.ended = False
+        app.renderer.effects.clear()
+        app.renderer.captions.clear()
         for palette in BulletPalette:
             app.set_options(palette=palette)
             app.render()

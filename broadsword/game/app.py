@@ -24,7 +24,7 @@ import pygame
 
 from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
-from ..data.recordings import Recording
+from ..data.recordings import Recording, RecordingInfo
 from ..runner import Runner, Stage
 from ..sim import Input, World
 from .audio import Audio
@@ -313,7 +313,8 @@ class App:
         """Play ``stage`` (a world already made) as the only scene: in ``runner`` (whose
         stage in play it is), else as a new run."""
         self.error = None
-        self.runner = runner if runner is not None else Runner(stage)
+        # a new run records the game speed it is played at (the options: set on the title)
+        self.runner = runner if runner is not None else Runner(stage, info=RecordingInfo(speed=self.options.speed))
         play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty))
         self.stack.reset(play)
         return play

@@ -18,6 +18,7 @@ class GameOver:
         self.score = world.score.points
         self.level = world.level.title  # the table shows the stage's title
         self.difficulty = play.run.difficulty
+        self.speed = play.runner.recorder.info.speed  # the game speed the run was played at
         self.continues = world.progress.continues_used
         run = play.run
         # A cleared run's last stage is already in its totals (the results screen added it).
@@ -37,7 +38,7 @@ class GameOver:
         from .name_entry import NameEntry
 
         if self.qualifies:
-            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty))
+            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty, self.speed))
         else:
             self.app.to_title()
 

@@ -1,5 +1,6 @@
 """The high-score tables, one a difficulty (Left/Right: another); Enter, Fire or Esc goes
-back to the title. Each row: rank, name, score and the stage it ended on (its title)."""
+back to the title. Each row: rank, name, score, the game speed beside it when it was not 100 %,
+and the stage it ended on (its title)."""
 
 from __future__ import annotations
 
@@ -11,8 +12,10 @@ from ..controls import Action
 
 ERROR_WRAP = 416  # px: a message's lines (the title's error panel width)
 #: The table's columns, px: the rank's right edge, the name's left, the score's right edge
-#: (and the room it may take), the level's left.
+#: (and the room it may take), the level's left; a speed below 100 % takes SPEED_ROOM px of
+#: the level's column, in SPEED_COLOUR.
 RANK_RIGHT, NAME_LEFT, SCORE_RIGHT, SCORE_ROOM, LEVEL_LEFT = 40, 48, 326, 140, 338
+SPEED_ROOM, SPEED_COLOUR = 44, (140, 220, 255)
 
 
 def level_label(level: str) -> str:
@@ -57,9 +60,15 @@ class HighScoresScene:
             p.text(f"{i + 1}.", y, x=RANK_RIGHT, anchor="midright")
             p.text(e.name, y, x=NAME_LEFT, anchor="midleft", width=SCORE_RIGHT - SCORE_ROOM - NAME_LEFT)
             p.text(f"{e.score:,}", y, x=SCORE_RIGHT, anchor="midright", width=SCORE_ROOM)
-            p.text(level_label(e.level), y, colour=ui.DIM, x=LEVEL_LEFT, anchor="midleft", width=w - LEVEL_LEFT)
+            left = LEVEL_LEFT
+            if e.speed != 100:  # made slower: said beside the score
+                p.text(f"{e.speed}%", y, colour=SPEED_COLOUR, x=left, anchor="midleft", width=SPEED_ROOM)
+                left += SPEED_ROOM
+            p.text(level_label(e.level), y, colour=ui.DIM, x=left, anchor="midleft", width=w - left)
         if not table:
             p.text("none yet", 200)
+        elif any(e.speed != 100 for e in table):
+            p.text("blue %: the game speed a score was made at", 466, 18, SPEED_COLOUR)
         if app.message:  # e.g. a save that failed: say so here, where the player is looking
             for i, line in enumerate(p.lines(app.message, ERROR_WRAP, 3)):
                 p.text(line, 540 + 20 * i, colour=ui.WARN)
