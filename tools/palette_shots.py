@@ -58,8 +58,9 @@ def peak_shots(level: str, out: Path) -> None:
         restore(world, snap)
         app.stack.reset(play)  # the stage in play again, not the results screen its end brought
         play.ended = False
-        app.renderer.effects.clear()
+        app.renderer.effects.clear()  # nor the effects of the frames after the peak
         app.renderer.captions.clear()
+        app.renderer.flash = 0
         for palette in BulletPalette:
             app.set_options(palette=palette)
             app.render()

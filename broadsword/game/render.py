@@ -133,10 +133,10 @@ class Renderer:
         self._bomb(surf, world)
         self._player(surf, world, alpha)
         self._bullets(surf, world.enemy_bullets, world, alpha)
-        if show_armature:  # over the bullets: the one thing to see among them
-            self._hit_shape(surf, world, alpha)
         self._effects(surf)
         self._hud(surf, world, title_card)
+        if show_armature:  # over the bullets and the boss's bar: the one thing to see among them
+            self._hit_shape(surf, world, alpha)
         if self.flash:
             veil = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
             veil.fill((255, 255, 255, 28 * self.flash))
