@@ -25,7 +25,7 @@ import pygame
 
 from ..data import DataError, list_levels, resolve_level
 from ..data.difficulty import Difficulty
-from ..data.recordings import Recording, RunKind
+from ..data.recordings import Recording, RecordingInfo, RunKind
 from ..runner import Runner, Stage
 from ..sim import Input, World
 from .audio import Audio
@@ -119,6 +119,7 @@ class App:
         self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
         self.bank = SpriteBank()
         self.bank.convert()
+        self.bank.use_palette(self.options.palette)  # the bullets' colours: drawing only
         self.renderer = Renderer(self.bank, seed)
         self.overlay = Overlay()
         self.audio = Audio(enabled=audio)
@@ -336,7 +337,8 @@ class App:
         """Play ``stage`` (a world already made) as the only scene: in ``runner`` (whose
         stage in play it is), else as a new run; ``practice``: as that practice."""
         self.error = None
-        self.runner = runner if runner is not None else Runner(stage)
+        # a new run records the game speed it is played at (the options: set on the title)
+        self.runner = runner if runner is not None else Runner(stage, info=RecordingInfo(speed=self.options.speed))
         play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty), practice=practice)
         self.stack.reset(play)
         return play
@@ -391,6 +393,8 @@ class App:
         self.options = dataclasses.replace(self.options, **changes)
         if "difficulty" in changes:
             self.saved_difficulty = self.options.difficulty
+        if "palette" in changes:
+            self.bank.use_palette(self.options.palette)
         try:
             save_options(
                 dataclasses.replace(self.options, difficulty=self.saved_difficulty), self.data / "options.json"

@@ -1,5 +1,6 @@
-"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape, showing
-what hit on a miss (and whether a stage has been played here yet, for the first run's hints).
+"""The player's options: difficulty, volumes, fullscreen, always showing the hit shape, the
+game speed, the input display, showing what hit on a miss, the bullet palette (and whether a
+stage has been played here yet, for the first run's hints).
 
 Kept as ``options.json`` in the user's data directory (beside the high scores and the
 controls), written atomically (:mod:`.settingsfile`). Read value by value: a bad value (a
@@ -19,6 +20,7 @@ from pathlib import Path
 
 from ..data.difficulty import Difficulty
 from ..fileio import write_atomic
+from .palettes import BulletPalette
 from .scores import data_home
 from .settingsfile import load_settings, merged_for_save, one_line
 
@@ -44,9 +46,15 @@ class Options:
     speed: int = 100  # the game speed, % (SPEED_MIN..100)
     input_display: bool = False  # show the input held (arrows, fire, slow, bomb) on the side panel
     show_hits: bool = True  # on a miss, freeze a moment and show what hit (game/hitview.py)
+    palette: BulletPalette = BulletPalette.STANDARD  # the bullets' colours (:mod:`.palettes`)
 
     def __post_init__(self):
         object.__setattr__(self, "difficulty", Difficulty(self.difficulty))
+        try:
+            object.__setattr__(self, "palette", BulletPalette(self.palette))
+        except ValueError:
+            names = ", ".join(p.value for p in BulletPalette)
+            raise ValueError(f"palette: must be one of {names}, got {self.palette!r}") from None
         for name in ("music", "sound"):
             v = getattr(self, name)
             if type(v) is not int or not 0 <= v <= VOLUME_STEPS:
@@ -64,6 +72,7 @@ class Options:
     def to_json(self) -> dict:
         doc = asdict(self)
         doc["difficulty"] = self.difficulty.value
+        doc["palette"] = self.palette.value
         return {"version": FORMAT_VERSION, **doc}
 
     @classmethod

@@ -133,10 +133,12 @@ class Renderer:
         self._bullets(surf, world.player_bullets, world, alpha)
         self._bomb(surf, world)
         draw_lasers(surf, world, self.tick)
-        self._player(surf, world, alpha, show_armature)
+        self._player(surf, world, alpha)
         self._bullets(surf, world.enemy_bullets, world, alpha)
         self._effects(surf)
         self._hud(surf, world, title_card)
+        if show_armature:  # over the bullets and the boss's bar: the one thing to see among them
+            self._hit_shape(surf, world, alpha)
         if self.flash:
             veil = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
             veil.fill((255, 255, 255, 28 * self.flash))
@@ -194,7 +196,7 @@ class Renderer:
         pygame.draw.circle(layer, (80, 150, 255, int(40 * fade)), (x, y), r)
         surf.blit(layer, (0, 0))
 
-    def _player(self, surf, world: World, alpha: float, show_armature: bool) -> None:
+    def _player(self, surf, world: World, alpha: float) -> None:
         if not world.player.alive:
             return
         x, y = self._lerp(world.player.pos, world.player.prev, alpha).tolist()
@@ -203,10 +205,17 @@ class Renderer:
         img = self.bank.frame("player", int(world.kinds.frame[kind]))
         if not blink:
             surf.blit(img, img.get_rect(center=(x, y)))
-        if show_armature:  # the precise mode shows the real hit shape
-            pts = [(x + vx, y + vy) for vx, vy in world.kinds.shapes.armatures[kind].vertices.tolist()]
-            pygame.draw.polygon(surf, (255, 255, 255), pts)
-            pygame.draw.polygon(surf, (255, 60, 90), pts, 1)
+
+    def _hit_shape(self, surf, world: World, alpha: float) -> None:
+        """The player's real hit shape (its armature's polygon), white in a red outline, drawn
+        over the enemy bullets (the precise mode, or always with the option), blinking or not."""
+        if not world.player.alive:
+            return
+        x, y = self._lerp(world.player.pos, world.player.prev, alpha).tolist()
+        kind = int(world.kinds.current(world.kinds.base["player"], world.time))
+        pts = [(x + vx, y + vy) for vx, vy in world.kinds.shapes.armatures[kind].vertices.tolist()]
+        pygame.draw.polygon(surf, (255, 255, 255), pts)
+        pygame.draw.polygon(surf, (255, 60, 90), pts, 1)
 
     def _effects(self, surf) -> None:
         keep = []

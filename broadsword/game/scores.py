@@ -1,12 +1,14 @@
 """The high-score table, kept as a small JSON file in the user's data directory.
 
-File format (``version`` 2)::
+File format (``version`` 3)::
 
-    {"version": 2, "scores": [{"name": str, "score": int, "level": str, "date": "YYYY-MM-DD",
-                               "difficulty": "easy" | "normal" | "hard" | "lunatic"}, ...]}
+    {"version": 3, "scores": [{"name": str, "score": int, "level": str, "date": "YYYY-MM-DD",
+                               "difficulty": "easy" | "normal" | "hard" | "lunatic",
+                               "speed": int}, ...]}
 
-A version-1 file (the same without ``difficulty``) is read as Normal's scores and written
-back as version 2 at the next save. The table keeps each difficulty apart: the best ``MAX``
+A version-1 file (without ``difficulty`` and ``speed``) is read as Normal's scores at 100 %,
+a version-2 file (without ``speed``) as made at 100 %; both are written back as version 3 at
+the next save. The table keeps each difficulty apart: the best ``MAX``
 scores of each.
 
 Rules an entry must meet, both on load and after :meth:`HighScores.add`:
@@ -16,7 +18,9 @@ Rules an entry must meet, both on load and after :meth:`HighScores.add`:
 * ``score``: an ``int`` (not bool, not float), ``>= 0``;
 * ``level``: a printable ``str`` of at most ``LEVEL_MAX`` (64) characters;
 * ``date``: a real calendar date written exactly ``YYYY-MM-DD``;
-* ``difficulty`` (version 2): one of :class:`~broadsword.data.difficulty.Difficulty`'s values.
+* ``difficulty`` (version 2): one of :class:`~broadsword.data.difficulty.Difficulty`'s values;
+* ``speed`` (version 3): the game speed the score was made at, a whole number of % in
+  ``SPEED_RANGE`` (:mod:`broadsword.data.recordings`; 100: full speed).
 
 What survives what:
 
@@ -51,14 +55,16 @@ from datetime import date as _date
 from pathlib import Path
 
 from ..data.difficulty import Difficulty
+from ..data.recordings import SPEED_RANGE
 from ..fileio import FileTooLarge, locked, read_capped, remove_stale_temps, write_atomic
 from .userdata import user_data_dir
 
 __all__ = ["Entry", "HighScores", "data_home", "sanitise_name", "FORMAT_VERSION", "NAME_MAX"]
 
-FORMAT_VERSION = 2
-#: The versions this game reads (1: before the difficulty was kept; its scores count as Normal's).
-READ_VERSIONS = (1, 2)
+FORMAT_VERSION = 3
+#: The versions this game reads (1: before the difficulty was kept, its scores count as
+#: Normal's; 2: before the game speed was kept, its scores count as made at 100 %).
+READ_VERSIONS = (1, 2, 3)
 NAME_MAX = 12
 LEVEL_MAX = 64
 #: Files larger than this are not high-score tables; they are set aside unread.
@@ -77,6 +83,7 @@ class Entry:
     level: str  # the stage's title when it was made (older tables: its level name or file)
     date: str
     difficulty: Difficulty = Difficulty.NORMAL
+    speed: int = 100  # the game speed it was made at, % (the table shows it when not 100)
 
 
 def data_home() -> Path:
@@ -105,6 +112,7 @@ def _problem(raw: object, index: int, version: int) -> str | None:
         return f"{where} is {type(raw).__name__}, not an object"
     keys = set(raw)
     expected = {"name", "score", "level", "date"} | ({"difficulty"} if version >= 2 else set())
+    expected |= {"speed"} if version >= 3 else set()
     if keys != expected:
         missing, extra = sorted(expected - keys), sorted(keys - expected)
         parts = ([f"missing {', '.join(missing)}"] if missing else []) + (
@@ -134,7 +142,13 @@ def _problem(raw: object, index: int, version: int) -> str | None:
         return f"{where}.date {day!r} is not a real date"
     if version >= 2 and raw["difficulty"] not in {d.value for d in Difficulty}:
         return f"{where}.difficulty {raw['difficulty']!r} is not one of {', '.join(d.value for d in Difficulty)}"
+    if version >= 3 and not _speed_ok(raw["speed"]):
+        return f"{where}.speed {raw['speed']!r} is not a whole number of % in [{SPEED_RANGE[0]}, {SPEED_RANGE[1]}]"
     return None
+
+
+def _speed_ok(speed: object) -> bool:
+    return type(speed) is int and SPEED_RANGE[0] <= speed <= SPEED_RANGE[1]
 
 
 def _parse(blob: bytes) -> tuple[list[Entry] | None, str]:
@@ -164,7 +178,8 @@ def _parse(blob: bytes) -> tuple[list[Entry] | None, str]:
         if why is not None:
             return None, why
         difficulty = Difficulty(raw["difficulty"]) if version >= 2 else Difficulty.NORMAL
-        entries.append(Entry(raw["name"], raw["score"], raw["level"], raw["date"], difficulty))
+        speed = raw["speed"] if version >= 3 else 100
+        entries.append(Entry(raw["name"], raw["score"], raw["level"], raw["date"], difficulty, speed))
     return entries, ""
 
 
@@ -313,7 +328,8 @@ class HighScores:
     def add(self, entry: Entry) -> int | None:
         """Insert ``entry`` (name sanitised) and return its 0-based rank, or None if it did
         not make its difficulty's table (the rank is in that table). Ties rank below existing
-        equal scores. TypeError/ValueError for a non-integer or negative score, a non-string level or a date that is not YYYY-MM-DD."""
+        equal scores. TypeError/ValueError for a non-integer or negative score, a non-string
+        level, a date that is not YYYY-MM-DD or a speed outside SPEED_RANGE."""
         score = self._check_score(entry.score)
         if not isinstance(entry.level, str):
             raise TypeError(f"level must be a string, got {type(entry.level).__name__}")
@@ -322,9 +338,11 @@ class HighScores:
             raise ValueError(f"date must be YYYY-MM-DD, got {entry.date!r}")
         _date.fromisoformat(entry.date)  # ValueError for e.g. 2024-02-30
         difficulty = Difficulty(entry.difficulty)
+        if not _speed_ok(entry.speed):
+            raise ValueError(f"speed must be a whole number of % in {list(SPEED_RANGE)}, got {entry.speed!r}")
         if not self.qualifies(score, difficulty):
             return None
-        clean = Entry(sanitise_name(entry.name), score, level, entry.date, difficulty)
+        clean = Entry(sanitise_name(entry.name), score, level, entry.date, difficulty, entry.speed)
         table = self.of(difficulty)
         rank = next((i for i, e in enumerate(table) if e.score < score), len(table))
         at = next((i for i, e in enumerate(self.entries) if e.score < score), len(self.entries))
@@ -399,7 +417,14 @@ def _encode(entries: list[Entry]) -> bytes:
     doc = {
         "version": FORMAT_VERSION,
         "scores": [
-            {"name": e.name, "score": e.score, "level": e.level, "date": e.date, "difficulty": e.difficulty.value}
+            {
+                "name": e.name,
+                "score": e.score,
+                "level": e.level,
+                "date": e.date,
+                "difficulty": e.difficulty.value,
+                "speed": e.speed,
+            }
             for e in entries
         ],
     }

@@ -7,6 +7,7 @@ from pathlib import Path
 import pygame
 
 from ..data import DataError, data_dir, load_armatures
+from .palettes import BULLETS, GLOWS, BulletPalette, Glow, recolour
 
 
 class SpriteBank:
@@ -41,7 +42,10 @@ class SpriteBank:
             self.images[stem] = self.frames[stem][0]
         self._rot: dict[tuple[str, int, int], pygame.Surface] = {}
         self._converted = False
-        self.version = 0  # bumped when the images change (convert), so caches of them can tell
+        self.version = 0  # bumped when the images change (convert, a palette), so caches of them can tell
+        # the bullet sprites as drawn, which every palette repaints from
+        self._drawn = {name: self.frames[name] for name in BULLETS if name in self.frames}
+        self.palette = BulletPalette.STANDARD
 
     def convert(self) -> None:
         """Convert images to the display's format once a display exists (faster blits)."""
@@ -51,6 +55,23 @@ class SpriteBank:
         self.images = {k: self.frames[k][0] if k in self.frames else v.convert_alpha() for k, v in self.images.items()}
         self._rot.clear()
         self._converted = True
+        self.version += 1
+
+    def use_palette(self, palette: BulletPalette) -> None:
+        """Show the bullet sprites (:data:`.palettes.BULLETS`) in ``palette``, repainted from
+        the images as drawn (:func:`repaint`); the standard palette is those images.
+        Load time only: nothing the simulation reads changes."""
+        if palette is self.palette:
+            return
+        glows = GLOWS[palette]
+        for name, frames in self._drawn.items():
+            painted = [repaint(f, glows[name]) if name in glows else f for f in frames]
+            if self._converted:
+                painted = [f.convert_alpha() for f in painted]
+            self.frames[name] = painted
+            self.images[name] = painted[0]
+        self._rot.clear()
+        self.palette = palette
         self.version += 1
 
     def image(self, name: str) -> pygame.Surface:
@@ -70,3 +91,12 @@ class SpriteBank:
             base = self.frame(name, frame)
             img = self._rot[key] = pygame.transform.rotate(base, -deg) if deg else base
         return img
+
+
+def repaint(surface: pygame.Surface, glow: Glow) -> pygame.Surface:
+    """A copy of the sprite ``surface`` (per-pixel alpha) in ``glow``'s colours
+    (:func:`.palettes.recolour`), its alpha kept."""
+    out = pygame.Surface(surface.get_size(), pygame.SRCALPHA, 32)
+    pygame.surfarray.pixels3d(out)[...] = recolour(pygame.surfarray.array3d(surface), glow)
+    pygame.surfarray.pixels_alpha(out)[...] = pygame.surfarray.array_alpha(surface)
+    return out

@@ -71,12 +71,12 @@ def test_options__one_bad_value_keeps_every_valid_one(tmp_path):
 
 def test_options__a_newer_versions_extra_options_survive_a_save(tmp_path):
     path = tmp_path / "options.json"
-    path.write_text(json.dumps({"version": 2, "music": 4, "vsync": "adaptive", "palette": {"name": "deutan"}}))
+    path.write_text(json.dumps({"version": 2, "music": 4, "vsync": "adaptive", "colour_filter": {"name": "deutan"}}))
     o, warning = load_options(path)
     assert (o, warning) == (Options(music=4), None)
     save_options(Options(music=5), path)
     doc = json.loads(path.read_text())
-    assert doc["music"] == 5 and doc["vsync"] == "adaptive" and doc["palette"] == {"name": "deutan"}
+    assert doc["music"] == 5 and doc["vsync"] == "adaptive" and doc["colour_filter"] == {"name": "deutan"}
     assert doc["version"] == 2
 
 
@@ -111,3 +111,12 @@ def test_options__an_unknown_key_of_this_version_is_dropped_by_a_save_but_kept_a
     assert "volume" not in json.loads(path.read_text())
     assert load_options(path) == (Options(music=2), None)  # no warning at every launch after
     assert "volume" in (tmp_path / "options.json.bad").read_text()
+
+
+def test_options__palette_round_trips_by_name(tmp_path):
+    from broadsword.game.palettes import BulletPalette
+
+    path = tmp_path / "options.json"
+    save_options(Options(palette=BulletPalette.RED_GREEN), path)
+    assert json.loads(path.read_text())["palette"] == "red-green"
+    assert load_options(path) == (Options(palette=BulletPalette.RED_GREEN), None)

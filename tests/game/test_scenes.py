@@ -426,6 +426,17 @@ def test_options__volumes_hitbox_and_difficulty_change_and_are_saved(app, tmp_pa
     assert f'"music": {before - 1}' in text and '"always_hitbox": true' in text
 
 
+def test_options__no_two_lines_overlap(app):
+    """Every row (the bullet palette's too) and the help line below them stand apart."""
+    app.stack.push(OptionsScene(app))
+    frames(app)
+    drawn = list(app.painter.drawn)
+    assert len(drawn) >= 2 * len(ROWS)
+    for i, a in enumerate(drawn):
+        for b in drawn[i + 1 :]:
+            assert not a.colliderect(b), (a, b)
+
+
 def test_options__always_show_hitbox_draws_the_hit_shape(app):
     world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
     world.player.invulnerable = 0.0

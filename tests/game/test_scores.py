@@ -73,7 +73,8 @@ def test_roundtrip__file_format_is_versioned_json(tmp_path):
     table.add(entry(name="Zoë", score=42, level="2-gauntlet", date="2023-12-31"))
     table.save()
     doc = json.loads(path.read_text(encoding="utf-8"))
-    assert doc == {"version": 2, "scores": [dict(row("Zoë", 42, "2-gauntlet", "2023-12-31"), difficulty="normal")]}
+    want = dict(row("Zoë", 42, "2-gauntlet", "2023-12-31"), difficulty="normal", speed=100)
+    assert doc == {"version": 3, "scores": [want]}
 
 
 def test_difficulties__each_keeps_its_own_table(tmp_path):
@@ -101,7 +102,30 @@ def test_difficulties__a_version_1_table_is_normals(tmp_path):
     table.add(Entry("NEW", 5, "II. The Gauntlet", DAY, Difficulty.HARD))
     table.save()
     doc = json.loads(path.read_text())
-    assert doc["version"] == 2 and [r["difficulty"] for r in doc["scores"]] == ["normal", "hard"]
+    assert doc["version"] == 3 and [r["difficulty"] for r in doc["scores"]] == ["normal", "hard"]
+
+
+def test_speed__kept_with_a_score_and_a_version_2_table_is_at_full_speed(tmp_path):
+    """The game speed a score was made at is saved with it (issue 22); older tables' were 100 %."""
+    path = tmp_path / "highscores.json"
+    path.write_text(json.dumps({"version": 2, "scores": [dict(row("OLD", 900), difficulty="easy")]}))
+    table = HighScores(path).load()
+    assert table.warning is None and [(e.name, e.speed) for e in table.entries] == [("OLD", 100)]
+    table.add(Entry("SLOW", 5, "II. The Gauntlet", DAY, Difficulty.EASY, 70))
+    table.save()
+    doc = json.loads(path.read_text())
+    assert doc["version"] == 3 and [r["speed"] for r in doc["scores"]] == [100, 70]
+    assert [(e.name, e.speed) for e in HighScores(path).load().entries] == [("OLD", 100), ("SLOW", 70)]
+
+
+@pytest.mark.parametrize("speed", [0, 101, 70.0, True, "70", None])
+def test_speed__a_bad_one_is_a_corrupt_file_or_refused(tmp_path, speed):
+    path = tmp_path / "highscores.json"
+    path.write_text(json.dumps({"version": 3, "scores": [dict(row(), difficulty="hard", speed=speed)]}))
+    table = HighScores(path).load()
+    assert table.entries == [] and "speed" in table.warning
+    with pytest.raises(ValueError, match="speed"):
+        table.add(Entry("X", 5, "II. The Gauntlet", DAY, Difficulty.HARD, speed))
 
 
 def test_difficulties__an_unknown_one_is_a_corrupt_file(tmp_path):
@@ -350,7 +374,7 @@ CORRUPT = {
     "truncated_json": b'{"version": 1, "scores": [{"name": "A',
     "not_utf8": b'{"version": 1, "scores": [{"name": "\xff\xfe"}]}',
     "top_level_list": b"[1, 2, 3]",
-    "wrong_version": b'{"version": 3, "scores": []}',
+    "wrong_version": b'{"version": 4, "scores": []}',
     "version_as_bool": b'{"version": true, "scores": []}',
     "missing_scores": b'{"version": 1}',
     "extra_top_key": b'{"version": 1, "scores": [], "cheat": 1}',

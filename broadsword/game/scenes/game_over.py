@@ -21,6 +21,7 @@ class GameOver:
         self.score = world.score.points
         self.level = world.level.title  # the table shows the stage's title
         self.difficulty = play.run.difficulty
+        self.speed = play.runner.recorder.info.speed  # the game speed the run was played at
         self.continues = world.progress.continues_used
         run = play.run
         # A cleared run's last stage is already in its totals (the results screen added it).
@@ -29,11 +30,7 @@ class GameOver:
 
     @property
     def qualifies(self) -> bool:
-        return (
-            self.play.ranked
-            and self.score > 0
-            and self.app.scores.qualifies(self.score, self.difficulty)
-        )
+        return self.play.ranked and self.score > 0 and self.app.scores.qualifies(self.score, self.difficulty)
 
     def handle(self, event: pygame.event.Event) -> bool:
         if event.type == pygame.KEYDOWN and event.key == SAVE_KEY and can_save_last(self.app):
@@ -48,7 +45,7 @@ class GameOver:
         from .name_entry import NameEntry
 
         if self.qualifies:
-            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty))
+            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty, self.speed))
         else:
             self.app.to_title()
 

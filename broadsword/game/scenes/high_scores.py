@@ -1,5 +1,6 @@
 """The high-score tables, one a difficulty (Left/Right: another); Enter, Fire or Esc goes
-back to the title. Each row: rank, name, score and the stage it ended on (its title)."""
+back to the title. Each row: rank, name, score, the game speed beside it when it was not 100 %,
+and the stage it ended on (its title)."""
 
 from __future__ import annotations
 
@@ -11,8 +12,10 @@ from ..controls import Action
 
 ERROR_WRAP = 416  # px: a message's lines (the title's error panel width)
 #: The table's columns, px: the rank's right edge, the name's left, the score's right edge
-#: (and the room it may take), the level's left.
+#: (and the room it may take), the level's left. A speed below 100 % stands SPEED_GAP px left
+#: of its score, in what is left of the score's room, at SPEED_SIZE in SPEED_COLOUR.
 RANK_RIGHT, NAME_LEFT, SCORE_RIGHT, SCORE_ROOM, LEVEL_LEFT = 40, 48, 326, 140, 338
+SPEED_GAP, SPEED_SIZE, SPEED_COLOUR = 8, 18, (140, 220, 255)
 
 
 def level_label(level: str) -> str:
@@ -56,10 +59,17 @@ class HighScoresScene:
             y = 170 + 28 * i
             p.text(f"{i + 1}.", y, x=RANK_RIGHT, anchor="midright")
             p.text(e.name, y, x=NAME_LEFT, anchor="midleft", width=SCORE_RIGHT - SCORE_ROOM - NAME_LEFT)
-            p.text(f"{e.score:,}", y, x=SCORE_RIGHT, anchor="midright", width=SCORE_ROOM)
+            score = p.text(f"{e.score:,}", y, x=SCORE_RIGHT, anchor="midright", width=SCORE_ROOM)
+            if e.speed != 100:  # made slower: said just before the score, in the score's room
+                room = score.left - SPEED_GAP - (SCORE_RIGHT - SCORE_ROOM)
+                p.text(
+                    f"{e.speed}%", y, SPEED_SIZE, SPEED_COLOUR, x=score.left - SPEED_GAP, anchor="midright", width=room
+                )
             p.text(level_label(e.level), y, colour=ui.DIM, x=LEVEL_LEFT, anchor="midleft", width=w - LEVEL_LEFT)
         if not table:
             p.text("none yet", 200)
+        elif any(e.speed != 100 for e in table):
+            p.text("blue %: the game speed a score was made at", 466, 18, SPEED_COLOUR)
         if app.message:  # e.g. a save that failed: say so here, where the player is looking
             for i, line in enumerate(p.lines(app.message, ERROR_WRAP, 3)):
                 p.text(line, 540 + 20 * i, colour=ui.WARN)

@@ -32,8 +32,9 @@ def edit_line(text: str, event: pygame.event.Event, limit: int, upper: bool = Fa
 class NameEntry:
     opaque = False
 
-    def __init__(self, app, score: int, level: str, difficulty: Difficulty = Difficulty.NORMAL):
+    def __init__(self, app, score: int, level: str, difficulty: Difficulty = Difficulty.NORMAL, speed: int = 100):
         self.app, self.score, self.level, self.difficulty = app, score, level, difficulty
+        self.speed = speed  # the game speed the run was played at, %
         self.name = ""
 
     def handle(self, event: pygame.event.Event) -> bool:
@@ -55,7 +56,7 @@ class NameEntry:
 
         app = self.app
         today = datetime.date.today().isoformat()
-        app.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, today, self.difficulty))
+        app.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, today, self.difficulty, self.speed))
         try:
             warning = app.scores.save()
             if warning:

@@ -1,6 +1,6 @@
 """The options: difficulty, music and sound volumes, fullscreen, always showing the hit
 shape, the game speed (50-100 %: the wall clock only, so replays stay exact), the input
-display, showing what hit on a miss, and rebinding every gameplay action to a key and a pad button.
+display, showing what hit on a miss, the bullet palette (standard or colour-blind safe), and rebinding every gameplay action to a key and a pad button.
 
 Up/Down choose a row, Left/Right change it; on an action's row, Enter adds a key or pad button
 to the ones it has and Backspace replaces them all (then press the key or button; Esc
@@ -18,8 +18,10 @@ from ...data.difficulty import Difficulty
 from .. import ui
 from ..controls import FIXED_KEYS, REBINDABLE, Action, Bindings, key_label
 from ..options import SPEED_MIN, SPEED_STEP, VOLUME_STEPS
+from ..palettes import BulletPalette
 
 DIFFICULTIES = list(Difficulty)
+PALETTES = list(BulletPalette)
 #: On an action's row, these keys start a rebinding that replaces its keys (Enter adds one).
 REPLACE_KEYS = (pygame.K_BACKSPACE, pygame.K_DELETE)
 
@@ -42,6 +44,7 @@ ROWS = (
         Row("Game speed", "speed"),
         Row("Input display", "input_display"),
         Row("Show what hit me", "show_hits"),
+        Row("Bullet palette", "palette"),
     ]
     + [Row(a.title, action=a) for a in REBINDABLE]
     + [Row("Reset controls to defaults", command="reset"), Row("Back", command="back")]
@@ -96,6 +99,8 @@ class OptionsScene:
             value = max(0, min(VOLUME_STEPS, getattr(o, option) + step))
         elif option == "speed":
             value = max(SPEED_MIN, min(100, o.speed + SPEED_STEP * step))
+        elif option == "palette":
+            value = PALETTES[(PALETTES.index(o.palette) + step) % len(PALETTES)]
         else:
             value = not getattr(o, option)
         if option == "fullscreen":
@@ -150,6 +155,8 @@ class OptionsScene:
         o = self.app.options
         if row.option == "difficulty":
             return f"< {o.difficulty.title} >"
+        if row.option == "palette":
+            return f"< {o.palette.title} >"
         if row.option == "speed":
             return f"< {o.speed}% >" + ("  (replays stay exact)" if o.speed < 100 else "")
         if row.option in ("music", "sound"):

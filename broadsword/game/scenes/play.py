@@ -132,6 +132,14 @@ class Play:
         not a practice, not taken over from a replay)."""
         return not self.watched and self.runner.recorder.info.kind is RunKind.RUN
 
+    @property
+    def speed(self) -> int:
+        """The game speed this stage runs at, % of real time: a replay's as recorded
+        (``Recording.info.speed``), else the options' (the run records it: App.play_stage)."""
+        if isinstance(self.source, ReplayInput):
+            return self.source.playback.rec.info.speed
+        return self.app.options.speed
+
     # ------------------------------------------------------------------ events
     def handle(self, event: pygame.event.Event) -> bool:
         actions = self.app.controls.actions(event)
@@ -152,8 +160,8 @@ class Play:
 
     # ------------------------------------------------------------------ stepping
     def update(self, dt: float) -> int:
-        # the game speed option scales the wall clock only: the same steps, fewer a second
-        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0) * self.app.options.speed / 100
+        # the game speed scales the wall clock only: the same steps, fewer a second
+        self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0) * self.speed / 100
         steps = 0
         while self.accumulator >= DT and steps < MAX_CATCH_UP and not self.ended:
             self.step()
