@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..data import DataError
-from ..data.recordings import Recording, load_recording
+from ..data.recordings import Recording
 from ..runner import Runner
 from .replaylib import ReplayLibrary
 
@@ -93,13 +93,15 @@ def keep_run(app: App) -> None:
 
 
 def watch_file(app: App, path: Path, back: Callable[[], None]) -> str | None:
-    """Watch the replay file ``path``, and ``back`` when the viewer is done with it: the one
-    way the list opens a replay (the replay theatre, once it exists, takes over here).
-    Returns why it cannot be watched (one line), the list staying as it was."""
+    """Watch the replay file ``path`` in the replay theatre, and ``back`` when the viewer
+    leaves it (Esc): the one way the list opens a replay. Returns why it cannot be watched
+    (one line), the list staying as it was."""
+    from .scenes.theatre import load_theatre
+
     try:
-        rec = load_recording(path)
-        app.watch_replay(rec, str(path))
+        theatre = load_theatre(app, path)
     except DataError as exc:
         return str(exc)
     app.after_replay = back
+    app.stack.push(theatre)
     return None

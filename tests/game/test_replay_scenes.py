@@ -17,9 +17,9 @@ from broadsword.game.app import App
 from broadsword.game.replaylib import ReplayLibrary
 from broadsword.game.run import Run
 from broadsword.game.scenes import GameOver, Pause, Play, Results, Title, replay_list
-from broadsword.game.scenes.replay_end import ReplayEnd
 from broadsword.game.scenes.replay_list import ReplayList
 from broadsword.game.scenes.save_replay import SaveReplay
+from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.runner import Runner, StageStart
 from broadsword.sim import DT, Input
@@ -185,10 +185,10 @@ def test_list__enter_watches_and_the_end_goes_back_to_the_list(app):
     open_list(app)
     key(pygame.K_RETURN)
     frames(app)
-    assert isinstance(app.scene, Play) and app.play.watched
+    assert isinstance(app.scene, Theatre)
     frames(app, 30)
-    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
-    key(pygame.K_RETURN)
+    assert app.scene.frame == 20 and app.scene.paused and app.scene.seeker.divergence is None  # played to its end
+    key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, ReplayList) and app.running
     assert recent(app) == []  # a replay watched is not a run kept
@@ -290,8 +290,8 @@ def test_keep__a_kept_run_replays_to_the_same_state_from_the_list(app):
     open_list(app)
     key(pygame.K_RETURN)
     frames(app, played + 5)
-    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
-    assert app.world.frame == played and app.world.state_hash() == final
+    assert isinstance(app.scene, Theatre) and app.scene.seeker.prepared and app.scene.seeker.divergence is None
+    assert app.world is not None and app.world.frame == played and app.world.state_hash() == final
 
 
 def test_keep__a_window_closed_mid_run_keeps_it(app):

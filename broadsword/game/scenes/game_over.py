@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import pygame
 
+from ...data.recordings import RunKind
 from .. import ui
 from ..controls import Action
 from ..replays import keep_run
@@ -31,7 +32,7 @@ class GameOver:
     def qualifies(self) -> bool:
         return (
             not self.play.watched
-            and not self.play.run.take_over
+            and self.play.runner.recorder.info.kind is RunKind.RUN  # not a take-over, not a practice
             and self.score > 0
             and self.app.scores.qualifies(self.score, self.difficulty)
         )
