@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -91,15 +92,16 @@ def keep_run(app: App) -> None:
         print(f"broadsword: {warning}", file=sys.stderr)
 
 
-def watch_file(app: App, path: Path) -> str | None:
-    """Open the replay file ``path`` in the replay theatre, over the list (Esc comes back to
-    it): the one way the list opens a replay. Returns why it cannot be watched (one line),
-    the list staying as it was."""
-    from .scenes.theatre import theatre_of
+def watch_file(app: App, path: Path, back: Callable[[], None]) -> str | None:
+    """Watch the replay file ``path`` in the replay theatre, and ``back`` when the viewer
+    leaves it (Esc): the one way the list opens a replay. Returns why it cannot be watched
+    (one line), the list staying as it was."""
+    from .scenes.theatre import load_theatre
 
     try:
-        scene = theatre_of(app, path)
+        theatre = load_theatre(app, path)
     except DataError as exc:
         return str(exc)
-    app.stack.push(scene)
+    app.after_replay = back
+    app.stack.push(theatre)
     return None

@@ -45,7 +45,7 @@ from ..patterns.bulletml.runstate import (
     resume_rows,
     set_resume_rows,
 )
-from ..patterns.bulletml.store import NEVER, Columns, Movers
+from ..patterns.bulletml.store import CHANNEL_ENDS, NEVER, Columns, Movers  # channel ends: written sparse
 from .bombs import FRAMES as BOMB_FRAMES
 from .boss import BossState
 from .items import ItemKind
@@ -261,8 +261,6 @@ def _get_rng(r: Reader, rng: np.random.Generator, what: str) -> dict:
 
 
 # ---------------------------------------------------------------------------- pools
-#: A Movers' channel columns, written only for the rows where one of them holds anything.
-CHANNEL_ENDS = ("ch_x0", "ch_x1", "ch_y0", "ch_y1")
 
 
 def _channel_rows(cols: Movers) -> np.ndarray:

@@ -187,6 +187,7 @@ def test_list__enter_opens_the_theatre_and_esc_goes_back_to_the_list(app):
     frames(app)
     assert isinstance(app.scene, Theatre)
     frames(app, 30)
+    assert app.scene.frame == 20 and app.scene.paused and app.scene.seeker.divergence is None  # played to its end
     key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, ReplayList) and app.running
@@ -289,11 +290,8 @@ def test_keep__a_kept_run_replays_to_the_same_state_from_the_list(app):
     open_list(app)
     key(pygame.K_RETURN)
     frames(app, played + 5)
-    theatre = app.scene
-    assert isinstance(theatre, Theatre) and theatre.paused  # at the run's end
-    seeker = theatre.seeker
-    assert seeker.frame == seeker.end == played and seeker.divergence is None
-    assert theatre.world.state_hash() == final
+    assert isinstance(app.scene, Theatre) and app.scene.seeker.prepared and app.scene.seeker.divergence is None
+    assert app.world is not None and app.world.frame == played and app.world.state_hash() == final
 
 
 def test_keep__a_window_closed_mid_run_keeps_it(app):

@@ -141,7 +141,7 @@ class ReplayList:
             self.say(f"cannot watch it: {entry.broken}", bad=True)
             return
         app = self.app
-        why = watch_file(app, entry.path)
+        why = watch_file(app, entry.path, back=lambda: app.stack.reset(ReplayList(app)))
         if why is not None:
             self.say(why, bad=True)
 

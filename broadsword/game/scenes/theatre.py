@@ -260,9 +260,13 @@ class Theatre:
         return None if at is None else (at[0] - FIELD_RECT.left, at[1] - FIELD_RECT.top)
 
     def leave(self) -> None:
-        """Esc: back to what opened the theatre (the replay list), else the title."""
+        """Esc: back to what opened the theatre (``app.after_replay``, the replay list's way
+        back; else the scene under it), else the title."""
+        back, self.app.after_replay = self.app.after_replay, None
         stack = self.app.stack
-        if len(stack.scenes) > 1 and stack.top is self:
+        if back is not None:
+            back()
+        elif len(stack.scenes) > 1 and stack.top is self:
             stack.pop()
         else:
             self.app.to_title()
@@ -335,24 +339,25 @@ class Theatre:
         p.text("it plays to there; the game or its data changed since it was recorded", rect.top + 32, 15, ui.DIM)
 
 
+def load_theatre(app: App, path: str | Path) -> Theatre:
+    """The theatre of the recording at ``path`` (not shown yet). DataError (naming the file
+    and field) if it cannot be read or played: broken, another version, a level changed or
+    missing."""
+    rec = load_recording(path)
+    seeker = Seeker(rec, path, app.bank.armatures)
+    app.error = None
+    app.runner = None
+    return Theatre(app, seeker, path)
+
+
 def open_theatre(app: App, path: str | Path) -> None:
     """Open the recording at ``path`` in the theatre, over the scene on top (Esc goes back to
-    it). A file that cannot be read or played (broken, another version, a level changed or
-    missing) is said where the game says load errors (:meth:`App.report`: the title's line),
-    and nothing opens."""
+    it, or to ``app.after_replay`` when that is set). A file that cannot be read or played is
+    said where the game says load errors (:meth:`App.report`: the title's line), and nothing
+    opens."""
     try:
-        scene = theatre_of(app, path)
+        theatre = load_theatre(app, path)
     except DataError as exc:
         app.report(exc)
         return
-    app.error = None
-    app.stack.push(scene)
-
-
-def theatre_of(app: App, path: str | Path) -> Theatre:
-    """The theatre of the recording at ``path`` (not pushed); :class:`DataError` naming the
-    file and field when it cannot be read or played."""
-    rec = load_recording(path)
-    seeker = Seeker(rec, path, app.bank.armatures)
-    app.runner = None
-    return Theatre(app, seeker, path)
+    app.stack.push(theatre)

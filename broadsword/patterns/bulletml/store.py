@@ -46,6 +46,10 @@ COLUMNS: dict[str, tuple[tuple[int, ...], DTypeLike]] = {
 }
 
 
+#: The channel columns a new row starts with zeroed (with ``step``), whatever the row held before.
+CHANNEL_ENDS = ("ch_x0", "ch_x1", "ch_y0", "ch_y1")
+
+
 class Columns:
     """Named parallel numpy arrays ("columns") with a live count ``n``: the struct-of-arrays
     store under the BulletML :class:`Movers` and the game's pools (``broadsword.sim.Pool``
@@ -173,6 +177,9 @@ class Movers(Columns):
         d["dirty"][i] = True
         d["wake"][i] = wake
         d["ch_on"][i] = False
+        for name in CHANNEL_ENDS:  # a reused row keeps nothing of the one before it (the state digests see every bit)
+            d[name][i] = 0
+        d["step"][i] = 0.0
         d["runner"][i] = runner
         d["dead"][i] = d["mute"][i] = False
         d["tag"][i], d["owner"][i] = tag, owner
@@ -197,6 +204,9 @@ class Movers(Columns):
         d["dirty"][i:j] = True
         d["wake"][i:j] = wake
         d["ch_on"][i:j] = False
+        for name in CHANNEL_ENDS:
+            d[name][i:j] = 0
+        d["step"][i:j] = 0.0
         d["runner"][i:j] = runner
         d["dead"][i:j] = d["mute"][i:j] = False
         d["tag"][i:j], d["owner"][i:j] = tag, 0
