@@ -193,3 +193,59 @@ def test_open_theatre__a_broken_file_says_why_and_opens_nothing(tmp_path):
         assert not isinstance(app.scene, Theatre) and app.error is not None and "broken.json" in app.error
     finally:
         pygame.quit()
+
+
+@functools.cache
+def missed():
+    """2-gauntlet, seed 1, idle hands for 800 frames (a few misses); the recording and each
+    miss's hit record as the run made it, by the frame after its step."""
+    from broadsword.sim import IDLE
+    from broadsword.sim.hitlog import Outcome
+
+    runner, hits = Runner.open(StageStart("2-gauntlet", 1)), {}
+    while runner.frame < 800 and not runner.ended:
+        ev = runner.step(IDLE)
+        if ev.hit is not None and ev.hit.outcome is Outcome.MISS:
+            hits[runner.frame] = ev.hit
+    return runner.recording(), hits
+
+
+def test_h__shows_what_hit_at_the_last_miss_as_the_run_recorded_it(tmp_path):
+    rec, hits = missed()
+    assert len(hits) >= 2
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
+    path = tmp_path / "missed.json"
+    save_recording(path, rec)
+    open_theatre(app, path)
+    scene = app.scene
+    assert isinstance(scene, Theatre)
+    scene.seeker.prepare()
+    first, second = sorted(hits)[:2]
+    assert sorted(m.frame for m in scene.seeker.marks if m.kind is MarkKind.MISS) == sorted(hits)
+    scene.go(second - 1)  # before the second miss: H goes back to the first
+    key(app, pygame.K_h)
+    assert scene.paused and scene.frame == first and scene.hit is not None
+    made = hits[first]
+    assert scene.hit.frame == made.frame and [h.kind for h in scene.hit.hitters] == [h.kind for h in made.hitters]
+    assert [h.polygon.tolist() for h in scene.hit.hitters] == [h.polygon.tolist() for h in made.hitters]
+    scene.draw(pygame.Surface((720, 640)))  # the inset is drawn while the frame stays
+    key(app, pygame.K_RIGHT)
+    assert scene.frame == first + 1  # a step away: the inset is gone
+    scene.go(0)
+    key(app, pygame.K_h)
+    assert scene.hit is None and scene.frame == 0  # no miss before: nothing
+
+
+def test_speed__1x_is_the_game_speed_the_run_was_played_at(opened, tmp_path):
+    from broadsword.runner.seek import Seeker
+
+    app, _, _ = opened
+    rec = recorded()[0]
+    rec = dataclasses.replace(rec, info=dataclasses.replace(rec.info, speed=50))  # played at 50 %
+    path = tmp_path / "slow.json"
+    save_recording(path, rec)
+    scene = Theatre(app, Seeker(rec, path, app.bank.armatures), path)
+    app.stack.reset(scene)
+    for _ in range(60):  # a second of wall clock
+        scene.update(DT)
+    assert scene.frame == 30 and "of 50%" in scene.note()

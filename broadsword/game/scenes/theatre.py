@@ -5,8 +5,10 @@ and the total.
 
 Keys: Space pause/play; Left/Right one frame back/forward (paused; held: repeat);
 Shift+Left/Right 5 s back/forward; Up/Down or ] / [ the speed (0.25x to 16x); PageUp/PageDown
-or P/N the previous/next mark; Home/End the start/end; F1 the overlay; T take over (play on
-yourself from this frame); Esc leave. The mouse: click or drag on the bar.
+or P/N the previous/next mark; Home/End the start/end; F1 the overlay; H what hit the player
+at the last miss (at or before this frame: the theatre goes there and shows it, enlarged);
+T take over (play on yourself from this frame); Esc leave. The mouse: click or drag on the bar.
+1x is the speed the run was played at (its recorded game speed).
 
 The run is a :class:`~broadsword.runner.seek.Seeker`: the theatre prepares it in the
 background of play (a few frames a tick, within :data:`PREPARE_MS`), and seeks only where it
@@ -30,10 +32,13 @@ import pygame
 from ...data import DataError
 from ...data.recordings import RecordingInfo, RunKind, load_recording
 from ...runner import CHECKPOINT, Runner, open_recorded
-from ...runner.seek import Seeker
+from ...runner.seek import MarkKind, Seeker
 from ...sim import DT, Snapshots, World
+from ...sim.bombs import DEATHBOMB_FRAMES
+from ...sim.hitlog import HitRecord, Outcome
 from .. import ui
 from ..controls import Action
+from ..hitview import draw_hit, inset_rect
 from ..run import Run
 from ..seekbar import SeekBar
 from ..sidebar import FIELD_RECT
@@ -70,6 +75,7 @@ class Command(Enum):
     START = "start"
     END = "end"
     TAKE_OVER = "take over"
+    WHAT_HIT = "what hit"
 
 
 KEYS = {
@@ -85,6 +91,7 @@ KEYS = {
     pygame.K_HOME: Command.START,
     pygame.K_END: Command.END,
     pygame.K_t: Command.TAKE_OVER,
+    pygame.K_h: Command.WHAT_HIT,
 }
 #: Left/Right: (alone, with Shift).
 ARROWS = {
@@ -139,6 +146,9 @@ class Theatre:
         self.speed = SPEEDS.index(1.0)
         self.accumulator = 0.0
         self.dragging = False
+        self.recorded_speed = seeker.rec.info.speed / 100  # 1x: as fast as it was played (wall clock only)
+        self.hit: HitRecord | None = None  # what hit at the last miss (H), shown while the frame stays
+        self.hit_frame = -1
 
     @property
     def world(self) -> World:
@@ -200,6 +210,29 @@ class Theatre:
             self.go(self.seeker.reached)
         elif command is Command.TAKE_OVER:
             self.take_over()
+        elif command is Command.WHAT_HIT:
+            self.show_hit()
+
+    def show_hit(self) -> None:
+        """Go to the last miss at or before this frame and show what hit (its hit record).
+        The strike lies within the death-bomb window before the life is lost, so the theatre
+        steps there from just before it: the record is an observation the world takes as it
+        steps (never in a snapshot). Nothing happens before the run's first miss."""
+        misses = [m.frame for m in self.seeker.marks if m.kind is MarkKind.MISS and m.frame <= self.frame]
+        if not misses:
+            self.hit, self.hit_frame = None, -1
+            return
+        at = misses[-1]
+        self.go(max(0, at - DEATHBOMB_FRAMES - 2))
+        hit = None
+        while self.frame < at:
+            ev = self.seeker.step()
+            if ev is None:
+                break
+            if ev.hit is not None and ev.hit.outcome is Outcome.MISS:
+                hit = ev.hit
+        self.paused, self.accumulator = True, 0.0
+        self.hit, self.hit_frame = hit, self.frame
 
     def take_over(self) -> None:
         """Play on from this frame yourself: a new run whose first stage is this world, as it
@@ -281,7 +314,7 @@ class Theatre:
                 self.obey(self.keys.held)
         steps = 0
         if not self.paused and not self.dragging:
-            self.accumulator += dt * SPEEDS[self.speed]
+            self.accumulator += dt * SPEEDS[self.speed] * self.recorded_speed
             while self.accumulator >= DT - 1e-9 and (time.perf_counter() - t0) * 1e3 < PLAY_MS:
                 ev = self.seeker.step()
                 if ev is None:  # the run's end (or where it first differs)
@@ -304,7 +337,7 @@ class Theatre:
     # ------------------------------------------------------------------ drawing
     def note(self) -> str:
         speed = SPEEDS[self.speed]
-        shown = f"{speed:g}x"
+        shown = f"{speed:g}x" if self.recorded_speed == 1 else f"{speed:g}x of {self.recorded_speed:.0%}"
         return f"PAUSED  {shown}" if self.paused else shown
 
     def draw(self, surf: pygame.Surface) -> None:
@@ -325,6 +358,8 @@ class Theatre:
             overlay.draw(surf, record.result if record is not None else None, app.fps, self.paused)
             overlay.step_key, overlay.rotation_key = keys
         self._banner()
+        if self.hit is not None and self.hit_frame == self.frame:
+            draw_hit(surf, inset_rect(surf.get_size()), self.hit, app.painter.font(20))
         self.bar.draw(surf, app.painter, self.frame, self.seeker.reached, self.seeker.marks, self.note())
 
     def _banner(self) -> None:
