@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
 
+from ..data import DataError
 from ..data.recordings import Recording
 from ..sim import Events, Snapshots, World
 from .playback import Divergence, Playback
@@ -104,8 +105,12 @@ class Seeker:
         The last frame of the run: the recording's frames, or the first frame that differs
         once the preparer found one (:attr:`divergence`).
 
-    DataError (naming the file and field) if a stage's level cannot load or has changed,
-    or the recording hashes other parts of the state.
+    error : str or None
+        Why the run stops before its end when a later stage cannot be opened (its level
+        changed or missing: one line naming the file and field); the frames before it play.
+
+    DataError (naming the file and field) if the first stage's level cannot load or has
+    changed, or the recording hashes other parts of the state.
     """
 
     def __init__(
@@ -123,6 +128,7 @@ class Seeker:
         self._path: dict[int, _Kept] = {}  # the last seek's frames on the way (seek's keep_path)
         self.marks: list[Mark] = [Mark(0, MarkKind.STAGE)]
         self._finished = False
+        self.error: str | None = None
         self._keep_start(0, self._prep.world)
         self._keep()
         self._place(0, 0)
@@ -204,7 +210,11 @@ class Seeker:
         if not (pb.stage_done and pb.has_next_stage and pb.divergence is None and pb.mismatch is None):
             return False
         pb.next_stage()
-        stage = open_recorded(pb.stage, pb.index, self.path, self.armatures)
+        try:
+            stage = open_recorded(pb.stage, pb.index, self.path, self.armatures)
+        except DataError as exc:  # a later stage's level changed or went missing: the run stops here
+            self.error = str(exc)
+            return False
         prep.begin_stage(stage)
         self._keep_start(pb.index, stage.world)
         self.marks.append(Mark(prep.frame, MarkKind.STAGE))
@@ -298,9 +308,9 @@ class Seeker:
             pb = r.playback
             assert pb is not None
             pb.end_stage(r.world)
-            if not (pb.stage_done and pb.has_next_stage and pb.divergence is None):
-                return None
             index = pb.index + 1
+            if not (pb.stage_done and pb.has_next_stage and pb.divergence is None and index in self._starts):
+                return None
             self._restore(index, r.frame, self._starts[index])  # the preparer opened it: its start is kept
             return self.step()
         return r.step(inp)

@@ -249,3 +249,34 @@ def test_speed__1x_is_the_game_speed_the_run_was_played_at(opened, tmp_path):
     for _ in range(60):  # a second of wall clock
         scene.update(DT)
     assert scene.frame == 30 and "of 50%" in scene.note()
+
+
+def test_a_later_stage_that_cannot_open_stops_the_run_there_with_a_banner(tmp_path):
+    """A two-stage recording whose second level has changed since: the theatre plays the
+    first stage, stops at its end and says why in its banner; the game goes on."""
+    from broadsword.runner import open_stage
+
+    runner, pilot = Runner.open(StageStart("1-picket", 3)), Pilot()
+    runner.play(pilot, 60)
+    runner.begin_stage(open_stage(StageStart("2-gauntlet", 4)))
+    while runner.frame < 120:
+        runner.step(pilot(runner.world))
+    rec = runner.recording()
+    second = dataclasses.replace(rec.stages[1], level_sha256="0" * 64)
+    rec = dataclasses.replace(rec, stages=(rec.stages[0], second))
+    path = tmp_path / "changed.json"
+    save_recording(path, rec)
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
+    open_theatre(app, path)
+    scene = app.scene
+    assert isinstance(scene, Theatre)
+    scene.seeker.prepare()
+    seeker = scene.seeker
+    assert seeker.prepared and seeker.end == 60 and "stages[1].level_sha256" in (seeker.error or "")
+    for _ in range(200):
+        scene.update(DT)
+    assert scene.frame == 60 and scene.paused
+    app.render()
+    said = " ".join(app.painter.said)
+    assert "REPLAY STOPS at frame 60: its next stage cannot open" in said and "level_sha256" in said
+    pygame.quit()

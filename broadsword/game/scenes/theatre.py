@@ -363,15 +363,19 @@ class Theatre:
         self.bar.draw(surf, app.painter, self.frame, self.seeker.reached, self.seeker.marks, self.note())
 
     def _banner(self) -> None:
-        d = self.seeker.divergence
-        if d is None:
+        d, error = self.seeker.divergence, self.seeker.error
+        if d is None and error is None:
             return
         p = self.app.painter
-        what = "a checkpoint's hash" if d.part == CHECKPOINT else f"the {d.part}"
         rect = pygame.Rect(0, BAR_HEIGHT + 24, FIELD_RECT.width, 44)
         p.panel(rect, fill=(60, 10, 16), edge=ui.BAD)
-        p.text(f"REPLAY DIFFERS from frame {d.frame:,}: {what}", rect.top + 14, 20, ui.BAD)
-        p.text("it plays to there; the game or its data changed since it was recorded", rect.top + 32, 15, ui.DIM)
+        if d is not None:
+            what = "a checkpoint's hash" if d.part == CHECKPOINT else f"the {d.part}"
+            p.text(f"REPLAY DIFFERS from frame {d.frame:,}: {what}", rect.top + 14, 20, ui.BAD)
+            p.text("it plays to there; the game or its data changed since it was recorded", rect.top + 32, 15, ui.DIM)
+        else:
+            p.text(f"REPLAY STOPS at frame {self.seeker.end:,}: its next stage cannot open", rect.top + 14, 20, ui.BAD)
+            p.text(str(error), rect.top + 32, 13, ui.DIM, width=rect.width - 16)
 
 
 def load_theatre(app: App, path: str | Path) -> Theatre:
