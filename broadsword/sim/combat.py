@@ -126,7 +126,7 @@ class Combat:
         w = self.world
         p = w.player
         ev.player_hit = True
-        w.hit_log.resolve(Outcome.MISS, ev)
+        ev.hit = w.hit_log.resolve(Outcome.MISS) or ev.hit
         ev.kills.append((float(p.pos[0]), float(p.pos[1]), "player"))
         # Mercy: clear enemy bullets around the wreck before respawning.
         eb = w.enemy_bullets

@@ -23,7 +23,6 @@ import numpy as np
 
 from ..collision import Explanation, TierVerdict, explain, posed_polygon, tiers_passed
 from .collide import CollisionRecord, Group
-from .events import Events
 from .kinds import Kinds
 
 __all__ = ["HIT_LOG_MAX", "HITTERS_MAX", "HitLog", "HitRecord", "HitSource", "Hitter", "Outcome", "hit_record"]
@@ -138,12 +137,13 @@ class HitLog:
         frame ``frame``: keep what hit it (pending until :meth:`resolve`)."""
         self.pending = hit_record(record, kinds, frame)
 
-    def resolve(self, outcome: Outcome, ev: Events) -> None:
+    def resolve(self, outcome: Outcome) -> HitRecord | None:
         """The death-bomb window closed with ``outcome``: the pending hit joins ``records``
-        and the step's events (``ev.hit``). Nothing happens when none is pending."""
+        and is returned (the step's events carry it: ``Events.hit``). None when none is
+        pending."""
         if self.pending is None:
-            return
+            return None
         done = replace(self.pending, outcome=outcome)
         self.pending = None
         self.records.append(done)
-        ev.hit = done
+        return done

@@ -50,7 +50,9 @@ from .items import ItemKind, Items
 from .pool import Pool
 
 if TYPE_CHECKING:
-    from .world import World
+    from .kinds import Kinds
+    from .player import Player
+    from .scoring import Score
 
 #: A laser inside the graze shape counts a graze at most once in this many steps.
 GRAZE_EVERY = 8
@@ -292,31 +294,30 @@ class Lasers:
             items.drop_many(at[inside], ItemKind.STAR, homing=True)
         p.clear()
 
-    def collide(self, world: World, ev: Events) -> None:
-        """The lit lasers against the player: a hit strikes the ship (swept along its move),
-        a graze counts (throttled per laser)."""
+    def collide(self, player: Player, kinds: Kinds, t: float, score: Score | None, ev: Events) -> None:
+        """The lit lasers against ``player`` (its hit and graze shapes from ``kinds`` at ``t``
+        seconds): a hit strikes the ship (swept along its move), a graze counts on ``score``
+        (throttled per laser; ``None``: the stage has no graze)."""
         p = self.pool
         if not p.n:
             return
-        player = world.player
         rows = self.live_rows() if player.alive else []
         if rows:
             px, py, owner = self.pieces(rows)
-            kinds, t = world.kinds, world.time
             if player.vulnerable:
                 hit = kinds.shapes.armatures[int(kinds.current(kinds.base["player"], t))].vertices + player.pos
                 swept = swept_polygon(hit, player.pos - player.prev)
                 if touching(px, py, swept).any():
                     player.strike()
                     ev.player_struck = True
-            if world.level.scene.graze and not player.stricken:
+            if score is not None and not player.stricken:
                 shape = kinds.shapes.armatures[int(kinds.current(kinds.base["graze"], t))].vertices + player.pos
                 near = np.unique(owner[touching(px, py, shape)])
                 grazed = [rows[k] for k in near.tolist() if p.graze_wait[rows[k]] == 0]
                 if grazed:
                     p.graze_wait[grazed] = GRAZE_EVERY  # counted down from this step on
                     ev.grazes += len(grazed)
-                    world.score.graze(len(grazed))
+                    score.graze(len(grazed))
         p.graze_wait[:] = np.maximum(p.graze_wait - 1, 0)
 
 

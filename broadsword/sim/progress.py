@@ -52,7 +52,7 @@ class Progress:
             return False
         p.bombs -= 1
         if p.stricken:  # the death-bomb: the hit is saved
-            w.hit_log.resolve(Outcome.SAVED, ev)
+            ev.hit = w.hit_log.resolve(Outcome.SAVED) or ev.hit
         p.stricken = 0
         p.invulnerable = max(p.invulnerable, BOMB_FRAMES * DT + GRACE_S)
         w.bomb.start()

@@ -211,7 +211,7 @@ class World:
                 self.combat.lose_life(ev)
         self._move(inp)
         self.combat.apply(self.detect(), ev)
-        self.lasers.collide(self, ev)
+        self.lasers.collide(self.player, self.kinds, self.time, self.score if self.level.scene.graze else None, ev)
         self._spawn(inp, ev)
         if self.boss is not None:
             how = self.boss.tick()

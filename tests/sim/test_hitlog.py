@@ -7,7 +7,7 @@ import pytest
 
 from broadsword.collision import Verdict, explain, posed_polygon
 from broadsword.runner import Runner, StageStart
-from broadsword.sim import IDLE, Events, Input, Settings
+from broadsword.sim import IDLE, Input, Settings
 from broadsword.sim.collide import Group
 from broadsword.sim.hitlog import HitLog, HitRecord, HitSource, Outcome
 
@@ -79,13 +79,10 @@ def test_bounded():
 
     for f in range(5):
         log.pending = HitRecord(f, "player", np.zeros((3, 2)), ())
-        ev = Events()
-        log.resolve(Outcome.MISS, ev)
-        assert ev.hit is log.last
+        done = log.resolve(Outcome.MISS)
+        assert done is log.last and done is not None and done.outcome is Outcome.MISS
     assert [r.frame for r in log.records] == [2, 3, 4]
-    ev = Events()
-    log.resolve(Outcome.SAVED, ev)  # nothing pending: nothing happens
-    assert ev.hit is None and len(log.records) == 3
+    assert log.resolve(Outcome.SAVED) is None and len(log.records) == 3  # nothing pending: nothing happens
 
 
 def test_a_restore_in_the_death_bomb_window_drops_the_pending_hit():

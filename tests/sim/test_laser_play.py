@@ -171,7 +171,7 @@ def test_hit__swept_along_the_players_move():
     hit = w.kinds.shapes.armatures[w.kinds.base["player"]].vertices
     laser = Laser.of(w.lasers.pool.nodes[0, :2], 1.0)
     assert not laser_touches(laser, hit + w.player.pos) and not laser_touches(laser, hit + w.player.prev)
-    w.lasers.collide(w, Events())
+    w.lasers.collide(w.player, w.kinds, w.time, w.score, Events())
     assert w.player.stricken
 
 
