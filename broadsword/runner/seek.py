@@ -105,9 +105,9 @@ class Seeker:
         The last frame of the run: the recording's frames, or the first frame that differs
         once the preparer found one (:attr:`divergence`).
 
-    error : str or None
+    error : DataError or None
         Why the run stops before its end when a later stage cannot be opened (its level
-        changed or missing: one line naming the file and field); the frames before it play.
+        changed or missing: naming the file and field); the frames before it play.
 
     DataError (naming the file and field) if the first stage's level cannot load or has
     changed, or the recording hashes other parts of the state.
@@ -128,7 +128,7 @@ class Seeker:
         self._path: dict[int, _Kept] = {}  # the last seek's frames on the way (seek's keep_path)
         self.marks: list[Mark] = [Mark(0, MarkKind.STAGE)]
         self._finished = False
-        self.error: str | None = None
+        self.error: DataError | None = None
         self._keep_start(0, self._prep.world)
         self._keep()
         self._place(0, 0)
@@ -213,7 +213,7 @@ class Seeker:
         try:
             stage = open_recorded(pb.stage, pb.index, self.path, self.armatures)
         except DataError as exc:  # a later stage's level changed or went missing: the run stops here
-            self.error = str(exc)
+            self.error = exc
             return False
         prep.begin_stage(stage)
         self._keep_start(pb.index, stage.world)

@@ -373,9 +373,9 @@ class Theatre:
             what = "a checkpoint's hash" if d.part == CHECKPOINT else f"the {d.part}"
             p.text(f"REPLAY DIFFERS from frame {d.frame:,}: {what}", rect.top + 14, 20, ui.BAD)
             p.text("it plays to there; the game or its data changed since it was recorded", rect.top + 32, 15, ui.DIM)
-        else:
+        elif error is not None:
             p.text(f"REPLAY STOPS at frame {self.seeker.end:,}: its next stage cannot open", rect.top + 14, 20, ui.BAD)
-            p.text(str(error), rect.top + 32, 13, ui.DIM, width=rect.width - 16)
+            p.text(f"{error.field}: {error.message}", rect.top + 32, 13, ui.DIM, width=rect.width - 16)
 
 
 def load_theatre(app: App, path: str | Path) -> Theatre:
