@@ -33,13 +33,6 @@ LATE = WaveSpec(
 )
 
 
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
-
-
 def quiet(app: App, waves=(LATE,)) -> World:
     """Start play in an emptied first level (plus ``waves``), past the spawn grace period."""
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)

@@ -9,22 +9,13 @@ import pygame
 import pytest
 
 from broadsword.data import data_dir, load_armature_file
-from broadsword.game.app import App
 from broadsword.game.editor import WINDOW_SIZE
 from broadsword.game.scenes import Title
 from broadsword.game.scenes.armatures import ArmatureList, armature_files
 from broadsword.game.scenes.editor import EditorScene
-from broadsword.game.scores import HighScores
 from broadsword.sim import DT, FIELD
 
 SPRITES = data_dir("assets") / "sprites"
-
-
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
 
 
 @pytest.fixture

@@ -15,7 +15,6 @@ from broadsword.game.hitview import CROSSED, FREEZE_S, INSIDE, draw_hit, inset_r
 from broadsword.game.run import Run, Stage
 from broadsword.game.scenes import Pause, Play
 from broadsword.game.scenes.hit_freeze import HitFreeze
-from broadsword.game.scores import HighScores
 from broadsword.sim import DT, World
 from broadsword.sim.hitlog import HitRecord, HitSource, Hitter, Outcome
 
@@ -29,13 +28,6 @@ def record(bullet: np.ndarray, outcome: Outcome | None = Outcome.MISS) -> HitRec
 
 CROSSING = record(np.array([[236.0, 548.0], [244.0, 548.0], [244.0, 556.0], [236.0, 556.0]]))
 INSIDE_IT = record(np.array([[239.0, 559.0], [241.0, 559.0], [240.0, 561.0]]))
-
-
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
 
 
 def colours(surf: pygame.Surface, rect: pygame.Rect) -> set:

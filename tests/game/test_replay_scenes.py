@@ -9,7 +9,6 @@ import errno
 import json
 
 import pygame
-import pytest
 
 from broadsword.data import load_level, resolve_level
 from broadsword.data.recordings import RecordingInfo, RunKind, load_recording
@@ -23,13 +22,6 @@ from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.runner import Runner, StageStart
 from broadsword.sim import DT, Input
-
-
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
 
 
 def key(k, unicode=""):

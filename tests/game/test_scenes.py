@@ -30,13 +30,6 @@ from broadsword.game.scores import Entry, HighScores
 from broadsword.sim import DT, World
 
 
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
-
-
 def key(k, unicode=""):
     pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0))
 

@@ -7,8 +7,6 @@ import pygame
 import pytest
 
 from broadsword import cli
-from broadsword.game.app import App
-from broadsword.game.scores import HighScores
 from broadsword.game.window import NoDisplay, Window, display_problem
 
 
@@ -43,13 +41,6 @@ def test_no_display__the_game_says_so_and_exits_1(monkeypatch, tmp_path, capsys)
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1
     assert err.startswith("broadsword: no display") and "--headless" in err
-
-
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=1, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
 
 
 def key(k):
