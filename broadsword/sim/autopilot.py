@@ -162,7 +162,7 @@ class Pilot:
                 return float(cand[np.argmax(cand[:, 1]), 0])
         return FIELD[0] / 2
 
-    def _preference(self, end, target_x, world) -> float:
+    def _preference(self, end: np.ndarray, target_x: float, world: World) -> float:
         """Soft pulls: under the target, near the home row, toward items falling nearby."""
         cost = 0.02 * abs(end[0] - target_x) + 0.01 * abs(end[1] - HOME_Y)
         items = world.items.pool

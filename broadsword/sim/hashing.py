@@ -13,21 +13,46 @@ from __future__ import annotations
 import hashlib
 import zlib
 from enum import Enum
+from typing import Protocol
 
 import numpy as np
 
 from ..collision import ROTATION_MODES as ROTATIONS
 from ..data.recordings import DIGEST_BYTES
+from .emitters import EnemyGuns
+from .lasers import Lasers
+from .pool import Pool
+from .progress import Progress
+from .stage_parts import StageParts
+from .waves import WaveTimeline
 
 #: Positions are hashed in units of 1/QUANTUM px.
 QUANTUM = 256.0
+
+
+class HashedState(StageParts, Protocol):
+    """What the digests read of a world: every part of its state (a typed contract, so the
+    world, which digests itself, is not imported here)."""
+
+    guns: EnemyGuns
+    lasers: Lasers
+    timeline: WaveTimeline
+    parts: Pool
+    progress: Progress
+    complete: bool
+    rng: np.random.Generator
+    _bomb_held: bool
+
+    @property
+    def rotation(self) -> str:
+        """The rotation mode posing uses now."""
 
 
 def _quantised(a) -> bytes:
     return np.round(np.asarray(a, dtype=np.float64) * QUANTUM).astype(np.int64).tobytes()
 
 
-def state_hash(world) -> str:
+def state_hash(world: HashedState) -> str:
     """Hex SHA-256 of the world's state: the tallies, the boss, the player, the bomb, and
     every pool's count, positions (to 1/256 px) and armature kinds (and the ships' hit
     points), and the lasers in play (their ages and nodes), if any.
@@ -38,7 +63,7 @@ def state_hash(world) -> str:
     """
     h = hashlib.sha256()
     boss = world.boss
-    boss_state = (boss.hp, boss.phase, list(type(boss.state)).index(boss.state)) if boss else (0, 0, -1)  # type: ignore[call-overload]
+    boss_state = (boss.hp, boss.phase, list(type(boss.state)).index(boss.state)) if boss else (0, 0, -1)
     p, s = world.player, world.score
     tallies = [
         world.frame,
@@ -170,7 +195,7 @@ def _rng(h: _Crc, rng: np.random.Generator) -> None:
     h.update(repr(rng.bit_generator.state).encode())
 
 
-def _part(world, part: Part, h: _Crc) -> None:
+def _part(world: HashedState, part: Part, h: _Crc) -> None:
     if part is Part.PLAYER:
         _attrs(h, world.player)
         _attrs(h, world, ("_bomb_held",))  # the bomb button's edge
@@ -204,7 +229,7 @@ def _part(world, part: Part, h: _Crc) -> None:
         _rng(h, world.guns.engine.scope.rng)
 
 
-def part_digests(world) -> bytes:
+def part_digests(world: HashedState) -> bytes:
     """The state of ``world`` by part: each :class:`Part`'s CRC-32 (``DIGEST_BYTES``
     bytes, little-endian), in :class:`Part` order (``len(Part) * DIGEST_BYTES`` bytes in all).
 
