@@ -1,10 +1,11 @@
-"""``broadsword soak``: long headless play with the autopilot, watching memory and errors.
+"""``broadsword soak``: long headless play, watching memory and errors.
 
-    broadsword soak [--level 3-broadsword] [--frames 216000] [--seed 0] [--warmup FRAMES]
+    broadsword soak [--level 3-broadsword] [--player autopilot] [--frames 216000] [--seed 0] [--warmup FRAMES]
                     [--sample-every FRAMES] [--progress-every FRAMES] [--max-growth PCT]
                     [--minutes M] [--json FILE]
 
-The autopilot plays the level with no window. When a game ends (game over or level
+The autopilot (or, with ``--player``, a naive scripted beginner that loses a game in a
+minute or two, so an hour holds hundreds of games) plays the level with no window. When a game ends (game over or level
 complete) a fresh :class:`~broadsword.sim.World` of the same level starts at once, with
 the next seed of a deterministic sequence (game 0 uses ``--seed`` itself, so it is the game
 ``broadsword --headless --seed S --autopilot`` plays), until ``--frames`` steps have been
@@ -47,6 +48,7 @@ import traceback
 import numpy as np
 
 from .argtypes import finite
+from .balance_table import PLAYERS
 from .data import DataError, data_dir, load_armatures, load_level, resolve_level
 from .data.levels import check_level_sprites
 from .fileio import check_writable, write_atomic
@@ -114,8 +116,9 @@ def soak(
     progress_every: int = 10_000,
     log=None,
     max_wall_s: float | None = None,
+    player: str = "autopilot",
 ) -> dict:
-    """Play ``frames`` steps of ``level`` with the autopilot, restarting after each game.
+    """Play ``frames`` steps of ``level`` with ``player``, restarting after each game.
 
     Parameters
     ----------
@@ -137,11 +140,17 @@ def soak(
     max_wall_s : float or None
         Stop after this many seconds of wall-clock time even if frames are left (``None``:
         play them all).
+    player : str
+        Who plays, one of :data:`broadsword.balance_table.PLAYERS`: ``"autopilot"`` (the
+        default), or a naive scripted beginner (``"stand"``, ``"weave"``, ``"stream"``), whose
+        games end in a game over within a minute or two: many more games an hour, so the
+        making and freeing of games is what the soak exercises most. Naive players use no
+        continues here: a game over ends the game.
 
     Returns
     -------
     dict
-        ``level``, ``seed``, ``frames`` (steps played), ``frames_requested``, ``warmup``,
+        ``level``, ``player``, ``seed``, ``frames`` (steps played), ``frames_requested``, ``warmup``,
         ``games`` (games started), ``restarts`` (= games - 1), ``games_over``,
         ``levels_complete``, ``score`` and ``hits`` (summed over games), ``max_enemy_bullets``,
         ``longest_game_frames``, ``games_with_boss`` (games that lived to see their level's boss),
@@ -160,11 +169,14 @@ def soak(
         before ``frames``), ``error`` (``None``, or the exception's
         traceback text as one string).
     """
+    from .balance import make_player
     from .collision import release_heap
     from .runner import Runner, StageStart, open_level
-    from .sim import DT, Pilot
+    from .sim import DT
     from .sim.boss import BossState
 
+    if player not in PLAYERS:
+        raise ValueError(f"player must be one of {', '.join(PLAYERS)}, got {player!r}")
     if frames < 0:
         raise ValueError(f"frames must be >= 0, got {frames}")
     if seed < 0:
@@ -189,7 +201,7 @@ def soak(
     t_start = clock()
     runner = Runner(open_level(level, armatures, StageStart(level.name, game_seed(seed, 0))))
     world = runner.world
-    pilot = Pilot()
+    pilot = make_player(player, game_seed(seed, 0))
     f = 0
     stopped_by_clock = False
     try:
@@ -215,7 +227,7 @@ def soak(
                 if f < frames:
                     runner = Runner(open_level(level, armatures, StageStart(level.name, game_seed(seed, games))))
                     world = runner.world
-                    pilot = Pilot()
+                    pilot = make_player(player, game_seed(seed, games))
                     games += 1
                     release_heap()  # the last game is freed: give its heap back, as the game does
             last = f == frames or (max_wall_s is not None and clock() - t_start >= max_wall_s)
@@ -257,6 +269,7 @@ def soak(
     final_growth = round(100.0 * (final_rss - warm_rss) / warm_rss, 3) if warm_rss and final_rss else None
     return {
         "level": level.name,
+        "player": player,
         "seed": seed,
         "frames": f,
         "frames_requested": frames,
@@ -328,6 +341,13 @@ def _parser() -> argparse.ArgumentParser:
         default=None,
         help="stop after this much wall-clock time even if frames are left, a finite number > 0",
     )
+    ap.add_argument(
+        "--player",
+        choices=PLAYERS,
+        default="autopilot",
+        help="who plays (default autopilot; the naive stand, weave and stream lose a game in a minute or two, "
+        "so an hour plays hundreds of games)",
+    )
     ap.add_argument("--json", metavar="FILE", help="also write the summary to FILE")
     return ap
 
@@ -366,6 +386,7 @@ def main(argv: list[str] | None = None) -> int:
         args.progress_every,
         log=sys.stderr,
         max_wall_s=None if args.minutes is None else 60.0 * args.minutes,
+        player=args.player,
     )
     growth = summary["growth_after_warmup_pct"]
     failures = []

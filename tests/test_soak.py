@@ -27,6 +27,7 @@ from broadsword import soak as soak_mod
 from broadsword.data import load_level, resolve_level
 from broadsword.data.levels import FireSpec, PathSpec, WaveSpec
 from broadsword.sim import Pilot, World
+from broadsword.sim.naive import Naive, Script
 
 ROOT = Path(__file__).resolve().parents[1]
 FIELDS = {
@@ -160,6 +161,28 @@ def test_soak_restarts_after_game_over_with_derived_seeds(armatures, broadsword_
         h.update(w.state_hash().encode())
         game += 1
     assert game == s["games"] and h.hexdigest() == s["run_hash"]
+
+
+def test_a_naive_player_soaks_game_after_game(armatures, broadsword_level):
+    """``player="weave"``: the naive weaver plays each game (its own seed per game) and the
+    soak's run hash is the one of those games played one by one; the autopilot's differs."""
+    s = soak_mod.soak(broadsword_level, armatures, frames=300, seed=2, warmup=0, player="weave")
+    assert s["error"] is None and s["frames"] == 300 and s["player"] == "weave"
+    h = hashlib.sha256()
+    left, game = 300, 0
+    while left:
+        w = World(broadsword_level, armatures, soak_mod.game_seed(2, game))
+        weaver = Naive(Script.WEAVE, soak_mod.game_seed(2, game))
+        while left and not (w.over or w.complete):
+            w.step(weaver(w))
+            left -= 1
+        h.update(w.state_hash().encode())
+        game += 1
+    assert game == s["games"] and h.hexdigest() == s["run_hash"]
+    pilot = soak_mod.soak(broadsword_level, armatures, frames=300, seed=2, warmup=0)
+    assert pilot["player"] == "autopilot" and pilot["run_hash"] != s["run_hash"]
+    with pytest.raises(ValueError, match="player"):
+        soak_mod.soak(broadsword_level, armatures, frames=1, player="nobody")
 
 
 def test_soak_restarts_after_level_complete(armatures, broadsword_level):
