@@ -12,6 +12,7 @@ the next seed of a deterministic sequence (game 0 uses ``--seed`` itself, so it 
 played in all. 216,000 frames is one hour of game time at 60 Hz. ``--minutes`` stops it
 sooner, after that much wall-clock time (on a loaded machine an hour of game time can take
 many hours); the summary says how many frames were played and that the clock stopped it.
+Ctrl-C stops it the same way, with the summary of what was played (``interrupted``).
 
 Memory is the process's resident set size (RSS), read from ``/proc/self/statm`` (Linux),
 or, where there is none, the peak RSS from :func:`resource.getrusage` (which can only
@@ -166,7 +167,8 @@ def soak(
         ``wall_s``, ``fps``, ``step_ms_max`` (slowest frame: autopilot and step, wall
         clock), ``steps_over_a_frame`` (steps slower than 1/60 s of wall clock: on a
         shared machine, mostly other tenants), ``stopped_by_clock`` (``max_wall_s`` ran out
-        before ``frames``), ``error`` (``None``, or the exception's
+        before ``frames``), ``interrupted`` (Ctrl-C stopped it: the summary is of the frames
+        played, the game in progress left out of ``run_hash``), ``error`` (``None``, or the exception's
         traceback text as one string).
     """
     from .balance import make_player
@@ -203,7 +205,7 @@ def soak(
     world = runner.world
     pilot = make_player(player, game_seed(seed, 0))
     f = 0
-    stopped_by_clock = False
+    stopped_by_clock = interrupted = False
     try:
         while f < frames:
             t0 = clock()
@@ -251,6 +253,8 @@ def soak(
                     file=log,
                     flush=True,
                 )
+    except KeyboardInterrupt:  # Ctrl-C: stop and report what was played, as --minutes does
+        interrupted = True
     except Exception:  # noqa: BLE001 -- the soak's job is to report any exception, with its traceback
         error = traceback.format_exc()
     wall = clock() - t_start
@@ -259,7 +263,7 @@ def soak(
         hits += world.score.hits
         longest = max(longest, world.frame)
         boss_games += world.boss is not None and world.boss.state is not BossState.WAITING
-        if error is None:  # after an exception the state may be broken: the error is what counts
+        if error is None and not interrupted:  # a failed or interrupted step may leave it half made
             run_hash.update(world.state_hash().encode())
     final_rss, _ = rss_bytes()
     after = [r for fr, r in samples if fr > warmup] + ([final_rss] if final_rss and f > warmup else [])
@@ -299,6 +303,7 @@ def soak(
         "step_ms_max": round(step_max * 1e3, 2),
         "steps_over_a_frame": slow_steps,
         "stopped_by_clock": stopped_by_clock,
+        "interrupted": interrupted,
         "error": error,
     }
 
@@ -350,6 +355,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     ap.add_argument("--json", metavar="FILE", help="also write the summary to FILE")
     return ap
+
+
+def _stopped_by(summary: dict) -> str:
+    """What ended the run before its frames, for the verdict line (empty: the frames did)."""
+    if summary["interrupted"]:
+        return " (stopped by Ctrl-C)"
+    return " (stopped by --minutes)" if summary["stopped_by_clock"] else ""
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -410,7 +422,7 @@ def main(argv: list[str] | None = None) -> int:
     summary["ok"] = not failures
     print(
         f"broadsword soak: {'PASS' if summary['ok'] else 'FAIL (' + ', '.join(failures) + ')'}: "
-        f"{summary['frames']:,} frames{' (stopped by --minutes)' if summary['stopped_by_clock'] else ''}, "
+        f"{summary['frames']:,} frames{_stopped_by(summary)}, "
         f"{summary['games']} games ({summary['games_over']} over, "
         f"{summary['levels_complete']} complete), RSS warm-up {_mib(summary['rss_warmup_bytes'])}, "
         f"peak {_mib(summary['rss_peak_bytes'])}, final {_mib(summary['rss_final_bytes'])}, "

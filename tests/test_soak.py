@@ -299,3 +299,25 @@ def test_minutes_stops_the_soak_by_the_clock(armatures, broadsword_level, capsys
             soak_mod.main(["--frames", "10", "--minutes", bad])
         assert exc.value.code == 2
     assert "--minutes" in capsys.readouterr().err
+
+
+def test_ctrl_c_stops_the_soak_with_its_summary(monkeypatch, capsys):
+    """Ctrl-C during a long soak is not a lost hour: the run stops, and the summary of the
+    frames played is printed (JSON included) and says it was interrupted."""
+    from broadsword import runner as runner_mod
+
+    step = runner_mod.Runner.step
+    calls = iter(range(10**9))
+
+    def step_then_interrupt(self, inp):
+        if next(calls) == 120:
+            raise KeyboardInterrupt
+        return step(self, inp)
+
+    monkeypatch.setattr(runner_mod.Runner, "step", step_then_interrupt)
+    assert soak_mod.main(["--frames", "5000", "--warmup", "50", "--sample-every", "20", "--progress-every", "0"]) == 0
+    out, err = capsys.readouterr()
+    s = json.loads(out.strip().splitlines()[-1])
+    assert s["interrupted"] is True and s["stopped_by_clock"] is False and s["frames"] == 120
+    assert s["error"] is None and s["growth_after_warmup_pct"] is not None
+    assert "stopped by Ctrl-C" in err and "Traceback" not in err
