@@ -1,7 +1,8 @@
 """The one place this package takes its trigonometry from (BulletML's angles: degrees,
 0 = up, clockwise; x right, y down): :mod:`broadsword.collision.detmath`, whose results are
 the same bits on every machine (DESIGN.md, "Determinism"). ``heading_deg`` gives (-180, 180]
-and 0 for the zero vector; callers reduce to [0, 360) where they need to.
+and 0 for the zero vector; the machine brings directions into [0, 360] as libBulletML does
+(``machine.normalise_deg``) and keeps a default aim as measured.
 """
 
 from __future__ import annotations

@@ -11,6 +11,8 @@ frame after the previous one ends.
 
 from __future__ import annotations
 
+import math
+
 from .limits import MAX_REPEAT, MAX_STEPS_PER_FRAME
 from .model import (
     Accel,
@@ -31,6 +33,22 @@ from .model import (
     Wait,
 )
 from .store import AX, AY, DIR, NEVER, SPD, Movers
+
+
+def normalise_deg(d: float) -> float:
+    """``d`` degrees brought into [0, 360] as libBulletML does (subtract 360 while above 360,
+    add 360 while below 0): 360 stays 360 (and 720 gives 360), where ``d % 360`` would give 0.
+    The turn of a ``changeDirection`` is measured from the stored direction, so the two are
+    not interchangeable: exactly half a turn from 360 goes the other way than from 0. The
+    loops' result in closed form (their subtractions are exact, as ``fmod`` is; only the last
+    addition to a negative remainder rounds), so a huge value costs no loop."""
+    if d > 360.0:
+        r = math.fmod(d, 360.0)
+        return r if r != 0.0 else 360.0
+    if d < 0.0:
+        r = math.fmod(d, 360.0)
+        return r + 360.0 if r != 0.0 else 0.0
+    return d
 
 
 class _Seq:
@@ -143,7 +161,7 @@ class Thread:
             if self.pattern.orientation is Orientation.HORIZONTAL:
                 v -= 90.0
         elif d.kind is DirKind.RELATIVE:
-            v += float(movers.state[row, DIR]) % 360.0
+            v += float(movers.state[row, DIR])  # as stored, not reduced (libBulletML)
         elif d.kind is DirKind.SEQUENCE:
             if self.prev_dir is None:
                 v, aim = 0.0, True  # the first fire of a sequence aims (libBulletML)
@@ -151,7 +169,7 @@ class Thread:
                 v += self.prev_dir
         if aim:
             v += eng.aim(movers, row)
-        v %= 360.0
+        v = normalise_deg(v)
         if remember:
             self.prev_dir = v
         return v
@@ -176,7 +194,7 @@ class Thread:
             self._enter(eng, cmd, params)
         elif kind is ChangeDirection:
             term = self._term(eng, cmd.term, params)
-            first = float(movers.state[row, DIR]) % 360.0
+            first = float(movers.state[row, DIR])  # as stored: the turn is measured from it (libBulletML)
             if cmd.direction.kind is DirKind.SEQUENCE:
                 final = first + eng.evaluate(cmd.direction.expr, params) * term
             else:
@@ -240,7 +258,7 @@ class Thread:
         if speed is None:
             speed = self.prev_spd = 1.0
         if direction is None:
-            direction = self.prev_dir = eng.aim(movers, row) % 360.0
+            direction = self.prev_dir = eng.aim(movers, row)  # the aim as it is, (-180, 180] (libBulletML)
         eng.spawn(movers, row, direction, speed, self.pattern, bullet.actions, params)
 
 
