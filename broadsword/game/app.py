@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 import pygame
@@ -42,10 +41,7 @@ from .run import Run, StageTitles, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import SceneStack
 from .scenes.how_to_play import draw_first_run_hint
-from .scenes.play import (
-    MAX_CATCH_UP,  # noqa: F401  (the loop's limit, named where the app is)
-    ReplayInput,
-)
+from .scenes.play import MAX_CATCH_UP  # noqa: F401  (the loop's limit, named where the app is)
 from .scenes.theatre import Theatre
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores, data_home
@@ -128,7 +124,6 @@ class App:
         self.controls = Controls(bindings)
         self.levels = list_levels()
         self.replays = Replays(ReplayLibrary(self.data / "replays", self.levels))  # kept and saved runs
-        self.after_replay: Callable[[], None] | None = None  # a replay's end, done (None: close, as --replay)
         self.error: str | None = None  # the last level load failure, one line, shown on the title
         self.custom_level: str | None = None
         if start_level is not None and start_level not in self.levels:
@@ -288,7 +283,7 @@ class App:
         play = self.play
         mark = None
         if play is not None and play.watched:
-            mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
+            mark = Mark.DEMO
         elif play is not None and play.practice is not None:
             mark = Mark.PRACTICE
         elif play is not None and play.runner.recorder.info.kind is RunKind.TAKE_OVER:
@@ -343,24 +338,6 @@ class App:
         self.stack.reset(play)
         return play
 
-    def watch_replay(self, rec: Recording, path: str) -> Play:
-        """Play recording ``rec`` (read from ``path``) on screen: its inputs and toggles drive
-        the world, with pause, single-step and the overlay; at its end, or at the first
-        frame that differs, a message says which (the frame and the part of the state).
-        DataError if its level cannot load or has changed since it was recorded."""
-        runner = Runner.replaying(rec, path, self.bank.armatures)
-        return self.watch_stage(runner, path)
-
-    def watch_stage(self, runner: Runner, path: str) -> Play:
-        """Watch the stage in play of ``runner`` (a replay's), with its own stage's music."""
-        world = runner.world
-        run = Run.of_level(runner.stage.level_ref, self.levels, world.settings.difficulty)
-        self.error = None
-        self.runner = runner
-        play = Play(self, runner, run, ReplayInput(runner, path))
-        self.stack.reset(play)
-        return play
-
     def use_screen(self, size: tuple[int, int] | None = None) -> None:
         """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on,
         alone in the window; ``None``: the field again, beside the side panel
@@ -378,7 +355,6 @@ class App:
     def to_title(self) -> None:
         """Back to the title; a run quit in the middle is kept first (:func:`.replays.keep_run`)."""
         keep_run(self)
-        self.after_replay = None
         self.stack.reset(Title(self))
 
     def report(self, exc: DataError) -> None:

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-from collections.abc import Callable
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -92,16 +91,15 @@ def keep_run(app: App) -> None:
         print(f"broadsword: {warning}", file=sys.stderr)
 
 
-def watch_file(app: App, path: Path, back: Callable[[], None]) -> str | None:
-    """Watch the replay file ``path`` in the replay theatre, and ``back`` when the viewer
-    leaves it (Esc): the one way the list opens a replay. Returns why it cannot be watched
-    (one line), the list staying as it was."""
+def watch_file(app: App, path: Path) -> str | None:
+    """Watch the replay file ``path`` in the replay theatre, over the list (Esc goes back to
+    it): the one way the list opens a replay. Returns why it cannot be watched (one line),
+    the list staying as it was."""
     from .scenes.theatre import load_theatre
 
     try:
         theatre = load_theatre(app, path)
     except DataError as exc:
         return str(exc)
-    app.after_replay = back
     app.stack.push(theatre)
     return None

@@ -113,7 +113,11 @@ def test_speed__a_run_records_it_and_its_score_keeps_it(tmp_path):
 
 
 def test_speed__a_replay_plays_at_its_recorded_speed(tmp_path):
-    """Recorded at 50 %, watched with the option at 100 %: half the steps in the same wall time."""
+    """Recorded at 50 %, watched in the theatre with the option at 100 %: half the steps in
+    the same wall time."""
+    from broadsword.data.recordings import save_recording
+    from broadsword.game.scenes.theatre import open_theatre
+
     (tmp_path / "a").mkdir()
     app = App(seed=1, demo=True, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path / "a")
     try:
@@ -129,9 +133,10 @@ def test_speed__a_replay_plays_at_its_recorded_speed(tmp_path):
     app = App(seed=1, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path / "b")
     try:
         assert app.options.speed == 100
-        app.watch_replay(rec, "run.json")
+        save_recording(tmp_path / "run.json", rec)
+        open_theatre(app, tmp_path / "run.json")
         for _ in range(60):
             app.frame(DT)
-        assert app.play.speed == 50 and app.world.frame == 30
+        assert app.scene.recorded_speed == 0.5 and app.world.frame == 30
     finally:
         pygame.quit()

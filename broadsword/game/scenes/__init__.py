@@ -4,7 +4,7 @@
 :class:`Pause`, :class:`Results` (after each stage), :class:`Continue` (after a game over,
 while continues remain) and :class:`GameOver` (the run's end, or its victory) pushed over
 it; :class:`NameEntry` and :class:`HighScoresScene` after a run; :class:`OptionsScene`
-from the title; :class:`ReplayEnd` over a recording played on screen; the lab
+from the title; the replay list and the theatre (:mod:`.replay_list`, :mod:`.theatre`); the lab
 (:mod:`.lab`) and the editor (:mod:`.editor`) wrap their own objects.
 """
 

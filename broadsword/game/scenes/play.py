@@ -1,12 +1,11 @@
 """A stage in play: the world stepping at a fixed rate, driven by the player, the autopilot
 or a recording, drawn with interpolation, the overlay on top when toggled.
 
-The stage runs in the run's :class:`~broadsword.runner.Runner` (which records it, and checks
-a replay frame by frame): :meth:`Play.step` is the runner's step, the one the benchmark times.
-Where its input comes from is an :class:`InputSource`: :class:`PlayerInput` (keys and pad
-through the bindings), :class:`Pilot` (the autopilot) or :class:`ReplayInput` (a recording's
-inputs and live toggles, every stage of it). What a stage's end or a game over leads to
-(results, continue, game over, the replay's end) is pushed over this scene.
+The stage runs in the run's :class:`~broadsword.runner.Runner` (which records it):
+:meth:`Play.step` is the runner's step, the one the benchmark times. Where its input comes
+from is an :class:`InputSource`: :class:`PlayerInput` (keys and pad through the bindings) or
+:class:`AutopilotInput`. What a stage's end or a game over leads to (results, continue, game
+over) is pushed over this scene. A recording is watched in the theatre (:mod:`.theatre`).
 """
 
 from __future__ import annotations
@@ -15,9 +14,8 @@ from typing import Protocol
 
 import pygame
 
-from ...data import DataError
 from ...data.recordings import RunKind
-from ...runner import Playback, Runner
+from ...runner import Runner
 from ...sim import DT, Input, Pilot, World
 from ...sim.hitlog import Outcome
 from .. import heap
@@ -38,8 +36,8 @@ class InputSource(Protocol):
     #: never enters the high-score table.
     watched: bool
 
-    def next(self, world: World) -> Input | None:
-        """This step's input (None: the source has run out)."""
+    def next(self, world: World) -> Input:
+        """This step's input."""
 
     def stepped(self, world: World) -> None:
         """Called after each step."""
@@ -71,36 +69,6 @@ class AutopilotInput:
         pass
 
 
-class ReplayInput:
-    """A recording's inputs, played by a runner made by :meth:`Runner.replaying` (read from
-    ``path``); its ``playback`` says where it first differed, if it did."""
-
-    watched = True
-
-    def __init__(self, runner: Runner, path: str):
-        self.runner, self.path = runner, path
-        self.error: str | None = None  # why the next stage could not open, if it could not
-
-    @property
-    def playback(self) -> Playback:
-        assert self.runner.playback is not None  # a replaying runner has one
-        return self.runner.playback
-
-    def next(self, world: World) -> Input | None:
-        return self.runner.replay_input()
-
-    def stepped(self, world: World) -> None:
-        pass
-
-    def next_stage(self, armatures: dict) -> bool:
-        """Go on to the recording's next stage when this one was played to its end."""
-        try:
-            return self.runner.replay_next_stage(self.path, armatures)
-        except DataError as exc:
-            self.error = str(exc)
-            return False
-
-
 class Play:
     """A stage in play. ``world`` steps in :meth:`update`; ``step_once`` runs one step
     whatever the pause state (F2)."""
@@ -119,7 +87,7 @@ class Play:
         self.source = source
         self.accumulator = 0.0
         self.slow_motion = False
-        self.ended = False  # the stage is over (results, continue, game over or replay end on top)
+        self.ended = False  # the stage is over (results, continue or game over on top)
         heap.settle()  # the stage is loaded: no full garbage collection walks it in play
 
     @property
@@ -134,10 +102,8 @@ class Play:
 
     @property
     def speed(self) -> int:
-        """The game speed this stage runs at, % of real time: a replay's as recorded
-        (``Recording.info.speed``), else the options' (the run records it: App.play_stage)."""
-        if isinstance(self.source, ReplayInput):
-            return self.source.playback.rec.info.speed
+        """The game speed this stage runs at, % of real time: the options' (the run records
+        it: App.play_stage; the theatre plays a recording at its own)."""
         return self.app.options.speed
 
     # ------------------------------------------------------------------ events
@@ -147,7 +113,7 @@ class Play:
             self.app.overlay.visible = not self.app.overlay.visible
         elif Action.SLOW_MOTION in actions:
             self.slow_motion = not self.slow_motion
-        elif Action.ROTATION in actions and not isinstance(self.source, ReplayInput):
+        elif Action.ROTATION in actions:
             self.world.set_rotation("exact" if self.world.rotation == "lut" else "lut")
         elif actions & {Action.PAUSE, Action.BACK}:
             from .pause import Pause
@@ -177,13 +143,6 @@ class Play:
         """One fixed step: input, world, sounds and effects, then what its end leads to."""
         world = self.world
         inp = self.source.next(world)
-        if inp is None:  # a recording's stage ran out (or ended, or differed)
-            if isinstance(self.source, ReplayInput) and self.source.next_stage(self.app.bank.armatures):
-                self.ended = True
-                self.app.watch_stage(self.runner, self.source.path)  # its next stage, with its music
-            else:
-                self._end_replay()
-            return
         ev = self.runner.step(inp)
         self.source.stepped(world)
         self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
@@ -196,11 +155,6 @@ class Play:
 
             self.ended = True
             self.app.stack.push(PracticeResult(self.app, self.practice, outcome))
-        elif isinstance(self.source, ReplayInput):
-            playback = self.source.playback
-            if playback.divergence is not None or playback.done:
-                playback.end_stage(world)
-                self._end_replay()
         elif ev.game_over:
             self._game_over()
         elif ev.level_complete:
@@ -222,12 +176,6 @@ class Play:
         self.ended = True
         self.app.stack.push(Results(self.app, self))
 
-    def _end_replay(self) -> None:
-        from .replay_end import ReplayEnd
-
-        self.ended = True
-        self.app.stack.push(ReplayEnd(self.app, self))
-
     def resume(self) -> None:
         """Back from a continue: play on."""
         self.ended = False
@@ -246,7 +194,7 @@ class Play:
         app = self.app
         alpha = min(self.accumulator / DT, 1.0) if app.stack.top is self else 1.0
         hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
-        on_top = app.stack.top is self  # else a screen's heading (pause, replay end) is over the field
+        on_top = app.stack.top is self  # else a screen's heading (pause, results) is over the field
         app.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
         modes = self.modes()
         if modes:  # top centre, between graze and bombs (below the lives): why the game looks different

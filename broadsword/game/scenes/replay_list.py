@@ -140,8 +140,7 @@ class ReplayList:
         if entry.broken is not None:
             self.say(f"cannot watch it: {entry.broken}", bad=True)
             return
-        app = self.app
-        why = watch_file(app, entry.path, back=lambda: app.stack.reset(ReplayList(app)))
+        why = watch_file(self.app, entry.path)
         if why is not None:
             self.say(why, bad=True)
 

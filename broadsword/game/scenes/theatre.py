@@ -293,13 +293,9 @@ class Theatre:
         return None if at is None else (at[0] - FIELD_RECT.left, at[1] - FIELD_RECT.top)
 
     def leave(self) -> None:
-        """Esc: back to what opened the theatre (``app.after_replay``, the replay list's way
-        back; else the scene under it), else the title."""
-        back, self.app.after_replay = self.app.after_replay, None
+        """Esc: back to the scene under the theatre (the replay list, the title), else the title."""
         stack = self.app.stack
-        if back is not None:
-            back()
-        elif len(stack.scenes) > 1 and stack.top is self:
+        if len(stack.scenes) > 1 and stack.top is self:
             stack.pop()
         else:
             self.app.to_title()
@@ -391,7 +387,7 @@ def load_theatre(app: App, path: str | Path) -> Theatre:
 
 def open_theatre(app: App, path: str | Path) -> None:
     """Open the recording at ``path`` in the theatre, over the scene on top (Esc goes back to
-    it, or to ``app.after_replay`` when that is set). A file that cannot be read or played is
+    it). A file that cannot be read or played is
     said where the game says load errors (:meth:`App.report`: the title's line), and nothing
     opens."""
     try:
