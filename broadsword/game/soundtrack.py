@@ -17,15 +17,17 @@ from ..sim import World
 from .music import Track
 from .run import Run
 from .scenes import GameOver, NameEntry, Play, Results
+from .scenes.context import SceneContext
 from .scenes.lab import LabScene
 from .scenes.theatre import Theatre
 
 __all__ = ["soundtrack", "follow"]
 
 
-def soundtrack(app) -> Track | None:
-    """The track for ``app``'s scene stack now; None to leave the music as it is."""
-    top = app.stack.top
+def soundtrack(ctx: SceneContext) -> Track | None:
+    """The track for the scene stack now (``ctx.scenes``); None to leave the music as it is."""
+    scenes = ctx.scenes
+    top = scenes.top
     if isinstance(top, GameOver):
         return Track.CLEAR if top.victory else Track.GAME_OVER
     if isinstance(top, Results):
@@ -34,14 +36,14 @@ def soundtrack(app) -> Track | None:
         return None
     if isinstance(top, LabScene):
         return None
-    play = app.stack.find(Play)
+    play = scenes.find(Play)
     if play is not None:
-        return stage_track(play.run, play.world, app.levels)
-    theatre = app.stack.find(Theatre)
+        return stage_track(play.run, play.world, ctx.levels)
+    theatre = scenes.find(Theatre)
     if theatre is not None:  # the recorded stage's own music, stage after stage
         world = theatre.world
-        run = Run.of_level(theatre.runner.stage.level_ref, app.levels, world.settings.difficulty)
-        return stage_track(run, world, app.levels)
+        run = Run.of_level(theatre.runner.stage.level_ref, ctx.levels, world.settings.difficulty)
+        return stage_track(run, world, ctx.levels)
     return Track.TITLE
 
 
@@ -55,11 +57,11 @@ def stage_track(run: Run, world: World, levels: list[str]) -> Track:
     return Track.stage(run.level_index + 1)
 
 
-def follow(app) -> None:
-    """Set ``app.audio``'s volumes from the options and play :func:`soundtrack`'s track."""
-    audio = app.audio
-    audio.music_volume = app.options.volume("music")
-    audio.sound_volume = app.options.volume("sound")
-    track = soundtrack(app)
+def follow(ctx: SceneContext) -> None:
+    """Set ``ctx.audio``'s volumes from the options and play :func:`soundtrack`'s track."""
+    audio = ctx.audio
+    audio.music_volume = ctx.options.volume("music")
+    audio.sound_volume = ctx.options.volume("sound")
+    track = soundtrack(ctx)
     if track is not None:
         audio.play_music(track)

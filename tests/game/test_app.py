@@ -36,7 +36,7 @@ LATE = WaveSpec(
 def quiet(app: App, waves=(LATE,)) -> World:
     """Start play in an emptied first level (plus ``waves``), past the spawn grace period."""
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)
-    world = World(level, app.bank.armatures, seed=1)
+    world = World(level, app.ctx.bank.armatures, seed=1)
     app.play_stage(Stage(world, "1-picket", ""), Run(0))
     world.player.invulnerable = 0.0
     return world
@@ -150,16 +150,16 @@ def test_app__pause_stops_the_world_and_f2_steps(app):
 def test_app__overlay_draws_grid_and_armatures(app):
     w = quiet(app)
     frames(app, 2)
-    before = pygame.surfarray.array3d(app.screen).copy()
+    before = pygame.surfarray.array3d(app.ctx.display.screen).copy()
     key(app, pygame.K_F1)
     frames(app, 1)
-    after = pygame.surfarray.array3d(app.screen)
+    after = pygame.surfarray.array3d(app.ctx.display.screen)
     grid = w.collision.result.broad.layout
     # A vertical grid line, at a row far from the player and the panel.
     gx = int(round(grid.origin[0] + grid.size))
     assert tuple(after[gx, 300]) == (50, 80, 130) and tuple(before[gx, 300]) != (50, 80, 130)
     # The player's armature outline, in the player layer's colour, on its first vertex.
-    vx, vy = (w.player.pos + app.bank.armatures["player"].armature.vertices[0]).round().astype(int)
+    vx, vy = (w.player.pos + app.ctx.bank.armatures["player"].armature.vertices[0]).round().astype(int)
     near = after[vx - 1 : vx + 2, vy - 1 : vy + 2].reshape(-1, 3)
     assert any(tuple(c) == (80, 255, 255) for c in near)
 
@@ -170,13 +170,13 @@ def test_app__overlay_keys_reach_the_overlay_only_while_it_shows(app):
     quiet(app)
     key(app, KEY_SWEPT)  # overlay hidden: not its key
     frames(app, 1)
-    assert not app.overlay.swept
+    assert not app.ctx.overlay.swept
     key(app, pygame.K_F1)
     key(app, KEY_SWEPT)
     key(app, KEY_PANEL)
     frames(app, 2)
-    assert app.overlay.visible and app.overlay.swept and app.overlay.place is PanelPlace.TOP_LEFT
-    assert len(app.overlay.history) >= 1  # the frame-time graph records the steps it saw
+    assert app.ctx.overlay.visible and app.ctx.overlay.swept and app.ctx.overlay.place is PanelPlace.TOP_LEFT
+    assert len(app.ctx.overlay.history) >= 1  # the frame-time graph records the steps it saw
 
 
 def test_app__overlay_does_not_change_the_game(tmp_path):
@@ -184,7 +184,7 @@ def test_app__overlay_does_not_change_the_game(tmp_path):
     for overlay in (False, True):
         a = App(seed=4, audio=False, demo=True, scores=HighScores(tmp_path / f"s{overlay}.json"))
         a.start_run()
-        a.overlay.visible = overlay
+        a.ctx.overlay.visible = overlay
         frames(a, 240)
         hashes.append(a.world.state_hash())
         pygame.quit()
@@ -231,7 +231,7 @@ class StubPad:
 
 def test_app__gamepad_moves_and_fires(app):
     w = quiet(app)
-    app.controls.pad = StubPad()
+    app.ctx.controls.pad = StubPad()
     x0, y0 = w.player.pos
     frames(app, 20)
     assert w.player.pos[0] < x0 and w.player.pos[1] < y0 and w.player_bullets.n > 0
@@ -240,7 +240,7 @@ def test_app__gamepad_moves_and_fires(app):
 def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
     app = App(audio=False, scores=HighScores(tmp_path / "s.json"), lab=(20, 200))
     frames(app, 3)
-    assert isinstance(app.scene, LabScene) and app.scene.lab.frame == 3 and app.overlay.visible
+    assert isinstance(app.scene, LabScene) and app.scene.lab.frame == 3 and app.ctx.overlay.visible
     lab = app.scene.lab
     assert [s.name for s in lab.last.stats][:3] == ["layers", "pose", "bins"]
     key(app, pygame.K_t)  # next tier mix
@@ -248,7 +248,7 @@ def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
     frames(app, 1)
     assert lab.pipeline.tiers == ("bins", "circle", "armature") and lab.pipeline.rotation == "exact"
     grid = lab.last.broad.layout
-    img = pygame.surfarray.array3d(app.screen)
+    img = pygame.surfarray.array3d(app.ctx.display.screen)
     gx = int(round(grid.origin[0] + grid.size))
     assert (img[gx, 300:700] == (50, 80, 130)).all(axis=1).any()  # grid lines drawn
     pygame.quit()

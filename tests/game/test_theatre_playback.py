@@ -15,7 +15,8 @@ import pytest
 from broadsword import cli
 from broadsword.data.recordings import save_recording
 from broadsword.game.app import App
-from broadsword.game.scenes.theatre import Theatre, open_theatre
+from broadsword.game.panel_state import panel_info
+from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.game.sidebar import Mark
 from broadsword.headless import run_headless
@@ -46,8 +47,8 @@ def key(k):
 def watch(app, rec, path) -> Theatre:
     """Open ``rec`` (saved at ``path``) in the theatre, as the replay list does."""
     save_recording(path, rec)
-    open_theatre(app, path)
-    assert isinstance(app.scene, Theatre), app.error
+    app.watch(path)
+    assert isinstance(app.scene, Theatre), app.ctx.error
     return app.scene
 
 
@@ -62,13 +63,13 @@ def play_out(app, theatre, frames) -> None:
 def test_theatre__plays_the_recording_to_its_end_as_recorded(app, recording, tmp_path):
     rec, final_hash = recording
     theatre = watch(app, rec, tmp_path / "run.json")
-    assert app.panel_info().mark is Mark.REPLAY  # the side panel says so
+    assert panel_info(app.ctx).mark is Mark.REPLAY  # the side panel says so
     play_out(app, theatre, FRAMES + 5)
     assert theatre.paused and theatre.frame == FRAMES and theatre.seeker.divergence is None
     assert app.world.frame == FRAMES and app.world.state_hash() == final_hash
     assert app.world.toggles[0].frame == 40  # the recorded toggle was applied on its frame
     app.render()
-    assert not any("REPLAY" in line for line in app.painter.said)  # no banner: it matched
+    assert not any("REPLAY" in line for line in app.ctx.painter.said)  # no banner: it matched
 
 
 def test_theatre__pause_single_step_overlay_and_no_live_toggle(app, recording, tmp_path):
@@ -87,7 +88,7 @@ def test_theatre__pause_single_step_overlay_and_no_live_toggle(app, recording, t
     assert app.world.frame == frame + 1
     key(pygame.K_F1)
     app.frame(0.0)
-    assert app.overlay.visible
+    assert app.ctx.overlay.visible
     key(pygame.K_F4)  # a live toggle would change a replay's outcome: not while watching
     key(pygame.K_RIGHT)
     app.frame(0.0)
@@ -102,7 +103,7 @@ def test_theatre__a_different_ending_is_said(app, recording, tmp_path):
     play_out(app, theatre, FRAMES + 5)
     assert theatre.paused and theatre.seeker.divergence is not None
     app.render()
-    assert f"REPLAY DIFFERS from frame {FRAMES}: a checkpoint's hash" in app.painter.said
+    assert f"REPLAY DIFFERS from frame {FRAMES}: a checkpoint's hash" in app.ctx.painter.said
 
 
 def test_theatre__the_first_frame_that_differs_and_its_part_are_said(app, recording, tmp_path):
@@ -119,7 +120,7 @@ def test_theatre__the_first_frame_that_differs_and_its_part_are_said(app, record
     play_out(app, theatre, FRAMES + 5)
     assert theatre.paused and app.world.frame == k + 1
     app.render()
-    assert f"REPLAY DIFFERS from frame {k + 1:,}: the player" in app.painter.said
+    assert f"REPLAY DIFFERS from frame {k + 1:,}: the player" in app.ctx.painter.said
 
 
 def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
@@ -157,16 +158,18 @@ def test_theatre__plays_the_recorded_stages_music(app, index, tmp_path):
     from broadsword.runner import Runner, StageStart
     from broadsword.sim import Input
 
-    level = app.levels[index]
-    runner = Runner.open(StageStart(level, 3), app.bank.armatures)
+    level = app.ctx.levels[index]
+    runner = Runner.open(StageStart(level, 3), app.ctx.bank.armatures)
     for _ in range(5):
         runner.step(Input())
     theatre = watch(app, runner.recording(), tmp_path / "run.json")
     app.frame(DT)
-    assert soundtrack(app) is Track.stage(index + 1)
-    run = Run.of_level(theatre.runner.stage.level_ref, app.levels, theatre.world.settings.difficulty)
+    assert soundtrack(app.ctx) is Track.stage(index + 1)
+    run = Run.of_level(theatre.runner.stage.level_ref, app.ctx.levels, theatre.world.settings.difficulty)
     fighting = SimpleNamespace(boss=SimpleNamespace(fighting=True))  # a world whose boss fights
-    assert stage_track(run, fighting, app.levels) is (Track.FINAL_BOSS if index + 1 == len(app.levels) else Track.BOSS)
+    assert stage_track(run, fighting, app.ctx.levels) is (
+        Track.FINAL_BOSS if index + 1 == len(app.ctx.levels) else Track.BOSS
+    )
 
 
 def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(tmp_path, monkeypatch, capsys):
@@ -184,9 +187,9 @@ def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(t
     def run(self):
         for _ in range(30):
             self.frame(DT)
-        self.play._cleared()  # stage 1 ends (its results screen), then on to stage 2
+        self.apply(self.play._cleared())  # stage 1 ends (its results screen), then on to stage 2
         ends.append(self.world.score.points)
-        self.scene.next()
+        self.apply(self.scene.next())
         for _ in range(20):
             self.frame(DT)
         ends.append(self.world.state_hash())
@@ -204,13 +207,13 @@ def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(t
     assert summary["frames"] == 50 and summary["stages"] == 2
 
     app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path / "data")
-    open_theatre(app, path)
+    app.watch(path)
     theatre = app.scene
     assert isinstance(theatre, Theatre)
     tracks = set()
     for _ in range(60):
         app.frame(DT)
-        tracks.add(soundtrack(app))
+        tracks.add(soundtrack(app.ctx))
     assert theatre.paused and theatre.frame == 50 and theatre.seeker.divergence is None
     assert app.world.level.name == "2-gauntlet" and app.world.state_hash() == ends[1]
     assert {Track.stage(1), Track.stage(2)} <= tracks
@@ -236,7 +239,7 @@ def test_replay_window__a_bad_recording_opens_the_title_and_says_why(tmp_path, r
 
     def run(self):
         self.frame(DT)
-        seen.append((type(self.scene), self.error))
+        seen.append((type(self.scene), self.ctx.error))
 
     monkeypatch.setattr(App, "run", run)
     assert cli.main(["--replay", str(path), "--mute"]) == 0

@@ -21,7 +21,17 @@ from ...sim.hitlog import Outcome
 from .. import heap
 from ..controls import Action, Controls
 from ..lasers import draw_laser_armatures
+from ..practice_run import Outcome as PracticeOutcome
 from ..practice_run import PracticeRun
+from ..run import Run
+from .base import Handled, Push, Tick
+from .context import SceneContext
+from .continue_screen import Continue
+from .game_over import GameOver
+from .hit_freeze import HitFreeze
+from .pause import Pause
+from .practice_result import PracticeResult
+from .results import Results
 
 #: Slow motion (F3) runs the world at this share of real time.
 SLOW_MOTION = 0.25
@@ -76,15 +86,20 @@ class Play:
     opaque = True
 
     def __init__(
-        self, app, runner: Runner, run, source: InputSource | None = None, practice: PracticeRun | None = None
+        self,
+        ctx: SceneContext,
+        runner: Runner,
+        run: Run,
+        source: InputSource | None = None,
+        practice: PracticeRun | None = None,
     ):
-        self.app, self.run, self.runner = app, run, runner
+        self.ctx, self.run, self.runner = ctx, run, runner
         self.practice = practice  # a practice: it ends when its phase does (or the lives run out)
         self.world = runner.world
         self.level_ref = runner.stage.level_ref
         if source is None:
-            source = AutopilotInput() if app.demo else PlayerInput(app.controls)
-        self.source = source
+            source = AutopilotInput() if ctx.demo else PlayerInput(ctx.controls)
+        self.source: InputSource = source
         self.accumulator = 0.0
         self.slow_motion = False
         self.ended = False  # the stage is over (results, continue or game over on top)
@@ -104,77 +119,76 @@ class Play:
     def speed(self) -> int:
         """The game speed this stage runs at, % of real time: the options' (the run records
         it: App.play_stage; the theatre plays a recording at its own)."""
-        return self.app.options.speed
+        return self.ctx.options.speed
 
     # ------------------------------------------------------------------ events
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if Action.OVERLAY in actions:
-            self.app.overlay.visible = not self.app.overlay.visible
+            self.ctx.overlay.visible = not self.ctx.overlay.visible
         elif Action.SLOW_MOTION in actions:
             self.slow_motion = not self.slow_motion
         elif Action.ROTATION in actions:
             self.world.set_rotation("exact" if self.world.rotation == "lut" else "lut")
         elif actions & {Action.PAUSE, Action.BACK}:
-            from .pause import Pause
-
-            self.app.audio.play("pause")
-            self.app.stack.push(Pause(self.app, self))
+            self.ctx.audio.play("pause")
+            return Push(Pause(self.ctx, self))
         else:
             return False
         return True
 
     # ------------------------------------------------------------------ stepping
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
+        """Steps due by the wall clock (at most ``MAX_CATCH_UP``), up to the first whose end
+        brings a screen over the stage."""
         # the game speed scales the wall clock only: the same steps, fewer a second
         self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0) * self.speed / 100
         steps = 0
         while self.accumulator >= DT and steps < MAX_CATCH_UP and not self.ended:
-            self.step()
+            then = self.step()
             steps += 1
             self.accumulator -= DT
-            if self.app.stack.top is not self:
-                break
+            if then is not None:
+                return Tick(steps, then)
         if steps == MAX_CATCH_UP:
             self.accumulator = min(self.accumulator, DT)  # drop the backlog: slow down, don't spiral
-        return steps
+        return Tick(steps)
 
-    def step(self) -> None:
-        """One fixed step: input, world, sounds and effects, then what its end leads to."""
+    def step(self) -> Push | None:
+        """One fixed step: input, world, sounds and effects; returns the screen its end
+        brings over the stage, if any: a miss's freeze (what hit), then the stage's end."""
         world = self.world
         inp = self.source.next(world)
         ev = self.runner.step(inp)
         self.source.stepped(world)
-        self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
-        if ev.hit is not None and ev.hit.outcome is Outcome.MISS and self.app.options.show_hits and not self.app.demo:
-            from .hit_freeze import HitFreeze
+        self.ctx.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
+        practice = self.practice.outcome(ev, world) if self.practice is not None else None
+        end = self._ended(ev.game_over, ev.level_complete, practice)
+        if ev.hit is not None and ev.hit.outcome is Outcome.MISS and self.ctx.options.show_hits and not self.ctx.demo:
+            return Push(HitFreeze(self.ctx, self, ev.hit, then=end))  # a wall-clock freeze, never state
+        return end
 
-            self.app.stack.push(HitFreeze(self.app, self, ev.hit))  # what hit: a wall-clock freeze, never state
-        if self.practice is not None and (outcome := self.practice.outcome(ev, world)) is not None:
-            from .practice_result import PracticeResult
-
+    def _ended(self, game_over: bool, cleared: bool, practice: PracticeOutcome | None) -> Push | None:
+        """The screen the stage's end brings: a practice's result, the continue or game-over
+        screen, the results; None while it goes on."""
+        if practice is not None and self.practice is not None:
             self.ended = True
-            self.app.stack.push(PracticeResult(self.app, self.practice, outcome))
-        elif ev.game_over:
-            self._game_over()
-        elif ev.level_complete:
-            self._cleared()
+            return Push(PracticeResult(self.ctx, self.practice, practice))
+        if game_over:
+            return self._game_over()
+        if cleared:
+            return self._cleared()
+        return None
 
-    def _game_over(self) -> None:
-        from .continue_screen import Continue
-        from .game_over import GameOver
-
+    def _game_over(self) -> Push:
         self.ended = True
         if not self.watched and self.world.progress.can_continue:
-            self.app.stack.push(Continue(self.app, self))
-        else:
-            self.app.stack.push(GameOver(self.app, self, victory=False))
+            return Push(Continue(self.ctx, self))
+        return Push(GameOver(self.ctx, self, victory=False))
 
-    def _cleared(self) -> None:
-        from .results import Results
-
+    def _cleared(self) -> Push:
         self.ended = True
-        self.app.stack.push(Results(self.app, self))
+        return Push(Results(self.ctx, self))
 
     def resume(self) -> None:
         """Back from a continue: play on."""
@@ -191,18 +205,16 @@ class Play:
         return modes
 
     def draw(self, surf: pygame.Surface) -> None:
-        app = self.app
-        alpha = min(self.accumulator / DT, 1.0) if app.stack.top is self else 1.0
-        hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
-        on_top = app.stack.top is self  # else a screen's heading (pause, results) is over the field
-        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
+        ctx = self.ctx
+        alpha = min(self.accumulator / DT, 1.0) if ctx.scenes.top is self else 1.0
+        hitbox = ctx.options.always_hitbox or (not self.watched and ctx.controls.input().slow)
+        on_top = ctx.scenes.top is self  # else a screen's heading (pause, results) is over the field
+        ctx.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
         modes = self.modes()
         if modes:  # top centre, between graze and bombs (below the lives): why the game looks different
-            app.painter.text("   ".join(modes), 38, MODE_SIZE, colour=MODE_COLOUR)
-        if app.overlay.visible:
+            ctx.painter.text("   ".join(modes), 38, MODE_SIZE, colour=MODE_COLOUR)
+        if ctx.overlay.visible:
             record = self.world.collision
-            from .pause import Pause
-
-            paused = isinstance(app.stack.top, Pause)
+            paused = isinstance(ctx.scenes.top, Pause)
             draw_laser_armatures(surf, self.world)  # under the overlay's panel
-            app.overlay.draw(surf, record.result if record is not None else None, app.fps, paused)
+            ctx.overlay.draw(surf, record.result if record is not None else None, ctx.fps, paused)
