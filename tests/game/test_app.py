@@ -7,6 +7,8 @@ import dataclasses
 import numpy as np
 import pygame
 import pytest
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword.collision import polygons_collide, pose
 from broadsword.data import load_level, resolve_level
@@ -42,20 +44,9 @@ def quiet(app: App, waves=(LATE,)) -> World:
     return world
 
 
-def key(app, k, down=True):
-    pygame.event.post(
-        pygame.event.Event(pygame.KEYDOWN if down else pygame.KEYUP, key=k, mod=0, unicode="", scancode=0)
-    )
-
-
-def frames(app, n):
-    for _ in range(n):
-        app.frame(DT)
-
-
 def test_app__title_then_play(app):
     assert isinstance(app.scene, Title)
-    key(app, pygame.K_RETURN)
+    key(pygame.K_RETURN)
     frames(app, 1)
     assert isinstance(app.scene, Play) and app.world is not None
 
@@ -63,13 +54,13 @@ def test_app__title_then_play(app):
 def test_app__player_moves_and_fires(app):
     w = quiet(app)
     x0 = w.player.pos[0]
-    key(app, pygame.K_RIGHT)
-    key(app, pygame.K_z)
+    key(pygame.K_RIGHT)
+    key(pygame.K_z)
     frames(app, 30)
     assert w.player.pos[0] == pytest.approx(x0 + 30 * w.level.player.speed * DT)
     assert w.player_bullets.n > 0
-    key(app, pygame.K_RIGHT, down=False)
-    key(app, pygame.K_z, down=False)
+    key(pygame.K_RIGHT, up=True)
+    key(pygame.K_z, up=True)
     frames(app, 1)
     x1 = w.player.pos[0]
     frames(app, 10)
@@ -90,7 +81,7 @@ def test_app__bullet_kills_enemy_and_score_rises(app):
     )
     w = quiet(app, (target, LATE))
     w.rng = np.random.default_rng(0)
-    key(app, pygame.K_SPACE)
+    key(pygame.K_SPACE)
     for _ in range(240):
         frames(app, 1)
         if w.score.points:
@@ -116,7 +107,7 @@ def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
             expected = k
             break
     lives = w.player.lives
-    key(app, pygame.K_UP)
+    key(pygame.K_UP)
     hit_at = lost_at = None
     for k in range(1, 120):
         frames(app, 1)
@@ -131,18 +122,18 @@ def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
 
 def test_app__pause_stops_the_world_and_f2_steps(app):
     w = quiet(app)
-    key(app, pygame.K_LEFT)
+    key(pygame.K_LEFT)
     frames(app, 5)
-    key(app, pygame.K_ESCAPE)
+    key(pygame.K_ESCAPE)
     frames(app, 1)
     assert isinstance(app.scene, Pause)
     frame, x = w.frame, w.player.pos[0]
     frames(app, 20)
     assert (w.frame, w.player.pos[0]) == (frame, x)
-    key(app, pygame.K_F2)
+    key(pygame.K_F2)
     frames(app, 1)
     assert w.frame == frame + 1 and isinstance(app.scene, Pause)
-    key(app, pygame.K_p)
+    key(pygame.K_p)
     frames(app, 3)
     assert isinstance(app.scene, Play) and w.frame > frame + 1
 
@@ -151,7 +142,7 @@ def test_app__overlay_draws_grid_and_armatures(app):
     w = quiet(app)
     frames(app, 2)
     before = pygame.surfarray.array3d(app.ctx.display.screen).copy()
-    key(app, pygame.K_F1)
+    key(pygame.K_F1)
     frames(app, 1)
     after = pygame.surfarray.array3d(app.ctx.display.screen)
     grid = w.collision.result.broad.layout
@@ -168,12 +159,12 @@ def test_app__overlay_keys_reach_the_overlay_only_while_it_shows(app):
     from broadsword.game.overlay import KEY_PANEL, KEY_SWEPT, PanelPlace
 
     quiet(app)
-    key(app, KEY_SWEPT)  # overlay hidden: not its key
+    key(KEY_SWEPT)  # overlay hidden: not its key
     frames(app, 1)
     assert not app.ctx.overlay.swept
-    key(app, pygame.K_F1)
-    key(app, KEY_SWEPT)
-    key(app, KEY_PANEL)
+    key(pygame.K_F1)
+    key(KEY_SWEPT)
+    key(KEY_PANEL)
     frames(app, 2)
     assert app.ctx.overlay.visible and app.ctx.overlay.swept and app.ctx.overlay.place is PanelPlace.TOP_LEFT
     assert len(app.ctx.overlay.history) >= 1  # the frame-time graph records the steps it saw
@@ -243,8 +234,8 @@ def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
     assert isinstance(app.scene, LabScene) and app.scene.lab.frame == 3 and app.ctx.overlay.visible
     lab = app.scene.lab
     assert [s.name for s in lab.last.stats][:3] == ["layers", "pose", "bins"]
-    key(app, pygame.K_t)  # next tier mix
-    key(app, pygame.K_F4)  # rotation
+    key(pygame.K_t)  # next tier mix
+    key(pygame.K_F4)  # rotation
     frames(app, 1)
     assert lab.pipeline.tiers == ("bins", "circle", "armature") and lab.pipeline.rotation == "exact"
     grid = lab.last.broad.layout

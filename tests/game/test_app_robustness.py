@@ -9,6 +9,8 @@ import pygame
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword import cli
 from broadsword.data import DataError, data_dir, load_level
@@ -34,15 +36,6 @@ def app(scores):
     a = App(seed=1, audio=False, scores=scores)
     yield a
     pygame.quit()
-
-
-def key(k):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0))
-
-
-def frames(app, n=1):
-    for _ in range(n):
-        app.frame(DT)
 
 
 def broken_level(tmp_path, name="broken.toml", text=BROKEN):

@@ -9,6 +9,8 @@ import errno
 import json
 
 import pygame
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword.data import load_level, resolve_level
 from broadsword.data.recordings import RecordingInfo, RunKind, load_recording
@@ -21,21 +23,12 @@ from broadsword.game.scenes.save_replay import SaveReplay
 from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.runner import Runner, StageStart
-from broadsword.sim import DT, Input
-
-
-def key(k, unicode=""):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0))
+from broadsword.sim import Input
 
 
 def type_text(text):
     for c in text:
         key(pygame.K_a, unicode=c)
-
-
-def frames(app, n=1):
-    for _ in range(n):
-        app.frame(DT)
 
 
 def recent(app) -> list:

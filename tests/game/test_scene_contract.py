@@ -10,6 +10,7 @@ import inspect
 from pathlib import Path
 
 import pygame
+from support.events import key_event as key
 from support.imports import find_cycle, import_graph
 
 import broadsword.game
@@ -78,10 +79,6 @@ def test_every_hub_parameter_in_the_game_is_typed():
                     if a.arg in HUB_NAMES and (isinstance(node, ast.Lambda) or a.annotation is None):
                         untyped.append(f"{path.relative_to(GAME)}:{node.lineno} {a.arg}")
     assert untyped == []
-
-
-def key(k: int) -> pygame.event.Event:
-    return pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0)
 
 
 def test_scenes_return_transitions_and_leave_the_stack_to_the_app(app):

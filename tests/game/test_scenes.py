@@ -7,6 +7,8 @@ import warnings
 
 import pygame
 import pytest
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword.data import load_level, resolve_level
 from broadsword.data.difficulty import Difficulty
@@ -27,20 +29,11 @@ from broadsword.game.scenes import (
 )
 from broadsword.game.scenes.options_screen import ROWS
 from broadsword.game.scores import Entry, HighScores
-from broadsword.sim import DT, World
-
-
-def key(k, unicode=""):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0))
+from broadsword.sim import World
 
 
 def post(kind):
     pygame.event.post(pygame.event.Event(kind))
-
-
-def frames(app, n=1):
-    for _ in range(n):
-        app.frame(DT)
 
 
 def empty_stage(app, run=None, waves=()) -> World:

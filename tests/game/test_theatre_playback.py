@@ -11,6 +11,7 @@ from types import SimpleNamespace
 
 import pygame
 import pytest
+from support.events import post_key as key
 
 from broadsword import cli
 from broadsword.data.recordings import save_recording
@@ -38,10 +39,6 @@ def recording():
             world.set_rotation("exact" if world.rotation == "lut" else "lut")
         runner.step(pilot(world))
     return runner.recording(), world.state_hash()
-
-
-def key(k):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0))
 
 
 def watch(app, rec, path) -> Theatre:
