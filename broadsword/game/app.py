@@ -47,7 +47,7 @@ from .scenes.theatre import Theatre, load_theatre
 from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores
 from .soundtrack import follow
-from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
+from .text import wrap_text  # noqa: F401  (re-exported: older code imports it from here)
 
 DEFAULT_SCALE = 1.25
 HIDDEN_FPS = 20  # frame rate while the window is minimised or hidden (nothing to see, save the CPU)

@@ -16,6 +16,7 @@ from .. import ui
 from ..controls import Action
 from .base import IDLE, Go, Handled, Push, Tick
 from .context import SceneContext
+from .editor import EditorScene
 
 SUFFIX = ".armature.toml"
 ROWS = 20  # names shown at once; the list scrolls to keep the chosen one on screen
@@ -53,8 +54,6 @@ class ArmatureList:
 
     def open(self, path: Path) -> Push | None:
         """Edit ``path``; a file the editor refuses is said here, and the list stays (None)."""
-        from .editor import EditorScene
-
         try:
             scene = EditorScene(self.ctx, path)
         except (OSError, ValueError, pygame.error) as exc:  # DataError is a ValueError

@@ -14,6 +14,7 @@ from .. import ui
 from ..controls import Action, confirm_label
 from .base import Go, Handled, Replace, Tick, Transition
 from .context import SceneContext
+from .game_over import GameOver
 from .in_play import InPlay
 
 #: Seconds to decide before the run ends by itself.
@@ -43,8 +44,6 @@ class Continue:
         return Go.POP
 
     def decline(self) -> Transition:
-        from .game_over import GameOver
-
         return Replace(GameOver(self.ctx, self.play, victory=False))
 
     def update(self, dt: float) -> Tick:

@@ -11,6 +11,7 @@ from ..controls import Action
 from .base import IDLE, Go, Handled, Replace, Tick, Transition
 from .context import SceneContext
 from .in_play import InPlay
+from .name_entry import NameEntry
 from .save_replay import SAVE_KEY, draw_save_line, save_last_run
 
 
@@ -45,8 +46,6 @@ class GameOver:
 
     def next(self) -> Transition:
         """The name entry when the score makes the table, else the title."""
-        from .name_entry import NameEntry
-
         if self.qualifies:
             return Replace(NameEntry(self.ctx, self.score, self.level, self.difficulty, self.speed))
         return Go.TO_TITLE

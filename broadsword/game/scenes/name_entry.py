@@ -12,6 +12,7 @@ from .. import ui
 from ..scores import NAME_MAX, Entry
 from .base import IDLE, Go, Handled, Reset, Tick, Transition
 from .context import SceneContext
+from .high_scores import HighScoresScene
 
 
 def edit_line(text: str, event: pygame.event.Event, limit: int, upper: bool = False) -> str | None:
@@ -56,8 +57,6 @@ class NameEntry:
 
     def save(self) -> Transition:
         """Enter the score under the name typed (PILOT if none), save the table, and show it."""
-        from .high_scores import HighScoresScene
-
         ctx = self.ctx
         today = datetime.date.today().isoformat()
         ctx.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, today, self.difficulty, self.speed))

@@ -41,6 +41,7 @@ from ..practicefile import FILE_NAME, RecordFile
 from ..run import Run, stage_start
 from .base import IDLE, Go, Handled, PlayStage, Push, Tick, Transition
 from .context import SceneContext
+from .practice_prepare import Preparing
 
 #: Left/Right change power by this much (0.25 on the panel's scale).
 POWER_CHANGE = 5 * POWER_STEP
@@ -168,8 +169,6 @@ class PracticeMenu:
         if self.stage is None:
             return None
         if self.choice.phase > 0 and self.starts is None:
-            from .practice_prepare import Preparing
-
             return Push(Preparing(self.ctx, self._open(), self.cache, self.prepared))
         defaults = self.defaults()
         if defaults is None:  # a phase the autopilot did not reach: the note says so

@@ -10,6 +10,7 @@ from ..controls import Action
 from ..practice_run import Ending, Outcome, PracticeRun
 from .base import IDLE, Handled, PlayStage, Reset, Tick
 from .context import SceneContext
+from .practice_menu import PracticeMenu, start_practice
 
 
 class PracticeResult:
@@ -20,8 +21,6 @@ class PracticeResult:
         practice.counted(outcome)
 
     def handle(self, event: pygame.event.Event) -> Handled:
-        from .practice_menu import PracticeMenu, start_practice
-
         actions = self.ctx.controls.actions(event)
         pr = self.practice
         if actions & {Action.CONFIRM, Action.FIRE}:  # again, or the menu saying why not

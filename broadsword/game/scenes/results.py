@@ -14,6 +14,7 @@ from .. import ui
 from ..controls import Action
 from .base import IDLE, Handled, NextStage, Replace, Tick, Transition
 from .context import SceneContext
+from .game_over import GameOver
 from .in_play import InPlay
 from .save_replay import SAVE_KEY, draw_save_line, save_last_run
 
@@ -80,8 +81,6 @@ class Results:
 
     def next(self) -> Transition:
         """On to the next stage, or to the run's end."""
-        from .game_over import GameOver
-
         run, w = self.play.run, self.play.world
         run.carry_from(w)
         if run.has_next(self.ctx.levels):

@@ -4,6 +4,7 @@ in a panel where the controls list goes, so another can be picked."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pygame
@@ -12,8 +13,14 @@ from ...data.difficulty import Difficulty
 from ...sim import FIELD
 from .. import ui
 from ..controls import Action, Bindings, confirm_label, keys_label, move_label
-from .base import IDLE, Go, Handled, Push, Tick
+from .armatures import ArmatureList
+from .base import IDLE, Go, Handled, Push, Scene, Tick
 from .context import SceneContext
+from .high_scores import HighScoresScene
+from .how_to_play import HowToPlay
+from .options_screen import OptionsScene
+from .practice_menu import PracticeMenu
+from .replay_list import ReplayList
 
 ERROR_LINES = 7  # at most this many wrapped lines of a load error (the rest: "...")
 ERROR_TEXT = (255, 214, 200)
@@ -52,6 +59,17 @@ def controls_list(b: Bindings) -> list[tuple[str, str]]:
     ]
 
 
+#: The screens a key opens from the title: scores, hit shapes, replays, practice, options, how to play.
+SCREENS: dict[int, Callable[[SceneContext], Scene]] = {
+    pygame.K_h: HighScoresScene,
+    pygame.K_e: ArmatureList,
+    REPLAYS_KEY: ReplayList,
+    PRACTICE_KEY: PracticeMenu,
+    pygame.K_o: OptionsScene,
+    HOW_TO_PLAY_KEY: HowToPlay,
+}
+
+
 class Title:
     opaque = True
 
@@ -81,34 +99,10 @@ class Title:
         return self.open(key) or False
 
     def open(self, key: int | None) -> Push | None:
-        """The screen a key opens from here (H scores, E hit shapes, R replays, P practice,
-        O options, I how to play), pushed over the title; None for any other key."""
-        ctx = self.ctx
-        if key == pygame.K_h:
-            from .high_scores import HighScoresScene
-
-            return Push(HighScoresScene(ctx))
-        if key == pygame.K_e:
-            from .armatures import ArmatureList
-
-            return Push(ArmatureList(ctx))
-        if key == REPLAYS_KEY:
-            from .replay_list import ReplayList
-
-            return Push(ReplayList(ctx))
-        if key == PRACTICE_KEY:
-            from .practice_menu import PracticeMenu
-
-            return Push(PracticeMenu(ctx))
-        if key == pygame.K_o:
-            from .options_screen import OptionsScene
-
-            return Push(OptionsScene(ctx))
-        if key == HOW_TO_PLAY_KEY:
-            from .how_to_play import HowToPlay
-
-            return Push(HowToPlay(ctx))
-        return None
+        """The screen a key opens from here (:data:`SCREENS`), pushed over the title; None
+        for any other key."""
+        screen = SCREENS.get(key) if key is not None else None
+        return Push(screen(self.ctx)) if screen is not None else None
 
     def update(self, dt: float) -> Tick:
         return IDLE
