@@ -3,21 +3,20 @@ scenes ask for.
 
 Loop (Game Programming Patterns, "Game Loop"): each frame, events go to the top scene
 (:mod:`.scenes`), then the top scene updates with the elapsed time -- play steps the world
-in fixed 1/60 s increments, at most ``MAX_CATCH_UP`` a frame, so a slow machine slows the
+in fixed 1/60 s increments, at most ``scenes.play.MAX_CATCH_UP`` a frame, so a slow machine slows the
 game down instead of spiralling -- then the stack draws and the window presents.
 :meth:`App.frame` takes the elapsed time as an argument, so tests drive the real loop frame
 by frame with injected events.
 
-The scenes share the game's services through one typed context (``App.ctx``,
-:class:`~.scenes.context.SceneContext`, made by :func:`.boot.open_context`); they never see
-the app. What a scene wants done to the stack or the run it returns as a transition
-(:mod:`.scenes.base`), and :meth:`App.apply` does it.
+The scenes share the game's services through one typed context (``App.ctx``, made by
+:func:`.boot.open_context`) and never see the app: they return transitions
+(:mod:`.scenes.base`), which :meth:`App.apply` does.
 
 What the app itself decides, whatever the scene: closing the window quits; F11 toggles
 fullscreen; M mutes (unless the scene used the key, as name entry does for typing); a
 player's game pauses when the window is minimised, hidden, or loses the focus it had
-(:mod:`.presence`; an autopilot never pauses by itself). Robustness: a level that fails to
-load never ends the game: its one-line error is shown on the title.
+(:mod:`.presence`; an autopilot never pauses by itself). A level that fails to load never
+ends the game: its one-line error is shown on the title.
 """
 
 from __future__ import annotations
@@ -41,13 +40,10 @@ from .run import Run, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import IDLE, Go, Handled, NextStage, PlayStage, Push, Replace, Reset, Scene, Transition
 from .scenes.how_to_play import draw_first_run_hint
-from .scenes.play import MAX_CATCH_UP  # noqa: F401  (the loop's limit, named where the app is)
 from .scenes.stack import SceneStack
 from .scenes.theatre import Theatre, load_theatre
-from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
 from .scores import HighScores
 from .soundtrack import follow
-from .text import wrap_text  # noqa: F401  (re-exported: older code imports it from here)
 
 DEFAULT_SCALE = 1.25
 HIDDEN_FPS = 20  # frame rate while the window is minimised or hidden (nothing to see, save the CPU)
@@ -89,7 +85,17 @@ class App:
         difficulty: Difficulty | None = None,
     ):
         self.stack = SceneStack()
-        self.ctx = open_context(self.stack, start_level, seed, demo, audio, scores, scale, data, difficulty)
+        self.ctx = open_context(
+            self.stack,
+            start_level,
+            seed=seed,
+            demo=demo,
+            audio=audio,
+            scores=scores,
+            scale=scale,
+            data=data,
+            difficulty=difficulty,
+        )
         self.presence = Presence()
         self.running = True
         self.runner: Runner | None = None  # the run in play (or last played), every stage of it
@@ -236,9 +242,8 @@ class App:
                 self.start_run()
 
     def watch(self, path: str | Path) -> None:
-        """Open the recording at ``path`` in the replay theatre, over the scene on top (Esc
-        goes back to it). A file that cannot be read or played is said where the game says
-        load errors (the title's line, and stderr), and nothing opens."""
+        """Open the recording at ``path`` in the replay theatre, over the scene on top (Esc goes
+        back to it); a file that cannot be played is said on the title's line, and on stderr."""
         try:
             self.stack.push(load_theatre(self.ctx, path))
         except DataError as exc:
@@ -246,9 +251,9 @@ class App:
 
     # ------------------------------------------------------------------ runs and stages
     def start_run(self, index: int | None = None) -> bool:
-        """Start playing (the custom level, else shipped level ``index``, default the chosen
-        one) on the chosen difficulty. Returns False, and shows the title with the error, if
-        the level fails to load. The first run here shows its hint over its first stage."""
+        """Play (the custom level, else shipped level ``index``, default the chosen one) on the
+        chosen difficulty; False, the title showing the error, if the level fails to load. The
+        first run here shows its hint over its first stage."""
         ctx = self.ctx
         run = Run(ctx.choice.index if index is None else index, ctx.difficulty, ctx.choice.custom)
         first = not ctx.options.played and not ctx.demo
