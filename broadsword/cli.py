@@ -457,14 +457,12 @@ def _play(
         print(f"broadsword: cannot open a window ({exc}); --headless runs without one", file=sys.stderr)
         return 1
     if args.mute:
-        app.audio.toggle_mute()
+        app.ctx.audio.toggle_mute()
     if replay_error is not None:
-        app.report(replay_error)
+        app.ctx.report(replay_error)
     elif replay is not None:
-        from .game.scenes.theatre import open_theatre
-
-        open_theatre(app, args.replay)  # the theatre: seek, speeds, marks, take over (or the title says why not)
-    elif level is not None and args.lab is None and app.error is None:
+        app.watch(args.replay)  # the theatre: seek, speeds, marks, take over (or the title says why not)
+    elif level is not None and args.lab is None and app.ctx.error is None:
         app.start_run()  # a level that fails to load leaves the game on the title, showing why
     app.run()
     recording = app.recording()
@@ -484,7 +482,8 @@ def _open_while_compiling() -> bool:
         _warm_or_numpy(None)  # about a second: no screen needed
         return True
     from .collision import warm_kernel
-    from .game.app import DEFAULT_SCALE, TITLE
+    from .game.app import DEFAULT_SCALE
+    from .game.boot import TITLE
     from .game.compiling import compile_in_window
     from .sim import FIELD
 

@@ -46,7 +46,7 @@ def new_app(level: str | None = None) -> App:
 def peak_shots(level: str, out: Path) -> None:
     app = new_app(level)
     try:
-        app.set_options(always_hitbox=True, input_display=True)
+        app.ctx.set_options(always_hitbox=True, input_display=True)
         app.start_run()
         play, world = app.play, app.world
         assert play is not None and world is not None
@@ -58,11 +58,11 @@ def peak_shots(level: str, out: Path) -> None:
         restore(world, snap)
         app.stack.reset(play)  # the stage in play again, not the results screen its end brought
         play.ended = False
-        app.renderer.effects.clear()  # nor the effects of the frames after the peak
-        app.renderer.captions.clear()
-        app.renderer.flash = 0
+        app.ctx.renderer.effects.clear()  # nor the effects of the frames after the peak
+        app.ctx.renderer.captions.clear()
+        app.ctx.renderer.flash = 0
         for palette in BulletPalette:
-            app.set_options(palette=palette)
+            app.ctx.set_options(palette=palette)
             app.render()
             path = out / f"{level}-{palette.value}.png"
             pygame.image.save(pygame.display.get_surface(), str(path))
@@ -74,8 +74,8 @@ def peak_shots(level: str, out: Path) -> None:
 def options_shot(out: Path) -> None:
     app = new_app()
     try:
-        app.set_options(palette=BulletPalette.ALL)
-        scene = OptionsScene(app)
+        app.ctx.set_options(palette=BulletPalette.ALL)
+        scene = OptionsScene(app.ctx)
         scene.row = [r.option for r in ROWS].index("palette")
         app.stack.push(scene)
         app.frame(DT)

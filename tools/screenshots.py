@@ -41,7 +41,7 @@ def capture(level: str, frames: int, name: str, overlay: bool = False, seed: int
     for _ in range(frames):
         app.frame(DT)
     if overlay:
-        app.overlay.visible = True
+        app.ctx.overlay.visible = True
         app.frame(DT)
     pygame.image.save(pygame.display.get_surface(), str(OUT / name))
     print(f"{OUT / name}: frame {app.world.frame}, score {app.world.score}, {app.world.enemy_bullets.n} enemy bullets")

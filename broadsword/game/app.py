@@ -1,75 +1,52 @@
-"""The game application: the window, the shared services, the scene stack and the loop.
+"""The game application: the window's loop over the scene stack, and the transitions the
+scenes ask for.
 
 Loop (Game Programming Patterns, "Game Loop"): each frame, events go to the top scene
 (:mod:`.scenes`), then the top scene updates with the elapsed time -- play steps the world
-in fixed 1/60 s increments, at most ``MAX_CATCH_UP`` a frame, so a slow machine slows the
+in fixed 1/60 s increments, at most ``scenes.play.MAX_CATCH_UP`` a frame, so a slow machine slows the
 game down instead of spiralling -- then the stack draws and the window presents.
 :meth:`App.frame` takes the elapsed time as an argument, so tests drive the real loop frame
 by frame with injected events.
 
+The scenes share the game's services through one typed context (``App.ctx``, made by
+:func:`.boot.open_context`) and never see the app: they return transitions
+(:mod:`.scenes.base`), which :meth:`App.apply` does.
+
 What the app itself decides, whatever the scene: closing the window quits; F11 toggles
 fullscreen; M mutes (unless the scene used the key, as name entry does for typing); a
-player's game pauses when the window is minimised, hidden, or loses the focus it had (an
-autopilot or a replay being watched never pauses by itself). Robustness: a level that fails
-to load never ends the game: its one-line error is shown on the title.
+player's game pauses when the window is minimised, hidden, or loses the focus it had
+(:mod:`.presence`; an autopilot never pauses by itself). A level that fails to load never
+ends the game: its one-line error is shown on the title.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import sys
-from collections.abc import Callable
 from pathlib import Path
 
 import pygame
 
-from ..data import DataError, list_levels, resolve_level
+from ..data import DataError
 from ..data.difficulty import Difficulty
-from ..data.recordings import Recording, RecordingInfo, RunKind
+from ..data.recordings import Recording, RecordingInfo
 from ..runner import Runner, Stage
-from ..sim import Input, World
-from .audio import Audio
-from .controls import Action, Controls, load_bindings, save_bindings
-from .feedback import Feedback
+from ..sim import World
+from .boot import open_context
+from .controls import Action
 from .mute_icon import draw_mute_indicator
-from .options import load_options, save_options
-from .overlay import Overlay
+from .panel_state import panel_info
 from .practice_run import PracticeRun
-from .render import Renderer
-from .replaylib import ReplayLibrary
-from .replays import Replays, keep_run
-from .run import Run, StageTitles, load_stage
+from .presence import AWAY_EVENTS, SHOW_EVENTS, Presence
+from .run import Run, load_stage
 from .scenes import Pause, Play, Title
-from .scenes.base import SceneStack
+from .scenes.base import IDLE, Go, Handled, NextStage, PlayStage, Push, Replace, Reset, Scene, Transition
 from .scenes.how_to_play import draw_first_run_hint
-from .scenes.play import (
-    MAX_CATCH_UP,  # noqa: F401  (the loop's limit, named where the app is)
-    ReplayInput,
-)
-from .scenes.theatre import Theatre
-from .scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP  # noqa: F401  (the title's error panel)
-from .scores import HighScores, data_home
-from .sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark, PanelInfo, SidePanel
+from .scenes.stack import SceneStack
+from .scenes.theatre import Theatre, load_theatre
+from .scores import HighScores
 from .soundtrack import follow
-from .sprites import SpriteBank
-from .text import wrap_text  # noqa: F401  (re-exported: tests and tools import it from here)
-from .ui import Painter
-from .window import Window
 
 DEFAULT_SCALE = 1.25
-TITLE = "Broadsword"
 HIDDEN_FPS = 20  # frame rate while the window is minimised or hidden (nothing to see, save the CPU)
-
-#: Window events that mean the window went away (minimised, hidden, focus lost), and came back.
-AWAY_EVENTS = {pygame.WINDOWFOCUSLOST, pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN}
-HIDE_EVENTS = {pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN}
-SHOW_EVENTS = {
-    pygame.WINDOWRESTORED,
-    pygame.WINDOWSHOWN,
-    pygame.WINDOWEXPOSED,
-    pygame.WINDOWMAXIMIZED,
-    pygame.WINDOWFOCUSGAINED,
-}
 
 
 class App:
@@ -79,7 +56,7 @@ class App:
     ----------
     start_level : str, optional
         A shipped level's name or a level file to start from (default: the first). A file
-        that is missing or broken is reported on the title (``error``), not raised.
+        that is missing or broken is reported on the title (``ctx.error``), not raised.
     seed : int
     demo : bool
         Let the autopilot play (``broadsword --autopilot``): it never pauses by itself and
@@ -107,66 +84,35 @@ class App:
         data: Path | None = None,
         difficulty: Difficulty | None = None,
     ):
-        self.data = Path(data) if data else (scores.path.parent if scores is not None else data_home())
-        self.options, options_warning = load_options(self.data / "options.json")
-        self.saved_difficulty = self.options.difficulty  # what options.json keeps, whatever --difficulty says
-        if difficulty is not None:  # --difficulty: this session's, not saved
-            self.options = dataclasses.replace(self.options, difficulty=Difficulty(difficulty))
-        self.window = Window((int(FRAME[0] * scale), int(FRAME[1] * scale)), TITLE, self.options.fullscreen)
-        pygame.init()
-        # After pygame.init(): key names are read through SDL, which warns on stderr before it
-        bindings, bindings_warning = load_bindings(self.data / "controls.json")
-        self.use_screen(None)  # self.canvas (what the window shows), self.screen (the field on it), self.painter
-        self.bank = SpriteBank()
-        self.bank.convert()
-        self.bank.use_palette(self.options.palette)  # the bullets' colours: drawing only
-        self.renderer = Renderer(self.bank, seed)
-        self.overlay = Overlay()
-        self.audio = Audio(enabled=audio)
-        self.feedback = Feedback(self.renderer, self.audio)  # each step's events, seen and heard
-        self.scores = (scores or HighScores()).load()
-        self.controls = Controls(bindings)
-        self.levels = list_levels()
-        self.replays = Replays(ReplayLibrary(self.data / "replays", self.levels))  # kept and saved runs
-        self.after_replay: Callable[[], None] | None = None  # a replay's end, done (None: close, as --replay)
-        self.error: str | None = None  # the last level load failure, one line, shown on the title
-        self.custom_level: str | None = None
-        if start_level is not None and start_level not in self.levels:
-            self.custom_level = start_level  # resolved again at each start, so a fixed file just works
-            try:
-                self.custom_level = str(resolve_level(start_level))
-            except DataError as exc:
-                self.report(exc)
-        self.start_index = self.levels.index(start_level) if start_level in self.levels else 0
-        self.seed, self.demo = seed, demo
-        self.fps = 60.0
+        self.stack = SceneStack()
+        self.ctx = open_context(
+            self.stack,
+            start_level,
+            seed=seed,
+            demo=demo,
+            audio=audio,
+            scores=scores,
+            scale=scale,
+            data=data,
+            difficulty=difficulty,
+        )
+        self.presence = Presence()
         self.running = True
-        self.hidden = False  # minimised or hidden: nothing to see
-        self.focused = bool(pygame.key.get_focused())  # focus loss pauses only after focus was had
-        self._away = False  # the window went away during this frame's events (a pause is due)
-        # One line for the title: a set-aside scores file, an unusable options or controls file.
-        # Said on stderr too (the title names files in the data directory by their names alone).
-        warnings = [w for w in (self.scores.warning, options_warning, bindings_warning) if w]
-        for warning in warnings:
-            print(f"broadsword: {warning}", file=sys.stderr)
-        self.message = "; ".join(warnings) or None
         self.runner: Runner | None = None  # the run in play (or last played), every stage of it
         self.hint = False  # the first run's hint shows over its first stage
-        self.stage_title = StageTitles()  # shipped level name -> its title ("I. Outer Picket")
-        self.stack = SceneStack()
         if lab is not None:  # the benchmark's scene, live (broadsword --lab)
             from .scenes.lab import LabScene
 
-            scene = LabScene(self, *lab)
-            self.use_screen(scene.size)
-            self.overlay.visible = True
+            scene = LabScene(self.ctx, *lab)
+            self.ctx.display.use(scene.size)
+            self.ctx.overlay.visible = True
             self.stack.push(scene)
         else:
-            self.stack.push(Title(self))
+            self.stack.push(Title(self.ctx))
 
     # ------------------------------------------------------------------ what is on screen
     @property
-    def scene(self):
+    def scene(self) -> Scene | None:
         """The scene on top of the stack (the one that gets events)."""
         return self.stack.top
 
@@ -188,24 +134,20 @@ class App:
         """The run in play (or the last one played), every stage in one recording; None before any."""
         return self.runner.recording() if self.runner is not None else None
 
-    @property
-    def difficulty(self) -> Difficulty:
-        return self.options.difficulty
-
     # ------------------------------------------------------------------ the loop
     def run(self) -> None:
         clock = pygame.time.Clock()
         while self.running:
-            dt = clock.tick(HIDDEN_FPS if self.hidden else 120) / 1000.0
-            self.fps = clock.get_fps() or self.fps
+            dt = clock.tick(HIDDEN_FPS if self.presence.hidden else 120) / 1000.0
+            self.ctx.fps = clock.get_fps() or self.ctx.fps
             self.frame(dt)
         self.close()
 
     def close(self) -> None:
         """The run in play is kept (a window closed mid-run); the window goes first, at once;
         then audio and the rest (slower to shut down)."""
-        keep_run(self)
-        Window.close()
+        self.ctx.keep_run(self.runner)
+        self.ctx.window.close()
         pygame.quit()
 
     def frame(self, dt: float) -> int:
@@ -216,112 +158,119 @@ class App:
             dt = 0.0
         for event in pygame.event.get():
             self.handle(event)
-        self._pause_if_away()
-        steps = self.stack.current.update(dt) if self.running else 0
+        top = self.stack.top
+        if self.presence.pause_due() and isinstance(top, Play) and not top.watched:
+            self.stack.push(Pause(self.ctx, top))
+        tick = self.stack.current.update(dt) if self.running else IDLE
+        if tick.then is not None:
+            self.apply(tick.then)
         if not isinstance(self.stack.top, Play):
-            self.controls.tapped.clear()  # a bomb tapped on the pause screen must not go off on resuming
-        follow(self)  # the music that fits the screen now, at the options' volumes
+            self.ctx.controls.tapped.clear()  # a bomb tapped on the pause screen must not go off on resuming
+        follow(self.ctx)  # the music that fits the screen now, at the options' volumes
         self.render()
-        return steps
+        return tick.steps
 
     def handle(self, event: pygame.event.Event) -> None:
-        self.controls.track(event)
+        ctx = self.ctx
+        ctx.controls.track(event)
         t = event.type
         if t == pygame.QUIT:  # offered to the scene first: the editor warns about unsaved changes
             top = self.stack.top
-            if top is None or not top.handle(event):
+            if top is None or not self.used(top.handle(event)):
                 self.running = False
             return
         if t in AWAY_EVENTS:
-            self._went_away(event)
+            ctx.controls.release_all()  # held keys are forgotten (their KEYUPs go elsewhere)
+            top = self.stack.top
+            self.presence.went_away(t, isinstance(top, Play) and not top.watched)
         elif t in SHOW_EVENTS:
-            self.hidden = False
-            self.focused |= t == pygame.WINDOWFOCUSGAINED
-        if t == pygame.KEYDOWN and self.overlay.visible and self.overlay.handle_key(event.key):
+            self.presence.came_back(t)
+        if t == pygame.KEYDOWN and ctx.overlay.visible and ctx.overlay.handle_key(event.key):
             return  # F5-F7: the overlay's own keys (swept outlines, panel place, lens)
-        if self.stack.current.handle(event):
+        if self.used(self.stack.current.handle(event)):
             return
-        actions = self.controls.actions(event)
+        actions = ctx.controls.actions(event)
         if Action.MUTE in actions:
-            self.audio.toggle_mute()
+            ctx.audio.toggle_mute()
         if Action.FULLSCREEN in actions:
-            self.set_options(fullscreen=self.window.toggle_fullscreen())
+            ctx.set_options(fullscreen=ctx.window.toggle_fullscreen())
 
-    def _went_away(self, event) -> None:
-        """Minimised, hidden or unfocused: held keys are forgotten (their KEYUPs go elsewhere),
-        and a player's game pauses -- unless it is being watched, or the focus lost was never
-        had (a window opened behind another must not start paused)."""
-        self.controls.release_all()
-        had_focus = self.focused
-        if event.type == pygame.WINDOWFOCUSLOST:
-            self.focused = False
-        self.hidden |= event.type in HIDE_EVENTS
-        top = self.stack.top
-        if isinstance(top, Play) and not top.watched and (event.type != pygame.WINDOWFOCUSLOST or had_focus):
-            self._away = True  # decided once the frame's events are all in: see _pause_if_away
-
-    def _pause_if_away(self) -> None:
-        """A player's game pauses if the window went away this frame and is still away once
-        all the frame's events are in. SDL opens a window with shown, hidden, shown in one
-        batch (X11): a hide undone by the same batch's show must not open a stage paused."""
-        away, self._away = self._away, False
-        top = self.stack.top
-        if away and (self.hidden or not self.focused) and isinstance(top, Play) and not top.watched:
-            self.stack.push(Pause(self, top))
+    def used(self, handled: Handled) -> bool:
+        """Whether a scene used an event; a transition it returned is applied (and it was used)."""
+        if isinstance(handled, bool):
+            return handled
+        self.apply(handled)
+        return True
 
     def render(self) -> None:
-        self.painter.forget()
-        self.stack.draw(self.screen)
-        if self.audio.muted:
-            draw_mute_indicator(self.screen, (8, self.screen.get_height() - 34))
+        ctx = self.ctx
+        display, painter = ctx.display, ctx.painter
+        painter.forget()
+        self.stack.draw(display.screen)
+        if ctx.audio.muted:
+            draw_mute_indicator(display.screen, (8, display.screen.get_height() - 34))
         play = self.play
         if self.hint and play is not None and self.stack.top is play and not play.watched:
-            draw_first_run_hint(self.painter, self.controls.bindings, play.world.time)
-        if self.panel is not None:  # the field beside the side panel
-            self.panel.draw(self.world, self.panel_info(), self.renderer.life_icon)
-        self.window.present(self.canvas)
+            draw_first_run_hint(painter, ctx.controls.bindings, play.world.time)
+        if display.panel is not None:  # the field beside the side panel
+            display.panel.draw(self.world, panel_info(ctx), ctx.renderer.life_icon)
+        ctx.window.present(display.canvas)
 
-    def panel_info(self) -> PanelInfo:
-        """The side panel's best score (on this difficulty) and its mark: "REPLAY" while a
-        recording plays, "DEMO" while the autopilot does, "PRACTICE" in a practice, none
-        while the player plays a run."""
-        play = self.play
-        mark = None
-        if play is not None and play.watched:
-            mark = Mark.REPLAY if isinstance(play.source, ReplayInput) else Mark.DEMO
-        elif play is not None and play.practice is not None:
-            mark = Mark.PRACTICE
-        elif play is not None and play.runner.recorder.info.kind is RunKind.TAKE_OVER:
-            mark = Mark.TAKE_OVER
-        theatre = self.stack.find(Theatre) if play is None else None
-        if theatre is not None:
-            mark = Mark.REPLAY
-        difficulty = self.world.settings.difficulty if self.world is not None else self.difficulty
-        held = None
-        runner = play.runner if play is not None else theatre.runner if theatre is not None else None
-        if runner is not None and self.options.input_display:
-            # the last step's input, as recorded: the player's, the autopilot's, a replay's
-            held = runner.recorder.last_input or Input()
-        return PanelInfo(max((e.score for e in self.scores.of(difficulty)), default=0), mark, held)
+    # ------------------------------------------------------------------ transitions
+    def apply(self, transition: Transition) -> None:
+        """Do what a scene asked (:mod:`.scenes.base`)."""
+        match transition:
+            case Push(scene):
+                self.stack.push(scene)
+            case Replace(scene):
+                self.stack.replace(scene)
+            case Reset(scene):
+                self.stack.reset(scene)
+            case NextStage(run):
+                self.begin_stage(run, go_on=True)
+            case PlayStage(stage, run, runner, practice):
+                self.play_stage(stage, run, runner, practice)
+            case Go.POP:
+                self.stack.pop()
+                if self.stack.top is None:  # nothing under it (a replay opened alone): the title
+                    self.to_title()
+            case Go.QUIT:
+                self.running = False
+            case Go.TO_TITLE:
+                self.to_title()
+            case Go.START_RUN:
+                self.start_run()
+
+    def watch(self, path: str | Path) -> None:
+        """Open the recording at ``path`` in the replay theatre, over the scene on top (Esc goes
+        back to it); a file that cannot be played is said on the title's line, and on stderr."""
+        try:
+            self.stack.push(load_theatre(self.ctx, path))
+        except DataError as exc:
+            self.ctx.report(exc)
 
     # ------------------------------------------------------------------ runs and stages
     def start_run(self, index: int | None = None) -> bool:
-        """Start playing (the custom level, else shipped level ``index``, default the chosen
-        one) on the chosen difficulty. Returns False, and shows the title with the error, if
-        the level fails to load."""
-        run = Run(self.start_index if index is None else index, self.difficulty, self.custom_level)
-        self.hint = not self.options.played and not self.demo  # the first run here: its hint, once
-        if self.hint:
-            self.set_options(played=True)
-        return self.begin_stage(run)
+        """Play (the custom level, else shipped level ``index``, default the chosen one) on the
+        chosen difficulty; False, the title showing the error, if the level fails to load. The
+        first run here shows its hint over its first stage."""
+        ctx = self.ctx
+        run = Run(ctx.choice.index if index is None else index, ctx.difficulty, ctx.choice.custom)
+        first = not ctx.options.played and not ctx.demo
+        if not self.begin_stage(run):
+            return False
+        if first:
+            ctx.set_options(played=True)
+            self.hint = True
+        return True
 
     def begin_stage(self, run: Run, go_on: bool = False) -> bool:
         """Load the run's current stage and play it (``go_on``: as the next stage of the run
         in play, recorded with it; else as a new run); on failure, the title with the error."""
         try:
-            stage = load_stage(run, self.levels, self.bank.armatures, self.seed)
+            stage = load_stage(run, self.ctx.levels, self.ctx.bank.armatures, self.ctx.seed)
         except DataError as exc:
-            self.report(exc)
+            self.ctx.report(exc)
             self.to_title()
             return False
         if go_on and self.runner is not None:
@@ -336,74 +285,15 @@ class App:
     ) -> Play:
         """Play ``stage`` (a world already made) as the only scene: in ``runner`` (whose
         stage in play it is), else as a new run; ``practice``: as that practice."""
-        self.error = None
+        self.ctx.error = None
+        self.hint = False  # the first run's hint: its first stage only (start_run)
         # a new run records the game speed it is played at (the options: set on the title)
-        self.runner = runner if runner is not None else Runner(stage, info=RecordingInfo(speed=self.options.speed))
-        play = Play(self, self.runner, run or Run(0, stage.world.settings.difficulty), practice=practice)
+        self.runner = runner if runner is not None else Runner(stage, info=RecordingInfo(speed=self.ctx.options.speed))
+        play = Play(self.ctx, self.runner, run or Run(0, stage.world.settings.difficulty), practice=practice)
         self.stack.reset(play)
         return play
-
-    def watch_replay(self, rec: Recording, path: str) -> Play:
-        """Play recording ``rec`` (read from ``path``) on screen: its inputs and toggles drive
-        the world, with pause, single-step and the overlay; at its end, or at the first
-        frame that differs, a message says which (the frame and the part of the state).
-        DataError if its level cannot load or has changed since it was recorded."""
-        runner = Runner.replaying(rec, path, self.bank.armatures)
-        return self.watch_stage(runner, path)
-
-    def watch_stage(self, runner: Runner, path: str) -> Play:
-        """Watch the stage in play of ``runner`` (a replay's), with its own stage's music."""
-        world = runner.world
-        run = Run.of_level(runner.stage.level_ref, self.levels, world.settings.difficulty)
-        self.error = None
-        self.runner = runner
-        play = Play(self, runner, run, ReplayInput(runner, path))
-        self.stack.reset(play)
-        return play
-
-    def use_screen(self, size: tuple[int, int] | None = None) -> None:
-        """Draw the scenes on a surface of ``size`` px (the lab's scene, the editor) from now on,
-        alone in the window; ``None``: the field again, beside the side panel
-        (:mod:`.sidebar`). ``canvas`` is what the window shows, scaled in; ``screen`` is
-        where the scenes draw (the field: a subsurface of ``canvas``)."""
-        if size is None:
-            self.canvas = pygame.Surface(FRAME)
-            self.screen = self.canvas.subsurface(FIELD_RECT)
-            self.panel: SidePanel | None = SidePanel(self.canvas.subsurface(PANEL_RECT))  # drawn next frame
-        else:
-            self.canvas = self.screen = pygame.Surface(size)
-            self.panel = None
-        self.painter = Painter(self.screen)
 
     def to_title(self) -> None:
-        """Back to the title; a run quit in the middle is kept first (:func:`.replays.keep_run`)."""
-        keep_run(self)
-        self.after_replay = None
-        self.stack.reset(Title(self))
-
-    def report(self, exc: DataError) -> None:
-        """A level failed to load: keep its one-line error for the title, and say it on stderr."""
-        self.error = str(exc)
-        print(f"broadsword: {exc}", file=sys.stderr)
-
-    # ------------------------------------------------------------------ settings
-    def set_options(self, **changes) -> None:
-        """Change options and save them (atomically); a failed save is said on screen. A
-        ``--difficulty`` for the session is not saved with them, unless the player chose one."""
-        self.options = dataclasses.replace(self.options, **changes)
-        if "difficulty" in changes:
-            self.saved_difficulty = self.options.difficulty
-        if "palette" in changes:
-            self.bank.use_palette(self.options.palette)
-        try:
-            save_options(
-                dataclasses.replace(self.options, difficulty=self.saved_difficulty), self.data / "options.json"
-            )
-        except OSError as exc:
-            self.message = f"could not save options: {exc}"
-
-    def save_bindings(self) -> None:
-        try:
-            save_bindings(self.controls.bindings, self.data / "controls.json")
-        except OSError as exc:
-            self.message = f"could not save controls: {exc}"
+        """Back to the title; a run quit in the middle is kept first (:meth:`SceneContext.keep_run`)."""
+        self.ctx.keep_run(self.runner)
+        self.stack.reset(Title(self.ctx))

@@ -1,30 +1,23 @@
 """The game's side of the replay library: keeping each run the player ends, saving it under
-a name, and watching a replay file (no pygame here; the screens are
-:mod:`.scenes.replay_list` and :mod:`.scenes.save_replay`).
+a name (no pygame here; the screens are :mod:`.scenes.replay_list` and
+:mod:`.scenes.save_replay`; :meth:`.scenes.context.SceneContext.keep_run` keeps a run).
 
 A run is kept (written to ``replays/recent/``) once, when it ends: a game over with no
 continue taken, its last stage cleared, or a quit to the title (or out of the game) in
 the middle. Runs nobody played (the autopilot's, a replay being watched) are not kept. A
-write that fails says one line (``app.message``, and stderr) and the game goes on.
+write that fails says one line (the menus' ``message``, and stderr) and the game goes on.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import sys
-from collections.abc import Callable
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-from ..data import DataError
 from ..data.recordings import Recording
 from ..runner import Runner
 from .replaylib import ReplayLibrary
-
-if TYPE_CHECKING:
-    from .app import App
 
 
 @dataclass(frozen=True)
@@ -79,29 +72,3 @@ class Replays:
 def now_iso() -> str:
     """The time now, ISO 8601 in UTC to the second (a replay's ``info.date``)."""
     return datetime.now(UTC).isoformat(timespec="seconds")
-
-
-def keep_run(app: App) -> None:
-    """Keep the run in play (or last played), if the player played it and it is not kept yet."""
-    runner = app.runner
-    if runner is None or runner.playback is not None or app.demo or runner.frame == 0:
-        return
-    warning = app.replays.keep(runner, now_iso())
-    if warning is not None:
-        app.message = warning
-        print(f"broadsword: {warning}", file=sys.stderr)
-
-
-def watch_file(app: App, path: Path, back: Callable[[], None]) -> str | None:
-    """Watch the replay file ``path`` in the replay theatre, and ``back`` when the viewer
-    leaves it (Esc): the one way the list opens a replay. Returns why it cannot be watched
-    (one line), the list staying as it was."""
-    from .scenes.theatre import load_theatre
-
-    try:
-        theatre = load_theatre(app, path)
-    except DataError as exc:
-        return str(exc)
-    app.after_replay = back
-    app.stack.push(theatre)
-    return None

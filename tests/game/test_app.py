@@ -7,6 +7,8 @@ import dataclasses
 import numpy as np
 import pygame
 import pytest
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword.collision import polygons_collide, pose
 from broadsword.data import load_level, resolve_level
@@ -36,26 +38,15 @@ LATE = WaveSpec(
 def quiet(app: App, waves=(LATE,)) -> World:
     """Start play in an emptied first level (plus ``waves``), past the spawn grace period."""
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)
-    world = World(level, app.bank.armatures, seed=1)
+    world = World(level, app.ctx.bank.armatures, seed=1)
     app.play_stage(Stage(world, "1-picket", ""), Run(0))
     world.player.invulnerable = 0.0
     return world
 
 
-def key(app, k, down=True):
-    pygame.event.post(
-        pygame.event.Event(pygame.KEYDOWN if down else pygame.KEYUP, key=k, mod=0, unicode="", scancode=0)
-    )
-
-
-def frames(app, n):
-    for _ in range(n):
-        app.frame(DT)
-
-
 def test_app__title_then_play(app):
     assert isinstance(app.scene, Title)
-    key(app, pygame.K_RETURN)
+    key(pygame.K_RETURN)
     frames(app, 1)
     assert isinstance(app.scene, Play) and app.world is not None
 
@@ -63,13 +54,13 @@ def test_app__title_then_play(app):
 def test_app__player_moves_and_fires(app):
     w = quiet(app)
     x0 = w.player.pos[0]
-    key(app, pygame.K_RIGHT)
-    key(app, pygame.K_z)
+    key(pygame.K_RIGHT)
+    key(pygame.K_z)
     frames(app, 30)
     assert w.player.pos[0] == pytest.approx(x0 + 30 * w.level.player.speed * DT)
     assert w.player_bullets.n > 0
-    key(app, pygame.K_RIGHT, down=False)
-    key(app, pygame.K_z, down=False)
+    key(pygame.K_RIGHT, up=True)
+    key(pygame.K_z, up=True)
     frames(app, 1)
     x1 = w.player.pos[0]
     frames(app, 10)
@@ -90,7 +81,7 @@ def test_app__bullet_kills_enemy_and_score_rises(app):
     )
     w = quiet(app, (target, LATE))
     w.rng = np.random.default_rng(0)
-    key(app, pygame.K_SPACE)
+    key(pygame.K_SPACE)
     for _ in range(240):
         frames(app, 1)
         if w.score.points:
@@ -116,7 +107,7 @@ def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
             expected = k
             break
     lives = w.player.lives
-    key(app, pygame.K_UP)
+    key(pygame.K_UP)
     hit_at = lost_at = None
     for k in range(1, 120):
         frames(app, 1)
@@ -131,18 +122,18 @@ def test_app__flying_into_a_bullet_costs_a_life_on_the_expected_frame(app):
 
 def test_app__pause_stops_the_world_and_f2_steps(app):
     w = quiet(app)
-    key(app, pygame.K_LEFT)
+    key(pygame.K_LEFT)
     frames(app, 5)
-    key(app, pygame.K_ESCAPE)
+    key(pygame.K_ESCAPE)
     frames(app, 1)
     assert isinstance(app.scene, Pause)
     frame, x = w.frame, w.player.pos[0]
     frames(app, 20)
     assert (w.frame, w.player.pos[0]) == (frame, x)
-    key(app, pygame.K_F2)
+    key(pygame.K_F2)
     frames(app, 1)
     assert w.frame == frame + 1 and isinstance(app.scene, Pause)
-    key(app, pygame.K_p)
+    key(pygame.K_p)
     frames(app, 3)
     assert isinstance(app.scene, Play) and w.frame > frame + 1
 
@@ -150,16 +141,16 @@ def test_app__pause_stops_the_world_and_f2_steps(app):
 def test_app__overlay_draws_grid_and_armatures(app):
     w = quiet(app)
     frames(app, 2)
-    before = pygame.surfarray.array3d(app.screen).copy()
-    key(app, pygame.K_F1)
+    before = pygame.surfarray.array3d(app.ctx.display.screen).copy()
+    key(pygame.K_F1)
     frames(app, 1)
-    after = pygame.surfarray.array3d(app.screen)
+    after = pygame.surfarray.array3d(app.ctx.display.screen)
     grid = w.collision.result.broad.layout
     # A vertical grid line, at a row far from the player and the panel.
     gx = int(round(grid.origin[0] + grid.size))
     assert tuple(after[gx, 300]) == (50, 80, 130) and tuple(before[gx, 300]) != (50, 80, 130)
     # The player's armature outline, in the player layer's colour, on its first vertex.
-    vx, vy = (w.player.pos + app.bank.armatures["player"].armature.vertices[0]).round().astype(int)
+    vx, vy = (w.player.pos + app.ctx.bank.armatures["player"].armature.vertices[0]).round().astype(int)
     near = after[vx - 1 : vx + 2, vy - 1 : vy + 2].reshape(-1, 3)
     assert any(tuple(c) == (80, 255, 255) for c in near)
 
@@ -168,15 +159,15 @@ def test_app__overlay_keys_reach_the_overlay_only_while_it_shows(app):
     from broadsword.game.overlay import KEY_PANEL, KEY_SWEPT, PanelPlace
 
     quiet(app)
-    key(app, KEY_SWEPT)  # overlay hidden: not its key
+    key(KEY_SWEPT)  # overlay hidden: not its key
     frames(app, 1)
-    assert not app.overlay.swept
-    key(app, pygame.K_F1)
-    key(app, KEY_SWEPT)
-    key(app, KEY_PANEL)
+    assert not app.ctx.overlay.swept
+    key(pygame.K_F1)
+    key(KEY_SWEPT)
+    key(KEY_PANEL)
     frames(app, 2)
-    assert app.overlay.visible and app.overlay.swept and app.overlay.place is PanelPlace.TOP_LEFT
-    assert len(app.overlay.history) >= 1  # the frame-time graph records the steps it saw
+    assert app.ctx.overlay.visible and app.ctx.overlay.swept and app.ctx.overlay.place is PanelPlace.TOP_LEFT
+    assert len(app.ctx.overlay.history) >= 1  # the frame-time graph records the steps it saw
 
 
 def test_app__overlay_does_not_change_the_game(tmp_path):
@@ -184,7 +175,7 @@ def test_app__overlay_does_not_change_the_game(tmp_path):
     for overlay in (False, True):
         a = App(seed=4, audio=False, demo=True, scores=HighScores(tmp_path / f"s{overlay}.json"))
         a.start_run()
-        a.overlay.visible = overlay
+        a.ctx.overlay.visible = overlay
         frames(a, 240)
         hashes.append(a.world.state_hash())
         pygame.quit()
@@ -231,7 +222,7 @@ class StubPad:
 
 def test_app__gamepad_moves_and_fires(app):
     w = quiet(app)
-    app.controls.pad = StubPad()
+    app.ctx.controls.pad = StubPad()
     x0, y0 = w.player.pos
     frames(app, 20)
     assert w.player.pos[0] < x0 and w.player.pos[1] < y0 and w.player_bullets.n > 0
@@ -240,15 +231,15 @@ def test_app__gamepad_moves_and_fires(app):
 def test_lab__shows_a_benchmark_scene_with_the_overlay(tmp_path):
     app = App(audio=False, scores=HighScores(tmp_path / "s.json"), lab=(20, 200))
     frames(app, 3)
-    assert isinstance(app.scene, LabScene) and app.scene.lab.frame == 3 and app.overlay.visible
+    assert isinstance(app.scene, LabScene) and app.scene.lab.frame == 3 and app.ctx.overlay.visible
     lab = app.scene.lab
     assert [s.name for s in lab.last.stats][:3] == ["layers", "pose", "bins"]
-    key(app, pygame.K_t)  # next tier mix
-    key(app, pygame.K_F4)  # rotation
+    key(pygame.K_t)  # next tier mix
+    key(pygame.K_F4)  # rotation
     frames(app, 1)
     assert lab.pipeline.tiers == ("bins", "circle", "armature") and lab.pipeline.rotation == "exact"
     grid = lab.last.broad.layout
-    img = pygame.surfarray.array3d(app.screen)
+    img = pygame.surfarray.array3d(app.ctx.display.screen)
     gx = int(round(grid.origin[0] + grid.size))
     assert (img[gx, 300:700] == (50, 80, 130)).all(axis=1).any()  # grid lines drawn
     pygame.quit()

@@ -9,19 +9,17 @@ import pygame
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword import cli
 from broadsword.data import DataError, data_dir, load_level
-from broadsword.game.app import (
-    ERROR_LINES,
-    ERROR_TEXT,
-    ERROR_WRAP,
-    MAX_CATCH_UP,
-    App,
-    wrap_text,
-)
+from broadsword.game.app import App
 from broadsword.game.scenes import Pause, Play, Results, Title
+from broadsword.game.scenes.play import MAX_CATCH_UP
+from broadsword.game.scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP
 from broadsword.game.scores import Entry, HighScores
+from broadsword.game.text import wrap_text
 from broadsword.sim import DT
 
 BROKEN = "[player]\nspeed = 99999\n"  # out of range: a DataError naming player.speed
@@ -40,15 +38,6 @@ def app(scores):
     pygame.quit()
 
 
-def key(k):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0))
-
-
-def frames(app, n=1):
-    for _ in range(n):
-        app.frame(DT)
-
-
 def broken_level(tmp_path, name="broken.toml", text=BROKEN):
     path = tmp_path / name
     path.write_text(text)
@@ -64,7 +53,7 @@ def expected_error(path) -> str:
 
 def error_bands(app) -> list[tuple[int, int]]:
     """Rows of the rendered field holding the error text colour, grouped into (first, last) bands."""
-    img = pygame.surfarray.array3d(app.screen)  # (width, height, 3)
+    img = pygame.surfarray.array3d(app.ctx.display.screen)  # (width, height, 3)
     rows = sorted({int(y) for y in ((img == ERROR_TEXT).all(axis=2).any(axis=0)).nonzero()[0]})
     bands: list[tuple[int, int]] = []
     for y in rows:
@@ -120,15 +109,15 @@ def test_broken_custom_level__title_shows_the_error_and_play_goes_on(tmp_path, s
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Title) and app.world is None
-    assert app.error == expected_error(path) and "player.speed" in app.error
-    assert capsys.readouterr().err.strip() == f"broadsword: {app.error}"
+    assert app.ctx.error == expected_error(path) and "player.speed" in app.ctx.error
+    assert capsys.readouterr().err.strip() == f"broadsword: {app.ctx.error}"
     assert error_bands(app)  # drawn
     # Fixing the file and pressing Enter again plays it: the path is read again each time.
     picket = (data_dir("levels") / "1-picket.toml").read_text()
     path.write_text(picket.replace("[player]\n", "[player]\nspeed = 300\n"))
     key(pygame.K_RETURN)
     frames(app)
-    assert isinstance(app.scene, Play) and app.world.level.player.speed == 300 and app.error is None
+    assert isinstance(app.scene, Play) and app.world.level.player.speed == 300 and app.ctx.error is None
     assert not error_bands(app)
     pygame.quit()
 
@@ -137,25 +126,25 @@ def test_broken_custom_level__left_right_goes_back_to_the_shipped_levels(tmp_pat
     app = App(start_level=str(broken_level(tmp_path)), seed=1, audio=False, scores=scores)
     key(pygame.K_RETURN)
     frames(app)
-    assert isinstance(app.scene, Title) and app.error
+    assert isinstance(app.scene, Title) and app.ctx.error
     key(pygame.K_RIGHT)
     key(pygame.K_RETURN)
     frames(app)
-    assert app.custom_level is None and isinstance(app.scene, Play)
-    assert app.world.level.name == app.levels[0] and app.error is None
+    assert app.ctx.choice.custom is None and isinstance(app.scene, Play)
+    assert app.world.level.name == app.ctx.levels[0] and app.ctx.error is None
     pygame.quit()
 
 
 def test_missing_level_file__no_exception_at_start_and_the_title_says_why(tmp_path, scores, capsys):
     missing = tmp_path / "nope" / "missing.toml"
     app = App(start_level=str(missing), seed=1, audio=False, scores=scores)
-    assert isinstance(app.scene, Title) and app.error is not None
-    assert str(missing) in app.error and "no such level file" in app.error
+    assert isinstance(app.scene, Title) and app.ctx.error is not None
+    assert str(missing) in app.ctx.error and "no such level file" in app.ctx.error
     frames(app)
     assert error_bands(app)
     key(pygame.K_RETURN)  # trying again fails the same way, and stays on the title
     frames(app)
-    assert isinstance(app.scene, Title) and str(missing) in app.error
+    assert isinstance(app.scene, Title) and str(missing) in app.ctx.error
     assert len(capsys.readouterr().err.strip().splitlines()) == 2  # one line per attempt
     pygame.quit()
 
@@ -168,55 +157,55 @@ def test_level_needing_an_unloaded_armature__error_names_the_file(tmp_path, scor
     assert app.start_run() is False
     frames(app)
     assert isinstance(app.scene, Title) and app.world is None
-    assert app.error.startswith(f"{path}: ") and "nosuch" in app.error
+    assert app.ctx.error.startswith(f"{path}: ") and "nosuch" in app.ctx.error
     assert error_bands(app)
     pygame.quit()
 
 
 def test_next_level_broken_mid_run__back_to_the_title_with_the_error(tmp_path, app):
     bad = broken_level(tmp_path)
-    app.levels = [app.levels[0], str(bad)]  # a level list entry may be a path, as resolve_level allows
+    app.ctx.levels = [app.ctx.levels[0], str(bad)]  # a level list entry may be a path, as resolve_level allows
     assert app.start_run() is True
     frames(app, 3)
-    app.stack.push(Results(app, app.play))  # as play does when the last wave and boss are done
+    app.stack.push(Results(app.ctx, app.play))  # as play does when the last wave and boss are done
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Title) and app.world is None and app.play is None
-    assert app.error == expected_error(bad)
+    assert app.ctx.error == expected_error(bad)
     assert error_bands(app)
 
 
 def test_error_panel__draws_the_message_wrapped_and_nothing_without_one(tmp_path, app):
     frames(app)
-    assert app.error is None and not error_bands(app)
-    app.error = "x.toml: level.name: bad"
+    assert app.ctx.error is None and not error_bands(app)
+    app.ctx.error = "x.toml: level.name: bad"
     frames(app)
     short = error_bands(app)
     assert len(short) == 1
     long_path = tmp_path / ("deep/" * 12) / "level.toml"
-    app.error = f"{long_path}: wave[3].fire.bullet_speed: must lie in [10, 2000], got 5000"
+    app.ctx.error = f"{long_path}: wave[3].fire.bullet_speed: must lie in [10, 2000], got 5000"
     frames(app)
     long = error_bands(app)
-    assert len(long) == len(wrap_text(app.error, app.painter.font(), ERROR_WRAP)) >= 3
+    assert len(long) == len(wrap_text(app.ctx.error, app.ctx.painter.font(), ERROR_WRAP)) >= 3
     # Different text, different pixels: the message itself is drawn, not a fixed picture.
-    before = pygame.surfarray.array3d(app.screen)[:, long[0][0] : long[0][1] + 1].copy()
-    app.error = app.error.replace("wave[3]", "wave[4]").replace("deep", "DEEP")
+    before = pygame.surfarray.array3d(app.ctx.display.screen)[:, long[0][0] : long[0][1] + 1].copy()
+    app.ctx.error = app.ctx.error.replace("wave[3]", "wave[4]").replace("deep", "DEEP")
     frames(app)
-    after = pygame.surfarray.array3d(app.screen)[:, long[0][0] : long[0][1] + 1]
+    after = pygame.surfarray.array3d(app.ctx.display.screen)[:, long[0][0] : long[0][1] + 1]
     assert (before != after).any()
     # The error covers the controls list; they come back once the error is gone.
-    app.error = None
+    app.ctx.error = None
     frames(app)
     assert not error_bands(app)
 
 
 def test_error_panel__a_huge_error_is_cut_to_the_panel_and_leaves_the_rest_of_the_title(app):
-    app.scores.add(Entry("ACE", 1234, "1-picket", "2024-01-01"))
-    app.error = "levels/x.toml: wave[1]: " + "much too long " * 80
+    app.ctx.scores.add(Entry("ACE", 1234, "1-picket", "2024-01-01"))
+    app.ctx.error = "levels/x.toml: wave[1]: " + "much too long " * 80
     frames(app)
     bands = error_bands(app)
     assert len(bands) == ERROR_LINES and bands[-1][1] < 546  # inside the panel, clear of the high score
-    img = pygame.surfarray.array3d(app.screen)
+    img = pygame.surfarray.array3d(app.ctx.display.screen)
     assert (img[:, 560:580] == HIGH_SCORE).all(axis=2).any()  # the high score line is still drawn
 
 
@@ -224,7 +213,7 @@ def test_play__broken_level_opens_the_game_on_the_title(tmp_path, monkeypatch, c
     bad = broken_level(tmp_path)
     monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
     seen = []
-    monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.error, self.world)))
+    monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.ctx.error, self.world)))
     assert cli.main(["--level", str(bad), "--mute"]) == 0
     assert seen == [(Title, expected_error(bad), None)]
     assert capsys.readouterr().err.strip() == f"broadsword: {expected_error(bad)}"
@@ -238,7 +227,7 @@ def test_play__broken_level_opens_the_game_on_the_title(tmp_path, monkeypatch, c
 def test_play__missing_level_opens_the_game_on_the_title(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("BROADSWORD_DATA_DIR", str(tmp_path / "data"))
     seen = []
-    monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.error)))
+    monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.ctx.error)))
     missing = tmp_path / "missing.toml"
     assert cli.main(["--level", str(missing), "--mute"]) == 0
     assert seen == [(Title, f"{missing}: no such level file")]
@@ -257,11 +246,11 @@ def test_window_away__pauses_play_and_forgets_held_keys(app, kind):
     post(pygame.WINDOWFOCUSGAINED)  # the player's window had the focus
     key(pygame.K_LEFT)
     frames(app, 3)
-    assert pygame.K_LEFT in app.controls.held
+    assert pygame.K_LEFT in app.ctx.controls.held
     post(kind)
     frames(app)
-    assert isinstance(app.scene, Pause) and not app.controls.held
-    assert app.hidden == (kind != pygame.WINDOWFOCUSLOST)
+    assert isinstance(app.scene, Pause) and not app.ctx.controls.held
+    assert app.presence.hidden == (kind != pygame.WINDOWFOCUSLOST)
     frame = app.world.frame
     assert app.frame(30.0) == 0 and app.world.frame == frame  # a long stall while away: nothing moves
 
@@ -274,7 +263,7 @@ def test_window_back__after_a_long_stall_at_most_max_catch_up_steps(app, kind):
     frames(app)
     post(kind)
     frames(app)
-    assert isinstance(app.scene, Pause) and not app.hidden  # back, still paused: the player resumes
+    assert isinstance(app.scene, Pause) and not app.presence.hidden  # back, still paused: the player resumes
     key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, Play)
@@ -291,10 +280,10 @@ def test_window_back__after_a_long_stall_at_most_max_catch_up_steps(app, kind):
 def test_window_away__pauses_nothing_outside_play(app):
     post(pygame.WINDOWMINIMIZED)
     frames(app)
-    assert isinstance(app.scene, Title) and app.hidden
+    assert isinstance(app.scene, Title) and app.presence.hidden
     post(pygame.WINDOWEXPOSED)
     frames(app)
-    assert isinstance(app.scene, Title) and not app.hidden
+    assert isinstance(app.scene, Title) and not app.presence.hidden
 
 
 @pytest.mark.parametrize("dt", [float("nan"), -1.0])
@@ -310,7 +299,7 @@ def test_render__a_1x1_window_gets_the_frame_scaled_to_one_pixel(app):
     frames(app, 3)
     win = pygame.display.get_surface()
     assert win.get_size() == (1, 1)
-    expected = pygame.transform.scale(app.canvas, (1, 1)).get_at((0, 0))  # the field and the side panel
+    expected = pygame.transform.scale(app.ctx.display.canvas, (1, 1)).get_at((0, 0))  # the field and the side panel
     assert win.get_at((0, 0)) == expected
     pygame.display.set_mode((600, 800), pygame.RESIZABLE)  # and back to full size
     frames(app)
@@ -322,9 +311,9 @@ def test_render__no_display_surface_is_not_an_error(app):
     frames(app)
     pygame.display.quit()
     assert pygame.display.get_surface() is None
-    before = app.renderer.tick
+    before = app.ctx.renderer.tick
     app.render()  # draws the field; presenting is skipped
-    assert app.renderer.tick == before + 1
+    assert app.ctx.renderer.tick == before + 1
 
 
 def test_window_opening__shown_hidden_shown_in_one_batch_does_not_start_the_stage_paused(app):
@@ -334,7 +323,7 @@ def test_window_opening__shown_hidden_shown_in_one_batch_does_not_start_the_stag
     for kind in (pygame.WINDOWSHOWN, pygame.WINDOWHIDDEN, pygame.WINDOWSHOWN, pygame.WINDOWFOCUSGAINED):
         post(kind)
     frames(app, 3)
-    assert isinstance(app.scene, Play) and app.world.frame > 0 and not app.hidden
+    assert isinstance(app.scene, Play) and app.world.frame > 0 and not app.presence.hidden
     post(pygame.WINDOWHIDDEN)  # hidden for good: a player's game pauses
     frames(app)
     assert isinstance(app.scene, Pause)

@@ -7,6 +7,7 @@ import pytest
 
 from broadsword.game.app import App
 from broadsword.game.options import Options
+from broadsword.game.panel_state import panel_info
 from broadsword.game.scores import HighScores
 from broadsword.sim import DT
 
@@ -16,7 +17,7 @@ def autopilot_run(tmp_path, speed: int, frames: int) -> tuple[int, str]:
     (world frame, state hash)."""
     app = App(seed=1, demo=True, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
     try:
-        app.set_options(speed=speed)
+        app.ctx.set_options(speed=speed)
         app.start_run()
         for _ in range(frames):
             app.frame(DT)
@@ -49,12 +50,12 @@ def test_input_display__shows_the_last_steps_input_when_on(tmp_path):
         app.start_run()
         for _ in range(30):
             app.frame(DT)
-        assert app.panel_info().held is None and "FIRE" not in app.panel.painter.said
-        app.set_options(input_display=True)
+        assert panel_info(app.ctx).held is None and "FIRE" not in app.ctx.display.panel.painter.said
+        app.ctx.set_options(input_display=True)
         app.frame(DT)
-        held = app.panel_info().held
+        held = panel_info(app.ctx).held
         assert held == app.play.runner.recorder.last_input and held.fire  # the autopilot fires
-        assert {"FIRE", "SLOW", "BOMB"} <= set(app.panel.painter.said)
+        assert {"FIRE", "SLOW", "BOMB"} <= set(app.ctx.display.panel.painter.said)
     finally:
         pygame.quit()
 
@@ -92,32 +93,35 @@ def test_speed__a_run_records_it_and_its_score_keeps_it(tmp_path):
 
     app = App(seed=1, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
     try:
-        app.set_options(speed=60)
+        app.ctx.set_options(speed=60)
         app.start_run()
         for _ in range(3):
             app.frame(DT)
         assert app.recording().info.speed == 60
         app.world.score.points = 1_234
-        over = GameOver(app, app.play, victory=False)
+        over = GameOver(app.ctx, app.play, victory=False)
         app.stack.push(over)
-        over.next()
+        app.apply(over.next())
         assert isinstance(app.stack.top, NameEntry) and app.stack.top.speed == 60
-        app.stack.top.save()
-        (entry,) = app.scores.entries
+        app.apply(app.stack.top.save())
+        (entry,) = app.ctx.scores.entries
         assert (entry.score, entry.speed) == (1_234, 60)
         assert isinstance(app.stack.top, HighScoresScene)
         app.frame(DT)
-        assert "60%" in app.painter.said and "100%" not in app.painter.said
+        assert "60%" in app.ctx.painter.said and "100%" not in app.ctx.painter.said
     finally:
         pygame.quit()
 
 
 def test_speed__a_replay_plays_at_its_recorded_speed(tmp_path):
-    """Recorded at 50 %, watched with the option at 100 %: half the steps in the same wall time."""
+    """Recorded at 50 %, watched in the theatre with the option at 100 %: half the steps in
+    the same wall time."""
+    from broadsword.data.recordings import save_recording
+
     (tmp_path / "a").mkdir()
     app = App(seed=1, demo=True, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path / "a")
     try:
-        app.set_options(speed=50)
+        app.ctx.set_options(speed=50)
         app.start_run()
         for _ in range(200):
             app.frame(DT)
@@ -128,10 +132,11 @@ def test_speed__a_replay_plays_at_its_recorded_speed(tmp_path):
     (tmp_path / "b").mkdir()
     app = App(seed=1, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path / "b")
     try:
-        assert app.options.speed == 100
-        app.watch_replay(rec, "run.json")
+        assert app.ctx.options.speed == 100
+        save_recording(tmp_path / "run.json", rec)
+        app.watch(tmp_path / "run.json")
         for _ in range(60):
             app.frame(DT)
-        assert app.play.speed == 50 and app.world.frame == 30
+        assert app.scene.recorded_speed == 0.5 and app.world.frame == 30
     finally:
         pygame.quit()

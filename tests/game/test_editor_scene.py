@@ -42,7 +42,7 @@ def open_editor(app, files, row=0) -> EditorScene:
     key(app, pygame.K_e)
     assert isinstance(app.scene, ArmatureList)
     app.stack.pop()
-    app.stack.push(ArmatureList(app, files))
+    app.stack.push(ArmatureList(app.ctx, files))
     for _ in range(row):
         key(app, pygame.K_DOWN)
     key(app, pygame.K_RETURN)
@@ -54,7 +54,7 @@ def window_pos(app, scene: EditorScene, x: float, y: float) -> tuple[int, int]:
     """The window pixel showing armature point (x, y): editor surface px, scaled and centred
     into the window the way the app presents it."""
     sx, sy = scene.editor.to_screen(x, y)
-    (ww, wh), (fw, fh) = pygame.display.get_surface().get_size(), app.screen.get_size()
+    (ww, wh), (fw, fh) = pygame.display.get_surface().get_size(), app.ctx.display.screen.get_size()
     k = min(ww / fw, wh / fh)
     return round((ww - fw * k) / 2 + sx * k), round((wh - fh * k) / 2 + sy * k)
 
@@ -76,12 +76,12 @@ def test_enter_opens_the_chosen_file_on_a_surface_of_the_editor_size_and_esc_res
     before = pygame.display.get_surface().get_size()
     scene = open_editor(app, files, row=1)
     assert scene.editor.doc.path == files[1]
-    assert app.screen.get_size() == WINDOW_SIZE
+    assert app.ctx.display.screen.get_size() == WINDOW_SIZE
     assert pygame.display.get_surface().get_size() == WINDOW_SIZE
     app.frame(DT)
     key(app, pygame.K_ESCAPE)  # nothing changed: Esc leaves at once
     assert isinstance(app.scene, ArmatureList)
-    assert app.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
+    assert app.ctx.display.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
     assert pygame.display.get_surface().get_size() == before
 
 
@@ -142,7 +142,7 @@ def test_closing_the_window_with_nothing_unsaved_quits(app, files):
 def test_m_is_the_editors_key_not_mute(app, files):
     open_editor(app, files)
     key(app, pygame.K_m)
-    assert not app.audio.muted
+    assert not app.ctx.audio.muted
 
 
 def test_a_file_the_editor_refuses_is_said_on_the_list_and_the_game_goes_on(app, tmp_path):
@@ -151,10 +151,10 @@ def test_a_file_the_editor_refuses_is_said_on_the_list_and_the_game_goes_on(app,
     before = pygame.display.get_surface().get_size()
     key(app, pygame.K_e)
     app.stack.pop()
-    app.stack.push(ArmatureList(app, [bad]))
+    app.stack.push(ArmatureList(app.ctx, [bad]))
     key(app, pygame.K_RETURN)
     scene = app.scene
     assert isinstance(scene, ArmatureList) and "bad.armature.toml" in scene.note
-    assert app.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
+    assert app.ctx.display.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
     assert pygame.display.get_surface().get_size() == before  # the window kept its size
     app.frame(DT)

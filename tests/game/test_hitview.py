@@ -50,7 +50,7 @@ def test_draw_hit_stays_in_its_rect_and_marks_the_contact(hit, mark):
 
 def _stage_with_a_pending_miss(app: App) -> World:
     """Stage 1 at its start, whose player loses a life on the next step, the hit recorded."""
-    world = World(load_level(resolve_level("1-picket")), app.bank.armatures, seed=1)
+    world = World(load_level(resolve_level("1-picket")), app.ctx.bank.armatures, seed=1)
     app.play_stage(Stage(world, "1-picket", ""), Run(0))
     world.player.bombs, world.player.invulnerable, world.player.stricken = 0, 0.0, 1
     world.hit_log.pending = dataclasses.replace(CROSSING, outcome=None)
@@ -70,8 +70,22 @@ def test_a_miss_freezes_on_the_wall_clock_then_play_goes_on(app):
     assert isinstance(app.stack.top, Play) and world.frame > frame
 
 
+@pytest.mark.parametrize("continues_used, then", [(0, "Continue"), (3, "GameOver")])
+def test_the_last_lifes_miss_freezes_first_then_the_stages_end_comes(app, continues_used, then):
+    """The miss that ends the stage shows what hit, then (at the freeze's end, or a key) the
+    continue or game-over screen takes its place over the frozen stage."""
+    world = _stage_with_a_pending_miss(app)
+    world.player.lives, world.progress.continues_used = 1, continues_used
+    app.frame(DT)
+    assert world.player.lives == 0 and isinstance(app.stack.top, HitFreeze)
+    for _ in range(int(FREEZE_S / DT) + 2):
+        app.frame(DT)
+    assert [type(s).__name__ for s in app.stack.scenes] == ["Play", then]
+    assert app.play is not None and app.play.ended
+
+
 def test_the_option_turns_the_freeze_off(app):
-    app.options = dataclasses.replace(app.options, show_hits=False)
+    app.ctx.options = dataclasses.replace(app.ctx.options, show_hits=False)
     world = _stage_with_a_pending_miss(app)
     app.frame(DT)
     assert world.player.misses == 1 and isinstance(app.stack.top, Play)
@@ -85,10 +99,10 @@ def test_pause_shows_the_last_hit(app):
     app.frame(0.0)  # confirm ends the freeze early
     assert isinstance(app.stack.top, Play)
     play = app.stack.top
-    pause = Pause(app, play)
+    pause = Pause(app.ctx, play)
     app.stack.push(pause)
     assert pause.last_hit is world.hit_log.last
     pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_h, mod=0, unicode="h", scancode=0))
     app.frame(0.0)
     assert pause.show_hit
-    assert any("what hit you last" in s for s in app.painter.said)
+    assert any("what hit you last" in s for s in app.ctx.painter.said)

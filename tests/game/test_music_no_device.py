@@ -22,7 +22,7 @@ from broadsword.game.quiet import filtered_stderr, is_audio_noise
 LAUNCH = """
 import sys
 from broadsword.game import app as m
-m.App.run = lambda self: print("available", self.audio.available, self.audio.problem is not None)
+m.App.run = lambda self: print("available", self.ctx.audio.available, self.ctx.audio.problem is not None)
 from broadsword.cli import main
 sys.exit(main(sys.argv[1:]))
 """

@@ -11,8 +11,8 @@ import pytest
 from broadsword.game.music import Track
 from broadsword.game.run import Run
 from broadsword.game.scenes import GameOver, NameEntry, OptionsScene, Pause, Play, Results, Title
-from broadsword.game.scenes.base import SceneStack
 from broadsword.game.scenes.lab import LabScene
+from broadsword.game.scenes.stack import SceneStack
 from broadsword.game.soundtrack import follow, soundtrack
 
 LEVELS = ["1-a", "2-b", "3-c", "4-d", "5-e"]
@@ -34,7 +34,7 @@ def app(*scenes):
     stack = SceneStack()
     for s in scenes:
         stack.push(s)
-    return SimpleNamespace(stack=stack, levels=LEVELS)
+    return SimpleNamespace(scenes=stack, levels=LEVELS)
 
 
 @pytest.mark.parametrize(

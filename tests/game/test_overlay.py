@@ -105,12 +105,12 @@ def test_overlay_panel__clear_of_the_pause_screens_heading(tmp_path):
     app.start_run()
     for _ in range(5):
         app.frame(DT)
-    app.overlay.visible = True
-    app.stack.push(Pause(app, app.play))
+    app.ctx.overlay.visible = True
+    app.stack.push(Pause(app.ctx, app.play))
     app.frame(DT)
-    heading = app.painter.drawn[0]  # PAUSED, the first line the pause screen draws
-    panel = app.overlay.panel_rect(app.screen.get_size(), app.world.collision.result, paused=True)
-    assert panel.colliderect(pygame.Rect(0, 0, *app.screen.get_size()))
+    heading = app.ctx.painter.drawn[0]  # PAUSED, the first line the pause screen draws
+    panel = app.ctx.overlay.panel_rect(app.ctx.display.screen.get_size(), app.world.collision.result, paused=True)
+    assert panel.colliderect(pygame.Rect(0, 0, *app.ctx.display.screen.get_size()))
     assert panel.bottom <= heading.top, (panel, heading)
     pygame.quit()
 

@@ -88,12 +88,12 @@ def run_with(tmp_path, palette: BulletPalette, frames: int) -> tuple[str, bytes]
     the field's pixels."""
     app = App(seed=3, demo=True, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path)
     try:
-        app.set_options(palette=palette)
+        app.ctx.set_options(palette=palette)
         app.start_run()
         for _ in range(frames):
             app.frame(DT)
         assert app.world.enemy_bullets.n > 0
-        return app.world.state_hash(), pygame.image.tobytes(app.screen, "RGB")
+        return app.world.state_hash(), pygame.image.tobytes(app.ctx.display.screen, "RGB")
     finally:
         pygame.quit()
 

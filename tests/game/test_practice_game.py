@@ -14,6 +14,7 @@ from support.practice import write_level
 
 from broadsword.data.recordings import RunKind
 from broadsword.game.app import App
+from broadsword.game.panel_state import panel_info
 from broadsword.game.practice_run import Ending, PracticeRun
 from broadsword.game.practicefile import FILE_NAME, RecordFile, Tally, load_record, save_record
 from broadsword.game.scenes import Play, Title
@@ -97,8 +98,8 @@ def app(tmp_path, monkeypatch):
     monkeypatch.setenv("BROADSWORD_CACHE_DIR", str(tmp_path / "cache"))
     level = write_level(tmp_path)
     a = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    a.levels = [str(level)]  # the practice screen offers this one stage
-    a.start_index = 0
+    a.ctx.levels = [str(level)]  # the practice screen offers this one stage
+    a.ctx.choice.index = 0
     yield a
     pygame.quit()
 
@@ -129,15 +130,17 @@ def test_practice_from_the_title_prepares_starts_and_ends_with_its_phase(app):
     assert menu.defaults() == at.loadout
     press(app, pygame.K_DOWN, pygame.K_RIGHT, pygame.K_RIGHT)  # lives + 2
     assert menu.value("lives") == at.loadout.lives + 2
-    app.painter.forget()
-    menu.draw(app.screen)
-    assert "0/0" in app.painter.said and any("Defaults: 3 lives, 3 bombs, power 1.00" in s for s in app.painter.said)
+    app.ctx.painter.forget()
+    menu.draw(app.ctx.display.screen)
+    assert "0/0" in app.ctx.painter.said and any(
+        "Defaults: 3 lives, 3 bombs, power 1.00" in s for s in app.ctx.painter.said
+    )
     press(app, pygame.K_RETURN)
     play = app.scene
     assert isinstance(play, Play) and play.practice is not None
     w = play.world
     assert w.boss.phase == 1 and w.player.lives == at.loadout.lives + 2
-    assert app.panel_info().mark is Mark.PRACTICE
+    assert panel_info(app.ctx).mark is Mark.PRACTICE
     assert menu.record.record.of("warden", "normal", 2) == Tally(1, 0)
     w.boss.phase_frames = w.boss.phase_limits[1] - 1  # the phase times out at the next step
     app.frame(DT)
@@ -146,7 +149,7 @@ def test_practice_from_the_title_prepares_starts_and_ends_with_its_phase(app):
     press(app, pygame.K_RETURN)  # try again: a new attempt at the same start
     again = app.scene
     assert isinstance(again, Play) and again is not play and app.recording().stages[0].origin == at.frame
-    assert RecordFile(app.data / FILE_NAME).record.of("warden", "normal", 2) == Tally(2, 0)
+    assert RecordFile(app.ctx.data / FILE_NAME).record.of("warden", "normal", 2) == Tally(2, 0)
     again.world.player.lives = 0  # no life left: a game over at the next step
     app.frame(DT)
     assert isinstance(app.scene, PracticeResult) and app.scene.outcome.ending is Ending.OUT_OF_LIVES
@@ -161,7 +164,7 @@ def test_a_phase_the_autopilot_never_reached_is_said_and_cannot_start(app):
     from broadsword.runner import open_stage
     from broadsword.runner.practice import collect
 
-    full = collect(open_stage(app_start(app), app.bank.armatures))
+    full = collect(open_stage(app_start(app), app.ctx.bank.armatures))
     short = dataclasses.replace(
         full, starts=full.starts[:2], ending="the autopilot ran out of lives 9 s into the stage"
     )
@@ -182,14 +185,14 @@ def test_a_phase_the_autopilot_never_reached_is_said_and_cannot_start(app):
 def app_start(app):
     from broadsword.game.run import Run, stage_start
 
-    return stage_start(Run(0, app.difficulty), app.levels, app.seed)
+    return stage_start(Run(0, app.ctx.difficulty), app.ctx.levels, app.ctx.seed)
 
 
 def test_a_phase_beaten_with_no_miss_and_no_bomb_is_a_capture(app):
     from broadsword.runner import open_stage
     from broadsword.runner.practice import collect
 
-    PracticeCache.default().save(collect(open_stage(app_start(app), app.bank.armatures)))
+    PracticeCache.default().save(collect(open_stage(app_start(app), app.ctx.bank.armatures)))
     press(app, pygame.K_p, pygame.K_DOWN, pygame.K_RIGHT, pygame.K_RETURN)  # phase 1, its defaults
     play = app.scene
     assert isinstance(play, Play)
@@ -204,7 +207,7 @@ def test_a_phase_beaten_with_no_miss_and_no_bomb_is_a_capture(app):
     result = app.scene
     assert isinstance(result, PracticeResult)
     assert result.outcome.ending is Ending.BEATEN and result.outcome.captured
-    assert RecordFile(app.data / FILE_NAME).record.of("warden", "normal", 1) == Tally(1, 1)
-    app.painter.forget()
-    result.draw(app.screen)
-    assert "CAPTURED" in app.painter.said and "Captures / attempts: 1/1" in app.painter.said
+    assert RecordFile(app.ctx.data / FILE_NAME).record.of("warden", "normal", 1) == Tally(1, 1)
+    app.ctx.painter.forget()
+    result.draw(app.ctx.display.screen)
+    assert "CAPTURED" in app.ctx.painter.said and "Captures / attempts: 1/1" in app.ctx.painter.said

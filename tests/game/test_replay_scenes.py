@@ -9,6 +9,8 @@ import errno
 import json
 
 import pygame
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword.data import load_level, resolve_level
 from broadsword.data.recordings import RecordingInfo, RunKind, load_recording
@@ -21,11 +23,7 @@ from broadsword.game.scenes.save_replay import SaveReplay
 from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.runner import Runner, StageStart
-from broadsword.sim import DT, Input
-
-
-def key(k, unicode=""):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0))
+from broadsword.sim import Input
 
 
 def type_text(text):
@@ -33,13 +31,8 @@ def type_text(text):
         key(pygame.K_a, unicode=c)
 
 
-def frames(app, n=1):
-    for _ in range(n):
-        app.frame(DT)
-
-
 def recent(app) -> list:
-    return sorted((app.data / "replays" / "recent").glob("*.json"))
+    return sorted((app.ctx.data / "replays" / "recent").glob("*.json"))
 
 
 def play_a_while(app, n=20) -> None:
@@ -87,26 +80,26 @@ def test_keep__game_over_keeps_the_run_and_s_saves_it_under_a_name(app):
     lose(app)
     [kept] = recent(app)
     frames(app)
-    assert "S: save the replay" in app.painter.said
+    assert "S: save the replay" in app.ctx.painter.said
     key(pygame.K_s)
     frames(app)
     assert isinstance(app.scene, SaveReplay)
     type_text("My run/1")
     key(pygame.K_RETURN)
     frames(app)
-    assert isinstance(app.scene, GameOver) and app.replays.last.saved_as == "My run/1"
-    saved = app.data / "replays" / "My run_1.json"
+    assert isinstance(app.scene, GameOver) and app.ctx.replays.last.saved_as == "My run/1"
+    saved = app.ctx.data / "replays" / "My run_1.json"
     assert load_recording(saved).info.name == "My run/1" and not kept.exists()  # out of recent
     frames(app)
-    assert "Replay saved as My run/1" in app.painter.said
+    assert "Replay saved as My run/1" in app.ctx.painter.said
 
 
 def test_keep__the_last_stage_cleared_keeps_the_run_on_its_results(app):
-    level = dataclasses.replace(load_level(resolve_level(app.levels[-1])), waves=(), boss=None)
+    level = dataclasses.replace(load_level(resolve_level(app.ctx.levels[-1])), waves=(), boss=None)
     from broadsword.runner import open_level
 
-    stage = open_level(level, app.bank.armatures, StageStart(app.levels[-1], 1), digest="")
-    app.play_stage(stage, Run(len(app.levels) - 1))
+    stage = open_level(level, app.ctx.bank.armatures, StageStart(app.ctx.levels[-1], 1), digest="")
+    app.play_stage(stage, Run(len(app.ctx.levels) - 1))
     frames(app, 3)
     assert isinstance(app.scene, Results) and app.scene.final
     assert len(recent(app)) == 1
@@ -122,9 +115,9 @@ def test_keep__a_failed_write_says_one_line_and_play_goes_on(app, monkeypatch):
     monkeypatch.setattr(ReplayLibrary, "keep", refuse)
     play_a_while(app)
     lose(app)
-    assert app.message == "could not keep the replay: Read-only file system"
+    assert app.ctx.message == "could not keep the replay: Read-only file system"
     frames(app)
-    assert "could not keep the replay: Read-only file system   S: try to save it" in app.painter.said
+    assert "could not keep the replay: Read-only file system   S: try to save it" in app.ctx.painter.said
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Title) and app.running
@@ -153,27 +146,27 @@ def open_list(app) -> ReplayList:
 
 
 def test_list__title_r_shows_each_replay_and_a_broken_one_with_its_reason(app):
-    lib = app.replays.library
+    lib = app.ctx.replays.library
     lib.save(short_replay(score=4321, date="2026-11-28T18:20:05+00:00"), "alpha")
     lib.keep(short_replay(date="2026-11-28T19:00:00+00:00"))
     lib.root.joinpath("broken.json").write_text('{"version": 4, "stages": [')
     scene = open_list(app)
     frames(app)
-    said = " | ".join(app.painter.said)
+    said = " | ".join(app.ctx.painter.said)
     assert "alpha" in said and "Stage 1   Normal   4,321   0:00   2026-11-28 18:20" in said
     assert "(unsaved)" in said and "run, recent" in said
     assert "broken.json" in said and "| broken: not a rec" in said  # its row: as much of the reason as fits
     assert [e.path.name for e in scene.entries][:2] == ["alpha.json", "broken.json"]
     key(pygame.K_DOWN)
     frames(app)
-    assert "(bad JSON: Expecting value" in " ".join(app.painter.said)  # chosen: the whole reason below
+    assert "(bad JSON: Expecting value" in " ".join(app.ctx.painter.said)  # chosen: the whole reason below
     key(pygame.K_RETURN)  # watch the broken one: says why, stays
     frames(app)
     assert isinstance(app.scene, ReplayList) and "cannot watch it: " in app.scene.note
 
 
 def test_list__enter_opens_the_theatre_and_esc_goes_back_to_the_list(app):
-    app.replays.library.save(short_replay(frames=20), "short")
+    app.ctx.replays.library.save(short_replay(frames=20), "short")
     open_list(app)
     key(pygame.K_RETURN)
     frames(app)
@@ -187,7 +180,7 @@ def test_list__enter_opens_the_theatre_and_esc_goes_back_to_the_list(app):
 
 
 def test_list__s_saves_a_recent_run_and_asks_before_replacing(app):
-    lib = app.replays.library
+    lib = app.ctx.replays.library
     lib.save(short_replay(score=1), "taken")
     lib.keep(short_replay(score=2, date="2026-11-28T19:00:00+00:00"))
     scene = open_list(app)
@@ -211,7 +204,7 @@ def test_list__s_saves_a_recent_run_and_asks_before_replacing(app):
 
 
 def test_list__delete_asks_first(app):
-    lib = app.replays.library
+    lib = app.ctx.replays.library
     lib.save(short_replay(), "one")
     lib.save(short_replay(), "two")
     open_list(app)
@@ -221,7 +214,7 @@ def test_list__delete_asks_first(app):
     assert isinstance(app.scene, ReplayList) and len(app.scene.entries) == 2
     key(pygame.K_DELETE)
     frames(app)
-    assert "Delete one.json?  Enter: yes   Esc: no" in app.painter.said
+    assert "Delete one.json?  Enter: yes   Esc: no" in app.ctx.painter.said
     key(pygame.K_RETURN)
     frames(app)
     assert [e.path.name for e in app.scene.entries] == ["two.json"] and not (lib.root / "one.json").exists()
@@ -235,8 +228,8 @@ def test_list__empty_and_foreign_content_never_crash(app):
     for k in (pygame.K_UP, pygame.K_DOWN, pygame.K_RETURN, pygame.K_s, pygame.K_DELETE, pygame.K_RETURN):
         key(k)
         frames(app)
-    assert app.scene is scene and "No replays yet" in app.painter.said
-    root = app.replays.library.root
+    assert app.scene is scene and "No replays yet" in app.ctx.painter.said
+    root = app.ctx.replays.library.root
     (root / "recent").mkdir(parents=True)
     (root / "recent" / "odd.json").write_text(json.dumps({"version": 4}))
     key(pygame.K_ESCAPE)
@@ -253,12 +246,12 @@ def test_list__shows_at_once_and_reads_its_files_a_few_a_frame(app, monkeypatch)
     monkeypatch.setattr(replay_list, "OPEN_BUDGET", 0.0)  # one file read on opening, one a frame after
     monkeypatch.setattr(replay_list, "FRAME_BUDGET", 0.0)
     for name in ("a", "b", "c", "d"):
-        app.replays.library.save(short_replay(frames=10), name)
-    scene = ReplayList(app)
+        app.ctx.replays.library.save(short_replay(frames=10), name)
+    scene = ReplayList(app.ctx)
     app.stack.push(scene)
     assert [e.unread for e in scene.entries] == [False, True, True, True]
     app.render()
-    assert app.painter.said.count("reading...") == 3
+    assert app.ctx.painter.said.count("reading...") == 3
     key(pygame.K_UP)  # to the last row, not read yet: read now, as it is chosen
     key(pygame.K_DELETE)
     frames(app)
@@ -294,7 +287,7 @@ def test_keep__a_window_closed_mid_run_keeps_it(app):
 
 
 def test_list__scrolls_and_every_line_fits_the_field(app):
-    lib = app.replays.library
+    lib = app.ctx.replays.library
     for i in range(12):
         lib.save(
             short_replay(frames=5, score=10**9 + i, date="2026-11-28T18:20:05+00:00"),
@@ -307,6 +300,6 @@ def test_list__scrolls_and_every_line_fits_the_field(app):
         key(pygame.K_DOWN)
     frames(app)
     assert scene.index == 12 and scene.first == 12 - replay_list.ROWS_SHOWN + 1  # the chosen row in view
-    assert "13 of 13" in app.painter.said and any(s.startswith("broken: ") for s in app.painter.said)
-    width = app.screen.get_width()
-    assert app.painter.drawn and all(0 <= r.left and r.right <= width for r in app.painter.drawn)
+    assert "13 of 13" in app.ctx.painter.said and any(s.startswith("broken: ") for s in app.ctx.painter.said)
+    width = app.ctx.display.screen.get_width()
+    assert app.ctx.painter.drawn and all(0 <= r.left and r.right <= width for r in app.ctx.painter.drawn)

@@ -7,6 +7,8 @@ import warnings
 
 import pygame
 import pytest
+from support.events import frames
+from support.events import post_key as key
 
 from broadsword.data import load_level, resolve_level
 from broadsword.data.difficulty import Difficulty
@@ -27,26 +29,17 @@ from broadsword.game.scenes import (
 )
 from broadsword.game.scenes.options_screen import ROWS
 from broadsword.game.scores import Entry, HighScores
-from broadsword.sim import DT, World
-
-
-def key(k, unicode=""):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0))
+from broadsword.sim import World
 
 
 def post(kind):
     pygame.event.post(pygame.event.Event(kind))
 
 
-def frames(app, n=1):
-    for _ in range(n):
-        app.frame(DT)
-
-
 def empty_stage(app, run=None, waves=()) -> World:
     """Play an emptied first stage (no waves, no boss): it clears on its first step."""
     level = dataclasses.replace(load_level(resolve_level("1-picket")), waves=tuple(waves), boss=None)
-    world = World(level, app.bank.armatures, seed=1)
+    world = World(level, app.ctx.bank.armatures, seed=1)
     app.play_stage(Stage(world, "1-picket", ""), run or Run(0))
     return world
 
@@ -85,20 +78,20 @@ def test_stack__draws_from_the_highest_opaque_scene_up():
 
 # --------------------------------------------------------------------------- defects (issue 12, item 10)
 def test_name_entry__m_types_m_and_does_not_mute(app):
-    app.stack.push(NameEntry(app, 1234, "1-picket"))
+    app.stack.push(NameEntry(app.ctx, 1234, "1-picket"))
     for ch in "mammoth":
         key(getattr(pygame, f"K_{ch}"), ch)
     frames(app)
-    assert app.scene.name == "MAMMOTH" and not app.audio.muted
+    assert app.scene.name == "MAMMOTH" and not app.ctx.audio.muted
     key(pygame.K_RETURN, "\r")
     frames(app)
-    assert isinstance(app.scene, HighScoresScene) and app.scores.entries[0].name == "MAMMOTH"
+    assert isinstance(app.scene, HighScoresScene) and app.ctx.scores.entries[0].name == "MAMMOTH"
 
 
 def test_m_mutes_elsewhere(app):
     key(pygame.K_m, "m")
     frames(app)
-    assert app.audio.muted and isinstance(app.scene, Title)
+    assert app.ctx.audio.muted and isinstance(app.scene, Title)
 
 
 @pytest.mark.parametrize("kind", [pygame.WINDOWFOCUSLOST, pygame.WINDOWMINIMIZED, pygame.WINDOWHIDDEN])
@@ -115,7 +108,7 @@ def test_autopilot__never_pauses_by_itself(tmp_path, kind):
 
 def test_level_run__a_window_opened_without_focus_does_not_start_paused(app):
     frames(app)  # the window's own start-up events
-    app.focused = False  # opened behind the terminal that launched it
+    app.presence.focused = False  # opened behind the terminal that launched it
     app.start_run()
     post(pygame.WINDOWFOCUSLOST)  # what the window manager may send to a window that never had focus
     frames(app, 3)
@@ -135,18 +128,18 @@ def test_autopilot__never_asks_for_a_name_nor_enters_the_table(tmp_path):
     assert isinstance(a.scene, GameOver) and not a.scene.qualifies  # no continue offered either
     key(pygame.K_RETURN)
     frames(a)
-    assert isinstance(a.scene, Title) and a.scores.entries == []
+    assert isinstance(a.scene, Title) and a.ctx.scores.entries == []
     assert not (tmp_path / "s.json").exists()
     pygame.quit()
 
 
 def fits(app) -> None:
     """Every line drawn this frame lies inside the field, and no text colour touches its edges."""
-    w, h = app.screen.get_size()
-    assert app.painter.drawn
-    for r in app.painter.drawn:
+    w, h = app.ctx.display.screen.get_size()
+    assert app.ctx.painter.drawn
+    for r in app.ctx.painter.drawn:
         assert 0 <= r.left and r.right <= w, r
-    img = pygame.surfarray.array3d(app.screen)
+    img = pygame.surfarray.array3d(app.ctx.display.screen)
     for column in (img[0], img[w - 1]):
         bright = (column.max(axis=1) > 140).sum()
         assert bright <= 6, "text at the field's edge"  # a star or two may sit there, never a line of text
@@ -158,30 +151,30 @@ def test_text__never_clipped_at_the_right_edge(app):
     assert "shows your hit shape" in "".join(
         r
         for _, r in __import__("broadsword.game.scenes.title", fromlist=["controls_list"]).controls_list(
-            app.controls.bindings
+            app.ctx.controls.bindings
         )
     )
     # the widest strings each screen can draw, fitted
-    app.custom_level = "/a/very/long/path/" * 8 + "level.toml"
+    app.ctx.choice.custom = "/a/very/long/path/" * 8 + "level.toml"
     frames(app)
     fits(app)
-    app.custom_level = None
+    app.ctx.choice.custom = None
     world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
-    app.overlay.visible = True
+    app.ctx.overlay.visible = True
     key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, Pause)
     fits(app)
     for scene in (
-        Results(app, app.play),
-        Continue(app, app.play),
-        GameOver(app, app.play, True),
-        NameEntry(app, 123456789, "x"),
-        OptionsScene(app),
-        HighScoresScene(app),
+        Results(app.ctx, app.play),
+        Continue(app.ctx, app.play),
+        GameOver(app.ctx, app.play, True),
+        NameEntry(app.ctx, 123456789, "x"),
+        OptionsScene(app.ctx),
+        HighScoresScene(app.ctx),
     ):
         app.stack.push(scene)
-        app.scores.entries = [Entry("W" * 12, 10**12, "w" * 40, "2024-01-01")]
+        app.ctx.scores.entries = [Entry("W" * 12, 10**12, "w" * 40, "2024-01-01")]
         app.render()
         fits(app)
         app.stack.pop()
@@ -190,11 +183,11 @@ def test_text__never_clipped_at_the_right_edge(app):
 
 # --------------------------------------------------------------------------- title and difficulty
 def test_title__up_down_choose_the_difficulty_it_plays_and_remembers(app, tmp_path):
-    assert app.difficulty is Difficulty.NORMAL
+    assert app.ctx.difficulty is Difficulty.NORMAL
     key(pygame.K_DOWN)
     key(pygame.K_DOWN)
     frames(app)
-    assert app.difficulty is Difficulty.LUNATIC
+    assert app.ctx.difficulty is Difficulty.LUNATIC
     assert '"difficulty": "lunatic"' in (tmp_path / "options.json").read_text()
     key(pygame.K_UP)
     key(pygame.K_RETURN)
@@ -229,7 +222,7 @@ def test_results__after_a_stage_then_the_next_stage_with_the_score_carried(app):
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Play) and app.world is not world
-    assert app.world.level.name == app.levels[1] and app.world.score.points == score
+    assert app.world.level.name == app.ctx.levels[1] and app.world.score.points == score
 
 
 def test_results__the_next_stage_keeps_the_power_won(app):
@@ -254,36 +247,39 @@ def test_results__a_missed_bonus_says_why(app):
 
 
 def test_results__the_last_stage_leads_to_the_final_results_and_the_name(app):
-    world = empty_stage(app, Run(len(app.levels) - 1))
+    world = empty_stage(app, Run(len(app.ctx.levels) - 1))
     frames(app, 2)
     assert isinstance(app.scene, Results) and app.scene.final
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, GameOver) and app.scene.victory and app.scene.score == world.score.points
     app.render()  # a one-stage run (started at the last stage) cleared only that stage
-    assert "STAGE CLEARED" in app.painter.said and not any("Every stage" in line for line in app.painter.said)
+    assert "STAGE CLEARED" in app.ctx.painter.said and not any("Every stage" in line for line in app.ctx.painter.said)
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, NameEntry) and app.scene.score == world.score.points
 
 
 def test_final_results__every_stage_cleared_only_when_the_run_cleared_them_all(app):
-    empty_stage(app, Run(len(app.levels) - 1))
+    empty_stage(app, Run(len(app.ctx.levels) - 1))
     frames(app, 2)
     key(pygame.K_RETURN)
     frames(app)
     over = app.scene
     assert over.victory_lines()[0] == "STAGE CLEARED"
     over.totals = dataclasses.replace(over.totals, stages=2)
-    assert over.victory_lines() == ("STAGES CLEARED", f"2 of {len(app.levels)} stages, to I. Outer Picket, on Normal")
-    over.totals = dataclasses.replace(over.totals, stages=len(app.levels))
+    assert over.victory_lines() == (
+        "STAGES CLEARED",
+        f"2 of {len(app.ctx.levels)} stages, to I. Outer Picket, on Normal",
+    )
+    over.totals = dataclasses.replace(over.totals, stages=len(app.ctx.levels))
     assert over.victory_lines() == ("BROADSWORD FALLS", "Every stage cleared on Normal")
 
 
 def test_final_results__the_runs_totals_add_every_stage_cleared(app):
     """Two emptied stages cleared one after the other: the final screen adds both stages'
     misses, bombs, grazes, items and time (the run's totals, not the last stage's)."""
-    first = empty_stage(app, Run(len(app.levels) - 2))
+    first = empty_stage(app, Run(len(app.ctx.levels) - 2))
     first.player.misses, first.progress.bombs_used, first.score.grazes, first.score.items = 1, 2, 30, 4
     frames(app, 2)
     key(pygame.K_RETURN)  # results -> the last stage
@@ -320,12 +316,12 @@ def test_continue__play_on_with_the_score_counting_continues(app):
 
 def test_continue__names_the_fire_keys_bound_now(app):
     """After Fire is rebound to J, the continue screen says J, not Z (issue 22)."""
-    app.controls.bindings.bind_key(Action.FIRE, pygame.K_j, replace=True)
+    app.ctx.controls.bindings.bind_key(Action.FIRE, pygame.K_j, replace=True)
     world = empty_stage(app, waves=load_level(resolve_level("1-picket")).waves[:1])
     lose_every_life(world)
     frames(app, 2)
     assert isinstance(app.scene, Continue)
-    assert "Enter or J: continue   Esc: end the run" in app.painter.said
+    assert "Enter or J: continue   Esc: end the run" in app.ctx.painter.said
     key(pygame.K_j)
     frames(app, 3)
     assert isinstance(app.scene, Play) and not world.over
@@ -341,7 +337,7 @@ def test_launch__a_custom_binding_says_nothing_on_stderr(tmp_path, capfd):
         warnings.simplefilter("always")
         a = App(audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
     try:
-        assert a.controls.bindings.keys[Action.SLOW] == (pygame.K_c,) and a.message is None
+        assert a.ctx.controls.bindings.keys[Action.SLOW] == (pygame.K_c,) and a.ctx.message is None
         assert [str(w.message) for w in said] == [] and capfd.readouterr().err == ""
     finally:
         pygame.quit()
@@ -373,7 +369,7 @@ def row(name: str) -> int:
 
 
 def test_options__rebind_fire_by_pressing_a_key_and_it_is_saved(app, tmp_path):
-    app.stack.push(OptionsScene(app))
+    app.stack.push(OptionsScene(app.ctx))
     for _ in range(row("Fire")):
         key(pygame.K_DOWN)
     key(pygame.K_RETURN)
@@ -384,7 +380,7 @@ def test_options__rebind_fire_by_pressing_a_key_and_it_is_saved(app, tmp_path):
     assert app.scene.waiting is Action.FIRE and "fixed" in app.scene.note
     key(pygame.K_c, "c")
     frames(app)
-    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (
+    assert app.scene.waiting is None and app.ctx.controls.bindings.keys[Action.FIRE] == (
         pygame.K_z,
         pygame.K_SPACE,
         pygame.K_c,
@@ -393,37 +389,37 @@ def test_options__rebind_fire_by_pressing_a_key_and_it_is_saved(app, tmp_path):
     key(pygame.K_BACKSPACE)  # Backspace, then a key: that key alone
     key(pygame.K_j, "j")
     frames(app)
-    assert app.scene.waiting is None and app.controls.bindings.keys[Action.FIRE] == (pygame.K_j,)
+    assert app.scene.waiting is None and app.ctx.controls.bindings.keys[Action.FIRE] == (pygame.K_j,)
     assert '"fire": [\n   "j"\n  ]' in (tmp_path / "controls.json").read_text()
     key(pygame.K_ESCAPE)
     frames(app)
     assert isinstance(app.scene, Title)
     app.render()
-    assert any(line.startswith("Enter or J play") for line in app.painter.said)  # the real Fire key
+    assert any(line.startswith("Enter or J play") for line in app.ctx.painter.said)  # the real Fire key
 
 
 def test_options__volumes_hitbox_and_difficulty_change_and_are_saved(app, tmp_path):
-    scene = OptionsScene(app)
+    scene = OptionsScene(app.ctx)
     app.stack.push(scene)
-    before = app.options.music
+    before = app.ctx.options.music
     scene.row = row("Music volume")
     key(pygame.K_LEFT)
     scene_row_hitbox = row("Always show hit shape")
     frames(app)
-    assert app.options.music == before - 1
+    assert app.ctx.options.music == before - 1
     scene.row = scene_row_hitbox
     key(pygame.K_RETURN)
     frames(app)
-    assert app.options.always_hitbox
+    assert app.ctx.options.always_hitbox
     text = (tmp_path / "options.json").read_text()
     assert f'"music": {before - 1}' in text and '"always_hitbox": true' in text
 
 
 def test_options__no_two_lines_overlap(app):
     """Every row (the bullet palette's too) and the help line below them stand apart."""
-    app.stack.push(OptionsScene(app))
+    app.stack.push(OptionsScene(app.ctx))
     frames(app)
-    drawn = list(app.painter.drawn)
+    drawn = list(app.ctx.painter.drawn)
     assert len(drawn) >= 2 * len(ROWS)
     for i, a in enumerate(drawn):
         for b in drawn[i + 1 :]:
@@ -435,9 +431,9 @@ def test_options__always_show_hitbox_draws_the_hit_shape(app):
     world.player.invulnerable = 0.0
     frames(app)
     outline = (255, 60, 90)
-    has = lambda: (pygame.surfarray.array3d(app.screen) == outline).all(axis=2).any()  # noqa: E731
+    has = lambda: (pygame.surfarray.array3d(app.ctx.display.screen) == outline).all(axis=2).any()  # noqa: E731
     assert not has()
-    app.set_options(always_hitbox=True)
+    app.ctx.set_options(always_hitbox=True)
     frames(app)
     assert has()
 
@@ -468,7 +464,7 @@ def test_title_card__shown_in_play_not_under_the_pause_screen(app):
     PAUSED heading sits where the card does) it is not drawn."""
     app.start_run()
     frames(app, 30)
-    fonts = app.renderer.big = _Fonts(app.renderer.big)
+    fonts = app.ctx.renderer.big = _Fonts(app.ctx.renderer.big)
     frames(app)
     assert app.world.level.title in fonts.rendered and app.world.time < 3.0
     key(pygame.K_p)
@@ -515,23 +511,23 @@ def test_high_scores__columns_one_long_custom_level_does_not_shrink_its_row(app)
     on one edge (a whole row used to be one string, shrunk to a tiny font by a long path)."""
     long_path = "/home/someone/levels/" + "a-very-long-custom-level-name" * 2 + ".toml"
     for i, level in enumerate(["1-picket", long_path, "2-gauntlet"]):
-        app.scores.add(Entry("MAMMOTH", 900_000 - i * 1000, level, "2026-11-27"))
+        app.ctx.scores.add(Entry("MAMMOTH", 900_000 - i * 1000, level, "2026-11-27"))
     drawn = []
-    real = app.painter.text
+    real = app.ctx.painter.text
 
     def text(s, y, *args, **kwargs):
         rect = real(s, y, *args, **kwargs)
         drawn.append((s, rect))
         return rect
 
-    app.painter.text = text
-    app.stack.reset(HighScoresScene(app))
+    app.ctx.painter.text = text
+    app.stack.reset(HighScoresScene(app.ctx))
     frames(app)
-    scores = [r for s, r in drawn if s in {f"{e.score:,}" for e in app.scores.entries}]
+    scores = [r for s, r in drawn if s in {f"{e.score:,}" for e in app.ctx.scores.entries}]
     assert len(scores) == 3
     assert len({r.right for r in scores}) == 1 and len({r.height for r in scores}) == 1
     assert not any("/" in s for s, _ in drawn) and any(s.startswith("a-very-long") for s, _ in drawn)
-    field = app.screen.get_rect()
+    field = app.ctx.display.screen.get_rect()
     assert all(field.contains(r) for _, r in drawn)
 
 
@@ -544,8 +540,8 @@ def test_title__both_unusable_settings_files_are_said_in_full(tmp_path, capsys):
     (data / "controls.json").write_text('["not", "a", "table"]')  # unusable whole (one bad value keeps the rest)
     a = App(seed=1, audio=False, scores=HighScores(data / "scores.json"), data=data)
     drawn = []
-    real = a.painter.text
-    a.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
+    real = a.ctx.painter.text
+    a.ctx.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
     frames(a)
     shown = " ".join(drawn)
     assert "options.json not used" in shown and "controls.json not used" in shown
@@ -562,12 +558,12 @@ def test_options__a_session_difficulty_is_not_saved_with_other_options(tmp_path)
     import json
 
     a = App(seed=1, audio=False, scores=HighScores(tmp_path / "s.json"), data=tmp_path, difficulty=Difficulty.LUNATIC)
-    a.set_options(music=3)
+    a.ctx.set_options(music=3)
     saved = json.loads((tmp_path / "options.json").read_text())
-    assert saved["music"] == 3 and saved["difficulty"] == "normal" and a.difficulty is Difficulty.LUNATIC
-    a.set_options(difficulty=Difficulty.HARD)
+    assert saved["music"] == 3 and saved["difficulty"] == "normal" and a.ctx.difficulty is Difficulty.LUNATIC
+    a.ctx.set_options(difficulty=Difficulty.HARD)
     assert json.loads((tmp_path / "options.json").read_text())["difficulty"] == "hard"
-    assert a.difficulty is Difficulty.HARD
+    assert a.ctx.difficulty is Difficulty.HARD
     pygame.quit()
 
 
@@ -576,8 +572,8 @@ def test_play__slow_motion_and_a_rotation_switch_are_said_on_screen(app):
     (nothing on screen used to tell a player why the game had slowed)."""
     app.start_run()
     drawn = []
-    real = app.painter.text
-    app.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
+    real = app.ctx.painter.text
+    app.ctx.painter.text = lambda s, y, *args, **kw: drawn.append(s) or real(s, y, *args, **kw)
     frames(app, 2)
     assert not any("SLOW" in s or "rotation" in s for s in drawn)
     key(pygame.K_F3)
@@ -599,14 +595,14 @@ def test_play__slow_motion_and_a_rotation_switch_are_said_on_screen(app):
 def test_how_to_play__from_the_title_three_pages_naming_the_keys_bound(app):
     from broadsword.game.scenes.how_to_play import PAGES, HowToPlay
 
-    app.controls.bindings.bind_key(Action.BOMB, pygame.K_v, replace=True)
+    app.ctx.controls.bindings.bind_key(Action.BOMB, pygame.K_v, replace=True)
     key(pygame.K_i)
     frames(app)
     assert isinstance(app.scene, HowToPlay)
     text = []
     for _ in PAGES:
         app.render()
-        text.append(" ".join(app.painter.said))
+        text.append(" ".join(app.ctx.painter.said))
         key(pygame.K_RIGHT)
         frames(app)
     body = " ".join(text)
@@ -619,42 +615,50 @@ def test_how_to_play__from_the_title_three_pages_naming_the_keys_bound(app):
 
 
 def test_first_run__the_title_and_the_first_stage_hint_then_never_again(app, tmp_path):
-    assert not app.options.played
+    assert not app.ctx.options.played
     app.render()
-    assert any("how to play" in line for line in app.painter.said)
+    assert any("how to play" in line for line in app.ctx.painter.said)
     app.start_run()
     frames(app)
-    assert app.hint and app.options.played and '"played": true' in (tmp_path / "options.json").read_text()
-    assert any(line.startswith("Hold Z / Space: fire") for line in app.painter.said)
+    assert app.hint and app.ctx.options.played and '"played": true' in (tmp_path / "options.json").read_text()
+    assert any(line.startswith("Hold Z / Space: fire") for line in app.ctx.painter.said)
     app.to_title()
     app.start_run()  # the second run: no hint
     frames(app)
-    assert not app.hint and not any(line.startswith("Hold Z") for line in app.painter.said)
+    assert not app.hint and not any(line.startswith("Hold Z") for line in app.ctx.painter.said)
 
 
 def test_title__names_the_stage_by_its_title(app):
     app.render()
-    assert any(line.startswith("Stage: I. Outer Picket") for line in app.painter.said)
-    assert not any("1-picket" in line for line in app.painter.said)
+    assert any(line.startswith("Stage: I. Outer Picket") for line in app.ctx.painter.said)
+    assert not any("1-picket" in line for line in app.ctx.painter.said)
 
 
 def test_high_scores__one_table_a_difficulty_with_the_stages_title(app):
-    app.scores.add(Entry("EASY", 5000, "I. Outer Picket", "2026-11-27", Difficulty.EASY))
-    app.scores.add(Entry("HARD", 900, "IV. Ion Storm", "2026-11-27", Difficulty.HARD))
-    app.stack.reset(HighScoresScene(app, Difficulty.EASY))
+    app.ctx.scores.add(Entry("EASY", 5000, "I. Outer Picket", "2026-11-27", Difficulty.EASY))
+    app.ctx.scores.add(Entry("HARD", 900, "IV. Ion Storm", "2026-11-27", Difficulty.HARD))
+    app.stack.reset(HighScoresScene(app.ctx, Difficulty.EASY))
     frames(app)
     app.render()
-    assert "EASY" in app.painter.said and "I. Outer Picket" in app.painter.said and "HARD" not in app.painter.said
+    assert (
+        "EASY" in app.ctx.painter.said
+        and "I. Outer Picket" in app.ctx.painter.said
+        and "HARD" not in app.ctx.painter.said
+    )
     key(pygame.K_RIGHT)  # Normal: empty
     frames(app)
-    assert "none yet" in app.painter.said
+    assert "none yet" in app.ctx.painter.said
     key(pygame.K_RIGHT)
     frames(app)
-    assert "HARD" in app.painter.said and "IV. Ion Storm" in app.painter.said and "EASY" not in app.painter.said
+    assert (
+        "HARD" in app.ctx.painter.said
+        and "IV. Ion Storm" in app.ctx.painter.said
+        and "EASY" not in app.ctx.painter.said
+    )
 
 
 def test_game_over__a_score_enters_its_difficultys_table_with_the_stages_title(app):
-    app.set_options(difficulty=Difficulty.HARD)
+    app.ctx.set_options(difficulty=Difficulty.HARD)
     world = empty_stage(app, Run(0, Difficulty.HARD), waves=load_level(resolve_level("1-picket")).waves[:1])
     world.progress.continues_used = 3
     world.score.points = 12_340
@@ -666,5 +670,5 @@ def test_game_over__a_score_enters_its_difficultys_table_with_the_stages_title(a
     key(pygame.K_a, "a")
     key(pygame.K_RETURN)
     frames(app)
-    (entry,) = app.scores.entries
+    (entry,) = app.ctx.scores.entries
     assert (entry.name, entry.level, entry.difficulty) == ("A", "I. Outer Picket", Difficulty.HARD)

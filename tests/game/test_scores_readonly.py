@@ -263,18 +263,18 @@ def test_app__read_only_save_shows_a_message_and_the_game_goes_on(tmp_path, read
     before = saved(path, entry("OLD", 50))
     read_only.mount(tmp_path)
     app = app_factory(scores=HighScores(path))
-    assert app.message is None and app.scores.entries == [entry("OLD", 50)]
+    assert app.ctx.message is None and app.ctx.scores.entries == [entry("OLD", 50)]
 
     from broadsword.game.scenes import HighScoresScene, NameEntry, Play, Title
 
-    entry_screen = NameEntry(app, 5000, "1-picket")
+    entry_screen = NameEntry(app.ctx, 5000, "1-picket")
     app.stack.push(entry_screen)
     entry_screen.name = "ME"
-    entry_screen.save()  # what Enter on the name screen does
+    app.apply(entry_screen.save())  # what Enter on the name screen does
     assert isinstance(app.scene, HighScoresScene)
-    assert app.message.startswith("could not save high scores: ")
-    assert "Read-only file system" in app.message and str(path) in app.message
-    assert [(e.name, e.score) for e in app.scores.entries] == [("ME", 5000), ("OLD", 50)]
+    assert app.ctx.message.startswith("could not save high scores: ")
+    assert "Read-only file system" in app.ctx.message and str(path) in app.ctx.message
+    assert [(e.name, e.score) for e in app.ctx.scores.entries] == [("ME", 5000), ("OLD", 50)]
     assert path.read_bytes() == before
 
     app.frame(0.0)  # the scores screen draws
@@ -292,8 +292,8 @@ def test_app__corrupt_table_on_read_only_disk_is_reported_on_the_title(tmp_path,
     path.write_bytes(b"\xff\xfe garbage")
     read_only.mount(tmp_path)
     app = app_factory(scores=HighScores(path))
-    assert app.message is not None and str(path) in app.message
-    assert app.scores.entries == []
+    assert app.ctx.message is not None and str(path) in app.ctx.message
+    assert app.ctx.scores.entries == []
     app.frame(0.0)
     from broadsword.game.scenes import Title
 

@@ -8,6 +8,7 @@ import pygame
 import pytest
 
 from broadsword.game.app import App
+from broadsword.game.panel_state import panel_info
 from broadsword.game.scores import HighScores
 from broadsword.game.sidebar import FIELD_RECT, FRAME, PANEL_RECT, Mark
 from broadsword.sim import DT, FIELD
@@ -24,14 +25,18 @@ def make_app(tmp_path):
 
 def test_sidebar__the_window_shows_the_field_beside_the_panel(make_app):
     app = make_app()
-    assert app.canvas.get_size() == FRAME and app.screen.get_size() == (int(FIELD[0]), int(FIELD[1]))
+    assert app.ctx.display.canvas.get_size() == FRAME and app.ctx.display.screen.get_size() == (
+        int(FIELD[0]),
+        int(FIELD[1]),
+    )
     assert (
-        app.screen.get_abs_offset() == FIELD_RECT.topleft and app.panel.surface.get_abs_offset() == PANEL_RECT.topleft
+        app.ctx.display.screen.get_abs_offset() == FIELD_RECT.topleft
+        and app.ctx.display.panel.surface.get_abs_offset() == PANEL_RECT.topleft
     )
     app.start_run()
     app.frame(DT)
-    assert app.panel_info().mark is None  # the player plays: no mark
-    panel = pygame.surfarray.array3d(app.panel.surface)
+    assert panel_info(app.ctx).mark is None  # the player plays: no mark
+    panel = pygame.surfarray.array3d(app.ctx.display.panel.surface)
     assert (panel.sum(axis=2) > 300).mean() > 0.01  # the numbers are drawn there
 
 
@@ -39,7 +44,7 @@ def test_sidebar__the_autopilot_is_marked_demo(make_app):
     app = make_app(demo=True)
     app.start_run()
     app.frame(DT)
-    assert app.panel_info().mark is Mark.DEMO
+    assert panel_info(app.ctx).mark is Mark.DEMO
 
 
 def test_sidebar__huge_numbers_stay_inside_the_panel(make_app):
@@ -49,14 +54,14 @@ def test_sidebar__huge_numbers_stay_inside_the_panel(make_app):
     w.score.points, w.score.grazes, w.score.items = 9_999_999_990, 10**15, 9_876_543_210
     w.player.lives, w.player.bombs = 99, 99
     app.frame(DT)
-    drawn = app.panel.painter.drawn
+    drawn = app.ctx.display.panel.painter.drawn
     assert len(drawn) >= 10
     for rect in drawn:
         assert pygame.Rect(0, 0, *PANEL_RECT.size).contains(rect), rect
     labels = [r for r in drawn if r.left <= 20]  # the labels at the left edge...
     values = [r for r in drawn if r.right >= PANEL_RECT.width - 20 and r.left > 20]  # ...and the values at the right
     assert not any(a.colliderect(b) for a in labels for b in values)  # no count overwrites its label
-    field = pygame.surfarray.array3d(app.screen)
+    field = pygame.surfarray.array3d(app.ctx.display.screen)
     assert np.any(field)
 
 
@@ -67,13 +72,13 @@ def test_sidebar__drawn_again_only_when_what_it_shows_changes(make_app):
     app.start_run()
     app.frame(DT)
     drawn = []
-    real = app.panel.painter.forget
-    app.panel.painter.forget = lambda: drawn.append(1) or real()
+    real = app.ctx.display.panel.painter.forget
+    app.ctx.display.panel.painter.forget = lambda: drawn.append(1) or real()
     app.world.player.invulnerable = 1e9
     for _ in range(5):
         app.render()
     assert drawn == []
-    before = pygame.surfarray.array3d(app.panel.surface).copy()
+    before = pygame.surfarray.array3d(app.ctx.display.panel.surface).copy()
     app.world.score.points += 1230
     app.render()
-    assert drawn == [1] and (pygame.surfarray.array3d(app.panel.surface) != before).any()
+    assert drawn == [1] and (pygame.surfarray.array3d(app.ctx.display.panel.surface) != before).any()

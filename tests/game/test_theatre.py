@@ -11,9 +11,10 @@ import pytest
 
 from broadsword.data.recordings import RunKind, save_recording
 from broadsword.game.app import App
+from broadsword.game.panel_state import panel_info
 from broadsword.game.scenes import Play
 from broadsword.game.scenes import theatre as theatre_module
-from broadsword.game.scenes.theatre import JUMP, SPEEDS, Theatre, open_theatre
+from broadsword.game.scenes.theatre import JUMP, SPEEDS, Theatre
 from broadsword.game.scores import HighScores
 from broadsword.game.sidebar import Mark
 from broadsword.runner import Runner, StageStart, StateHashes
@@ -45,9 +46,9 @@ def opened(tmp_path_factory):
     app = App(seed=0, audio=False, scores=HighScores(tmp / "scores.json"), data=tmp)
     path = tmp / "run.json"
     save_recording(path, recorded()[0])
-    open_theatre(app, path)
+    app.watch(path)
     scene = app.scene
-    assert isinstance(scene, Theatre), app.error
+    assert isinstance(scene, Theatre), app.ctx.error
     scene.seeker.prepare()
     yield app, scene.seeker, path
     pygame.quit()
@@ -57,7 +58,7 @@ def opened(tmp_path_factory):
 def theatre(opened):
     app, seeker, path = opened
     seeker.seek(0)
-    scene = Theatre(app, seeker, path)
+    scene = Theatre(app.ctx, seeker, path)
     app.stack.reset(scene)
     return app, scene
 
@@ -128,7 +129,7 @@ def test_mouse__a_click_on_the_bar_seeks_there(theatre):
     bar = scene.bar
     left, right, y = bar.line
     window = pygame.display.get_surface().get_size()
-    k = window[0] / app.canvas.get_width()  # the field sits at the canvas's left edge
+    k = window[0] / app.ctx.display.canvas.get_width()  # the field sits at the canvas's left edge
     x = left + (right - left) * 0.25
     app.handle(pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=(x * k, y * k), button=1))
     assert scene.dragging and scene.frame == bar.frame_at(x) == round(FRAMES * 0.25)
@@ -147,7 +148,7 @@ def test_take_over__plays_on_from_the_frame_in_the_play_scene(theatre):
     play = app.scene
     assert isinstance(play, Play) and not play.watched
     assert play.world.frame == 200 and play.world.state_hash() == before
-    assert app.panel_info().mark is Mark.TAKE_OVER
+    assert panel_info(app.ctx).mark is Mark.TAKE_OVER
     for _ in range(30):
         play.step()
     assert play.world.frame == 230
@@ -171,12 +172,12 @@ def test_divergence__a_banner_names_the_frame_and_part(tmp_path):
     save_recording(path, dataclasses.replace(rec, stages=(dataclasses.replace(st, inputs=bytes(inputs)),)))
     app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
     try:
-        open_theatre(app, path)
+        app.watch(path)
         scene = app.scene
         assert isinstance(scene, Theatre)
         scene.seeker.prepare()
         app.render()
-        said = " ".join(app.painter.said)
+        said = " ".join(app.ctx.painter.said)
         assert "REPLAY DIFFERS from frame 101: the player" in said
         key(app, pygame.K_END)
         assert scene.frame == 101 == scene.seeker.end
@@ -189,8 +190,8 @@ def test_open_theatre__a_broken_file_says_why_and_opens_nothing(tmp_path):
     path.write_text("{not json")
     app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
     try:
-        open_theatre(app, path)
-        assert not isinstance(app.scene, Theatre) and app.error is not None and "broken.json" in app.error
+        app.watch(path)
+        assert not isinstance(app.scene, Theatre) and app.ctx.error is not None and "broken.json" in app.ctx.error
     finally:
         pygame.quit()
 
@@ -216,7 +217,7 @@ def test_h__shows_what_hit_at_the_last_miss_as_the_run_recorded_it(tmp_path):
     app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
     path = tmp_path / "missed.json"
     save_recording(path, rec)
-    open_theatre(app, path)
+    app.watch(path)
     scene = app.scene
     assert isinstance(scene, Theatre)
     scene.seeker.prepare()
@@ -244,7 +245,7 @@ def test_speed__1x_is_the_game_speed_the_run_was_played_at(opened, tmp_path):
     rec = dataclasses.replace(rec, info=dataclasses.replace(rec.info, speed=50))  # played at 50 %
     path = tmp_path / "slow.json"
     save_recording(path, rec)
-    scene = Theatre(app, Seeker(rec, path, app.bank.armatures), path)
+    scene = Theatre(app.ctx, Seeker(rec, path, app.ctx.bank.armatures), path)
     app.stack.reset(scene)
     for _ in range(60):  # a second of wall clock
         scene.update(DT)
@@ -267,7 +268,7 @@ def test_a_later_stage_that_cannot_open_stops_the_run_there_with_a_banner(tmp_pa
     path = tmp_path / "changed.json"
     save_recording(path, rec)
     app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
-    open_theatre(app, path)
+    app.watch(path)
     scene = app.scene
     assert isinstance(scene, Theatre)
     scene.seeker.prepare()
@@ -278,7 +279,7 @@ def test_a_later_stage_that_cannot_open_stops_the_run_there_with_a_banner(tmp_pa
         scene.update(DT)
     assert scene.frame == 60 and scene.paused
     app.render()
-    said = " ".join(app.painter.said)
+    said = " ".join(app.ctx.painter.said)
     assert (
         "REPLAY STOPS at frame 60: its next stage cannot open" in said and "stages[1].level_sha256: the level" in said
     )

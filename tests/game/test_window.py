@@ -51,12 +51,12 @@ def test_f11__toggles_fullscreen_and_remembers_it(app, tmp_path):
     size = pygame.display.get_surface().get_size()
     key(pygame.K_F11)
     app.frame(0.0)
-    assert app.window.fullscreen and app.options.fullscreen
+    assert app.ctx.window.fullscreen and app.ctx.options.fullscreen
     assert pygame.display.get_surface().get_flags() & pygame.FULLSCREEN
     assert '"fullscreen": true' in (tmp_path / "options.json").read_text()
     key(pygame.K_F11)
     app.frame(0.0)
-    assert not app.window.fullscreen and pygame.display.get_surface().get_size() == size
+    assert not app.ctx.window.fullscreen and pygame.display.get_surface().get_size() == size
 
 
 def test_close__the_window_goes_before_the_rest_shuts_down(app, monkeypatch):

@@ -1,14 +1,15 @@
-"""The game's screens, one object each, run on a stack (:mod:`.base`).
+"""The game's screens, one object each, run on a stack (:mod:`.stack`); each gets a typed
+context (:mod:`.context`) and returns its transitions (:mod:`.base`) for the app to apply.
 
 :class:`Title` (choose a stage and difficulty) -> :class:`Play` (a stage in play) with
 :class:`Pause`, :class:`Results` (after each stage), :class:`Continue` (after a game over,
 while continues remain) and :class:`GameOver` (the run's end, or its victory) pushed over
 it; :class:`NameEntry` and :class:`HighScoresScene` after a run; :class:`OptionsScene`
-from the title; :class:`ReplayEnd` over a recording played on screen; the lab
+from the title; the replay list and the theatre (:mod:`.replay_list`, :mod:`.theatre`); the lab
 (:mod:`.lab`) and the editor (:mod:`.editor`) wrap their own objects.
 """
 
-from .base import Scene, SceneStack
+from .base import Scene
 from .continue_screen import Continue
 from .game_over import GameOver
 from .high_scores import HighScoresScene
@@ -17,6 +18,7 @@ from .options_screen import OptionsScene
 from .pause import Pause
 from .play import Play
 from .results import Results
+from .stack import SceneStack
 from .title import Title
 
 __all__ = [

@@ -14,6 +14,9 @@ import pygame
 from ...data.resources import data_dir
 from .. import ui
 from ..controls import Action
+from .base import IDLE, Go, Handled, Push, Tick
+from .context import SceneContext
+from .editor import EditorScene
 
 SUFFIX = ".armature.toml"
 ROWS = 20  # names shown at once; the list scrolls to keep the chosen one on screen
@@ -28,8 +31,8 @@ def armature_files(folder: Path | None = None) -> list[Path]:
 class ArmatureList:
     opaque = True
 
-    def __init__(self, app, files: list[Path] | None = None):
-        self.app = app
+    def __init__(self, ctx: SceneContext, files: list[Path] | None = None):
+        self.ctx = ctx
         self.files = armature_files() if files is None else files
         self.row = 0
         self.note = ""  # why the last file could not be opened
@@ -38,36 +41,33 @@ class ArmatureList:
     def chosen(self) -> Path | None:
         return self.files[self.row] if self.files else None
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if Action.BACK in actions:
-            self.app.stack.pop()
-        elif actions & {Action.UP, Action.DOWN} and self.files:
+            return Go.POP
+        if actions & {Action.UP, Action.DOWN} and self.files:
             self.row = (self.row + (1 if Action.DOWN in actions else -1)) % len(self.files)
-        elif actions & {Action.CONFIRM, Action.FIRE} and self.chosen is not None:
-            self.open(self.chosen)
-        else:
-            return False
-        return True
+            return True
+        if actions & {Action.CONFIRM, Action.FIRE} and self.chosen is not None:
+            return self.open(self.chosen) or True
+        return False
 
-    def open(self, path: Path) -> None:
-        """Edit ``path``; a file the editor refuses is said here, and the list stays."""
-        from .editor import EditorScene
-
+    def open(self, path: Path) -> Push | None:
+        """Edit ``path``; a file the editor refuses is said here, and the list stays (None)."""
         try:
-            scene = EditorScene(self.app, path)
+            scene = EditorScene(self.ctx, path)
         except (OSError, ValueError, pygame.error) as exc:  # DataError is a ValueError
             self.note = f"cannot edit {path.name}: {exc}"
-            return
+            return None
         self.note = ""
-        self.app.stack.push(scene)
+        return Push(scene)
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         p.veil()
         p.text("EDIT HIT SHAPES", 60, ui.HEADING, ui.GOLD)
         first = max(0, min(self.row - ROWS // 2, len(self.files) - ROWS))
@@ -79,7 +79,7 @@ class ArmatureList:
             p.text("no armature files found", 140, colour=ui.WARN)
         chosen = self.chosen
         if chosen is not None:
-            image = app.bank.images.get(chosen.name.removesuffix(SUFFIX))
+            image = ctx.bank.images.get(chosen.name.removesuffix(SUFFIX))
             if image is not None:
                 big = pygame.transform.scale_by(image, max(1, min(4, 96 // max(image.get_size()))))
                 surf.blit(big, big.get_rect(center=(surf.get_width() - 70, 160)))

@@ -12,6 +12,10 @@ import pygame
 from ...sim.progress import CONTINUES
 from .. import ui
 from ..controls import Action, confirm_label
+from .base import Go, Handled, Replace, Tick, Transition
+from .context import SceneContext
+from .game_over import GameOver
+from .in_play import InPlay
 
 #: Seconds to decide before the run ends by itself.
 COUNTDOWN = 10.0
@@ -20,39 +24,34 @@ COUNTDOWN = 10.0
 class Continue:
     opaque = False
 
-    def __init__(self, app, play):
-        self.app, self.play = app, play
+    def __init__(self, ctx: SceneContext, play: InPlay):
+        self.ctx, self.play = ctx, play
         self.left = COUNTDOWN
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if actions & {Action.CONFIRM, Action.FIRE}:
-            self.accept()
-        elif Action.BACK in actions:
-            self.decline()
-        else:
-            return False
-        return True
+            return self.accept()
+        if Action.BACK in actions:
+            return self.decline()
+        return False
 
-    def accept(self) -> None:
+    def accept(self) -> Transition:
+        """Play on: the continue is taken (recorded), and this screen goes."""
         self.play.world.continue_game()
-        self.app.stack.pop()
         self.play.resume()
-        self.app.audio.play("select")
+        self.ctx.audio.play("select")
+        return Go.POP
 
-    def decline(self) -> None:
-        from .game_over import GameOver
+    def decline(self) -> Transition:
+        return Replace(GameOver(self.ctx, self.play, victory=False))
 
-        self.app.stack.replace(GameOver(self.app, self.play, victory=False))
-
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
         self.left -= dt
-        if self.left <= 0.0:
-            self.decline()
-        return 0
+        return Tick(then=self.decline()) if self.left <= 0.0 else Tick()
 
     def draw(self, surf: pygame.Surface) -> None:
-        p = self.app.painter
+        p = self.ctx.painter
         used = self.play.world.progress.continues_used
         p.veil(170)
         p.text("CONTINUE?", 230, ui.BIG, ui.GOLD)
@@ -60,4 +59,4 @@ class Continue:
         p.text(
             f"{CONTINUES - used} of {CONTINUES} continues left; the score restarts at {used + 1}", 360, colour=ui.DIM
         )
-        p.text(f"{confirm_label(self.app.controls.bindings)}: continue   Esc: end the run", 390, colour=ui.DIM)
+        p.text(f"{confirm_label(self.ctx.controls.bindings)}: continue   Esc: end the run", 390, colour=ui.DIM)

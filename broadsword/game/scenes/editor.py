@@ -3,7 +3,7 @@
 hosted on the game's window.
 
 The editor draws on a surface of its own size (:data:`~broadsword.game.editor.WINDOW_SIZE`),
-which the app presents scaled into the window like the field; the window is resized to it
+which the ctx presents scaled into the window like the field; the window is resized to it
 while the editor is open and given back its size after. Mouse positions are mapped from the
 window to that surface (:func:`broadsword.game.window.to_surface`); a press in the black bars
 around it reaches nothing. Every key goes to the editor (so M, N, P... are its keys) except
@@ -21,6 +21,8 @@ import pygame
 from ..controls import Action
 from ..editor import WINDOW_SIZE, Editor
 from ..window import letterbox, to_surface
+from .base import Go, Tick
+from .context import SceneContext
 
 #: Mouse events whose ``pos`` is a window position.
 POINTER_EVENTS = (pygame.MOUSEMOTION, pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP)
@@ -29,17 +31,17 @@ POINTER_EVENTS = (pygame.MOUSEMOTION, pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTON
 class EditorScene:
     opaque = True
 
-    def __init__(self, app, path: str | Path):
-        self.app = app
-        self.back_to = app.window.windowed_size()
+    def __init__(self, ctx: SceneContext, path: str | Path):
+        self.ctx = ctx
+        self.back_to = ctx.window.windowed_size()
         # The editor first: a file it refuses raises here, before the screen or window change.
         self.editor = Editor(path, surface=pygame.Surface(WINDOW_SIZE))
-        app.use_screen(WINDOW_SIZE)
-        app.window.resize(WINDOW_SIZE)
+        ctx.display.use(WINDOW_SIZE)
+        ctx.window.resize(WINDOW_SIZE)
         self.closed = False
 
     def handle(self, event: pygame.event.Event) -> bool:
-        if event.type == pygame.KEYDOWN and Action.FULLSCREEN in self.app.controls.actions(event):
+        if event.type == pygame.KEYDOWN and Action.FULLSCREEN in self.ctx.controls.actions(event):
             return False
         if event.type in POINTER_EVENTS:
             mapped = self.on_surface(event)
@@ -55,7 +57,7 @@ class EditorScene:
         """``event`` with its ``pos`` (and ``rel``) in the editor surface's px, or None when the
         pointer is outside it (a motion there still ends nothing: a drag resumes on return)."""
         win = pygame.display.get_surface()
-        size = self.app.screen.get_size()
+        size = self.ctx.display.screen.get_size()
         if win is None:
             return event
         pos = to_surface(event.pos, win.get_size(), size)
@@ -68,19 +70,18 @@ class EditorScene:
             attrs["rel"] = (int(attrs["rel"][0] / k), int(attrs["rel"][1] / k))
         return pygame.event.Event(event.type, attrs)
 
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
         self.editor.update()
         if not self.editor.running and not self.closed:
             self.close()
-        return 0
+            return Tick(then=Go.POP)  # the list shows again
+        return Tick()
 
     def close(self) -> None:
-        """Leave: the field and the window's size come back, and the list shows again."""
+        """Leave: the field and the window's size come back."""
         self.closed = True
-        self.app.use_screen(None)
-        self.app.window.resize(self.back_to)
-        if self.app.stack.top is self:
-            self.app.stack.pop()
+        self.ctx.display.use(None)
+        self.ctx.window.resize(self.back_to)
 
     def draw(self, surf: pygame.Surface) -> None:
         self.editor.draw(surf)

@@ -8,15 +8,18 @@ import pygame
 
 from .. import ui
 from ..controls import Action
-from ..replays import keep_run
-from .save_replay import SAVE_KEY, can_save_last, draw_save_line, save_last_run
+from .base import IDLE, Go, Handled, Replace, Tick, Transition
+from .context import SceneContext
+from .in_play import InPlay
+from .name_entry import NameEntry
+from .save_replay import SAVE_KEY, draw_save_line, save_last_run
 
 
 class GameOver:
     opaque = False
 
-    def __init__(self, app, play, victory: bool):
-        self.app, self.play, self.victory = app, play, victory
+    def __init__(self, ctx: SceneContext, play: InPlay, victory: bool):
+        self.ctx, self.play, self.victory = ctx, play, victory
         world = play.world
         self.score = world.score.points
         self.level = world.level.title  # the table shows the stage's title
@@ -26,34 +29,32 @@ class GameOver:
         run = play.run
         # A cleared run's last stage is already in its totals (the results screen added it).
         self.totals = run.totals if victory else run.totals.plus(world, cleared=False)
-        keep_run(app)
+        ctx.keep_run(play.runner)
 
     @property
     def qualifies(self) -> bool:
-        return self.play.ranked and self.score > 0 and self.app.scores.qualifies(self.score, self.difficulty)
+        return self.play.ranked and self.score > 0 and self.ctx.scores.qualifies(self.score, self.difficulty)
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        if event.type == pygame.KEYDOWN and event.key == SAVE_KEY and can_save_last(self.app):
-            save_last_run(self.app)
-            return True
-        if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:
-            self.next()
-            return True
+    def handle(self, event: pygame.event.Event) -> Handled:
+        if event.type == pygame.KEYDOWN and event.key == SAVE_KEY:
+            saving = save_last_run(self.ctx, self.play.runner)
+            if saving is not None:
+                return saving
+        if self.ctx.controls.actions(event) & {Action.CONFIRM, Action.FIRE, Action.BACK}:
+            return self.next()
         return False
 
-    def next(self) -> None:
-        from .name_entry import NameEntry
-
+    def next(self) -> Transition:
+        """The name entry when the score makes the table, else the title."""
         if self.qualifies:
-            self.app.stack.replace(NameEntry(self.app, self.score, self.level, self.difficulty, self.speed))
-        else:
-            self.app.to_title()
+            return Replace(NameEntry(self.ctx, self.score, self.level, self.difficulty, self.speed))
+        return Go.TO_TITLE
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        p = self.app.painter
+        p = self.ctx.painter
         p.veil()
         if self.victory:
             heading, line = self.victory_lines()
@@ -67,13 +68,13 @@ class GameOver:
             p.text(label, y, 22, ui.DIM, x=surf.get_width() / 2 - 8, anchor="midright")
             p.text(value, y, 22, ui.WHITE, x=surf.get_width() / 2 + 8, anchor="midleft")
         p.text("Enter to enter your name" if self.qualifies else "Enter for the title", 560, colour=ui.DIM)
-        draw_save_line(self.app, 590)
+        draw_save_line(self.ctx, self.play.runner, 590)
 
     def victory_lines(self) -> tuple[str, str]:
         """A cleared run's heading and line: every stage only when the run played them all
         (a run started at a later stage, or a level file alone, cleared just its own)."""
         run, difficulty = self.play.run, self.play.run.difficulty.title
-        cleared, total = self.totals.stages, len(self.app.levels)
+        cleared, total = self.totals.stages, len(self.ctx.levels)
         if run.custom is None and cleared >= total:
             return "BROADSWORD FALLS", f"Every stage cleared on {difficulty}"
         if cleared <= 1:

@@ -9,6 +9,8 @@ import pygame
 from ...data.difficulty import Difficulty
 from .. import ui
 from ..controls import Action
+from .base import IDLE, Go, Handled, Tick
+from .context import SceneContext
 
 ERROR_WRAP = 416  # px: a message's lines (the title's error panel width)
 #: The table's columns, px: the rank's right edge, the name's left, the score's right edge
@@ -28,15 +30,15 @@ def level_label(level: str) -> str:
 class HighScoresScene:
     opaque = True
 
-    def __init__(self, app, difficulty: Difficulty | None = None):
-        self.app = app
-        self.difficulty = difficulty or app.difficulty  # the table shown
+    def __init__(self, ctx: SceneContext, difficulty: Difficulty | None = None):
+        self.ctx = ctx
+        self.difficulty = difficulty or ctx.difficulty  # the table shown
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if actions & {Action.CONFIRM, Action.FIRE, Action.BACK}:
-            self.app.to_title()
-        elif actions & {Action.LEFT, Action.RIGHT}:
+            return Go.TO_TITLE
+        if actions & {Action.LEFT, Action.RIGHT}:
             order = list(Difficulty)
             step = 1 if Action.RIGHT in actions else -1
             self.difficulty = order[(order.index(self.difficulty) + step) % len(order)]
@@ -44,17 +46,17 @@ class HighScoresScene:
             return False
         return True
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         p.veil()
         p.text("HIGH SCORES", 96, ui.BIG, ui.GOLD)
         p.text(f"< {self.difficulty.title} >   (Left or Right: another)", 136, colour=ui.CREAM)
         w = surf.get_width()
-        table = app.scores.of(self.difficulty)
+        table = ctx.scores.of(self.difficulty)
         for i, e in enumerate(table):  # columns: a long row never shrinks the others
             y = 170 + 28 * i
             p.text(f"{i + 1}.", y, x=RANK_RIGHT, anchor="midright")
@@ -70,7 +72,7 @@ class HighScoresScene:
             p.text("none yet", 200)
         elif any(e.speed != 100 for e in table):
             p.text("blue %: the game speed a score was made at", 466, 18, SPEED_COLOUR)
-        if app.message:  # e.g. a save that failed: say so here, where the player is looking
-            for i, line in enumerate(p.lines(app.message, ERROR_WRAP, 3)):
+        if ctx.message:  # e.g. a save that failed: say so here, where the player is looking
+            for i, line in enumerate(p.lines(ctx.message, ERROR_WRAP, 3)):
                 p.text(line, 540 + 20 * i, colour=ui.WARN)
         p.text("Enter for the title", 500)

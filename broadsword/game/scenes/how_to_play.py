@@ -18,6 +18,8 @@ from ...sim.progress import CONTINUES
 from ...sim.scoring import CLEAR_BONUS, EXTENDS, GRAZE_SCORE, NO_BOMB_BONUS, NO_MISS_BONUS
 from .. import ui
 from ..controls import Action, Bindings, confirm_label, keys_label, move_label
+from .base import IDLE, Go, Handled, Tick
+from .context import SceneContext
 
 #: The pages' titles, in order.
 PAGES = ("Flying", "Bombs and items", "Score and continues")
@@ -70,15 +72,15 @@ def page_text(page: int, b: Bindings) -> list[str]:
 class HowToPlay:
     opaque = True
 
-    def __init__(self, app):
-        self.app = app
+    def __init__(self, ctx: SceneContext):
+        self.ctx = ctx
         self.page = 0
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if Action.BACK in actions or (actions & {Action.CONFIRM, Action.FIRE} and self.page == len(PAGES) - 1):
-            self.app.stack.pop()
-        elif actions & {Action.RIGHT, Action.CONFIRM, Action.FIRE}:
+            return Go.POP
+        if actions & {Action.RIGHT, Action.CONFIRM, Action.FIRE}:
             self.page = min(self.page + 1, len(PAGES) - 1)
         elif Action.LEFT in actions:
             self.page = max(self.page - 1, 0)
@@ -86,17 +88,17 @@ class HowToPlay:
             return False
         return True
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         p.veil(170)
         p.text("HOW TO PLAY", 50, ui.HEADING + 8, ui.GOLD)
         p.text(f"{self.page + 1}/{len(PAGES)}  {PAGES[self.page]}", 86, 24, ui.CREAM)
         y = 118
-        for para in page_text(self.page, app.controls.bindings):
+        for para in page_text(self.page, ctx.controls.bindings):
             for line in p.lines(para, WIDTH, 8, SIZE):
                 p.text(line, y, SIZE, ui.WHITE, x=LEFT, anchor="midleft")
                 y += LINE
@@ -106,7 +108,7 @@ class HowToPlay:
         elif self.page == 1:
             self._items(surf, y + 24)
         last = self.page == len(PAGES) - 1
-        keys = confirm_label(app.controls.bindings)
+        keys = confirm_label(ctx.controls.bindings)
         p.text(
             f"Left/Right turn the page   {keys}: {'back' if last else 'next'}   Esc: back",
             surf.get_height() - 24,
@@ -116,7 +118,7 @@ class HowToPlay:
 
     def _ship(self, surf: pygame.Surface, cy: float) -> None:
         """The ship, enlarged, with its graze shape (blue) and hit shape (red) over it."""
-        bank = self.app.bank
+        bank = self.ctx.bank
         arm = bank.armatures["player"]
         cx, k = surf.get_width() / 2, SHIP_SCALE
         img = pygame.transform.scale_by(bank.images["player"], k)
@@ -127,13 +129,13 @@ class HowToPlay:
         hit = [(cx + k * x, cy + k * y) for x, y in arm.armature.vertices.tolist()]
         pygame.draw.polygon(surf, (255, 255, 255), hit)
         pygame.draw.polygon(surf, (255, 60, 90), hit, 2)
-        p = self.app.painter
+        p = self.ctx.painter
         p.text("hit shape", cy - 6, 18, (255, 120, 140), x=cx + 70, anchor="midleft")
         p.text("graze shape", cy + k * gh / 2 + 12, 18, (140, 180, 255))
 
     def _items(self, surf: pygame.Surface, y: float) -> None:
         """The three items, as they look in play, with their names."""
-        bank, p = self.app.bank, self.app.painter
+        bank, p = self.ctx.bank, self.ctx.painter
         for i, (sprite, name) in enumerate((("item_power", "P"), ("item_point", "point"), ("item_star", "star"))):
             x = surf.get_width() * (i + 1) / 4
             img = bank.images.get(sprite)

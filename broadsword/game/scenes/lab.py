@@ -12,23 +12,25 @@ import pygame
 from .. import ui
 from ..controls import Action
 from ..lab import SCALES, Lab
+from .base import Go, Handled, Tick
+from .context import SceneContext
 
 
 class LabScene:
     opaque = True
 
-    def __init__(self, app, enemies: int, bullets: int):
-        self.app = app
-        self.lab = Lab(enemies, bullets, seed=app.seed)
+    def __init__(self, ctx: SceneContext, enemies: int, bullets: int):
+        self.ctx = ctx
+        self.lab = Lab(enemies, bullets, seed=ctx.seed)
         self.size = Lab.size
         self.paused = False
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        lab, app = self.lab, self.app
-        actions = app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        lab, ctx = self.lab, self.ctx
+        actions = ctx.controls.actions(event)
         key = event.key if event.type == pygame.KEYDOWN else None
         if Action.OVERLAY in actions:
-            app.overlay.visible = not app.overlay.visible
+            ctx.overlay.visible = not ctx.overlay.visible
         elif Action.ROTATION in actions:
             lab.toggle_rotation()
         elif key == pygame.K_t:
@@ -40,22 +42,22 @@ class LabScene:
         elif key == pygame.K_SPACE:
             self.paused = not self.paused
         elif Action.BACK in actions:
-            app.running = False
+            return Go.QUIT
         else:
             return False
         return True
 
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
         if self.paused:
-            return 0
+            return Tick()
         self.lab.step()
-        return 1
+        return Tick(1)
 
     def draw(self, surf: pygame.Surface) -> None:
-        lab, app, p = self.lab, self.app, self.app.painter
+        lab, ctx, p = self.lab, self.ctx, self.ctx.painter
         lab.draw(surf)
-        if app.overlay.visible and lab.last is not None:
-            app.overlay.draw(surf, lab.last, app.fps)
+        if ctx.overlay.visible and lab.last is not None:
+            ctx.overlay.draw(surf, lab.last, ctx.fps)
         sc = lab.scene
         h = surf.get_height()
         state = "   PAUSED (Space)" if self.paused else ""

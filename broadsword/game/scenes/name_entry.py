@@ -10,6 +10,9 @@ import pygame
 from ...data.difficulty import Difficulty
 from .. import ui
 from ..scores import NAME_MAX, Entry
+from .base import IDLE, Go, Handled, Reset, Tick, Transition
+from .context import SceneContext
+from .high_scores import HighScoresScene
 
 
 def edit_line(text: str, event: pygame.event.Event, limit: int, upper: bool = False) -> str | None:
@@ -32,44 +35,44 @@ def edit_line(text: str, event: pygame.event.Event, limit: int, upper: bool = Fa
 class NameEntry:
     opaque = False
 
-    def __init__(self, app, score: int, level: str, difficulty: Difficulty = Difficulty.NORMAL, speed: int = 100):
-        self.app, self.score, self.level, self.difficulty = app, score, level, difficulty
+    def __init__(
+        self, ctx: SceneContext, score: int, level: str, difficulty: Difficulty = Difficulty.NORMAL, speed: int = 100
+    ):
+        self.ctx, self.score, self.level, self.difficulty = ctx, score, level, difficulty
         self.speed = speed  # the game speed the run was played at, %
         self.name = ""
 
-    def handle(self, event: pygame.event.Event) -> bool:
+    def handle(self, event: pygame.event.Event) -> Handled:
         typed = edit_line(self.name, event, NAME_MAX, upper=True)
         if typed is not None:
             self.name = typed
-        elif event.type != pygame.KEYDOWN:
+            return True
+        if event.type != pygame.KEYDOWN:
             return False
-        elif event.key in (pygame.K_RETURN, pygame.K_KP_ENTER):
-            self.save()
-        elif event.key == pygame.K_ESCAPE:
-            self.app.to_title()
-        else:
-            return False  # F11 and the like keep their meaning
-        return True
+        if event.key in (pygame.K_RETURN, pygame.K_KP_ENTER):
+            return self.save()
+        if event.key == pygame.K_ESCAPE:
+            return Go.TO_TITLE
+        return False  # F11 and the like keep their meaning
 
-    def save(self) -> None:
-        from .high_scores import HighScoresScene
-
-        app = self.app
+    def save(self) -> Transition:
+        """Enter the score under the name typed (PILOT if none), save the table, and show it."""
+        ctx = self.ctx
         today = datetime.date.today().isoformat()
-        app.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, today, self.difficulty, self.speed))
+        ctx.scores.add(Entry(self.name.strip() or "PILOT", self.score, self.level, today, self.difficulty, self.speed))
         try:
-            warning = app.scores.save()
+            warning = ctx.scores.save()
             if warning:
-                app.message = warning
+                ctx.message = warning
         except OSError as exc:
-            app.message = f"could not save high scores: {exc}"
-        app.stack.reset(HighScoresScene(app, self.difficulty))
+            ctx.message = f"could not save high scores: {exc}"
+        return Reset(HighScoresScene(ctx, self.difficulty))
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        p = self.app.painter
+        p = self.ctx.painter
         p.veil()
         p.text("NEW HIGH SCORE", 240, ui.BIG, ui.GOLD)
         p.text(f"{self.score:,}", 290)

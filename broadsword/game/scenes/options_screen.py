@@ -19,6 +19,8 @@ from .. import ui
 from ..controls import FIXED_KEYS, REBINDABLE, Action, Bindings, key_label
 from ..options import SPEED_MIN, SPEED_STEP, VOLUME_STEPS
 from ..palettes import BulletPalette
+from .base import IDLE, Go, Handled, Tick
+from .context import SceneContext
 
 DIFFICULTIES = list(Difficulty)
 PALETTES = list(BulletPalette)
@@ -62,22 +64,22 @@ ROW_STEP = min(26, (BOTTOM_Y - TOP_Y - 20) // (len(ROWS) - 1))
 class OptionsScene:
     opaque = True
 
-    def __init__(self, app):
-        self.app = app
+    def __init__(self, ctx: SceneContext):
+        self.ctx = ctx
         self.row = 0
         self.waiting: Action | None = None  # rebinding this action: the next key or button
         self.replace = False  # the next key or button replaces the action's others (else joins them)
         self.note = ""
 
     # ------------------------------------------------------------------ events
-    def handle(self, event: pygame.event.Event) -> bool:
+    def handle(self, event: pygame.event.Event) -> Handled:
         if self.waiting is not None:
             return self._rebind(event)
-        actions = self.app.controls.actions(event)
+        actions = self.ctx.controls.actions(event)
         row = ROWS[self.row]
-        if Action.BACK in actions:
-            self.app.stack.pop()
-        elif actions & {Action.UP, Action.DOWN}:
+        if Action.BACK in actions or (actions & {Action.CONFIRM, Action.FIRE} and row.command == "back"):
+            return Go.POP
+        if actions & {Action.UP, Action.DOWN}:
             self.row = (self.row + (1 if Action.DOWN in actions else -1)) % len(ROWS)
             self.note = ""
         elif actions & {Action.LEFT, Action.RIGHT} and row.option:
@@ -91,7 +93,7 @@ class OptionsScene:
         return True
 
     def change(self, option: str, step: int) -> None:
-        o = self.app.options
+        o = self.ctx.options
         value: object
         if option == "difficulty":
             value = DIFFICULTIES[(DIFFICULTIES.index(o.difficulty) + step) % len(DIFFICULTIES)]
@@ -104,8 +106,8 @@ class OptionsScene:
         else:
             value = not getattr(o, option)
         if option == "fullscreen":
-            self.app.window.set_fullscreen(value)
-        self.app.set_options(**{option: value})
+            self.ctx.window.set_fullscreen(bool(value))
+        self.ctx.set_options(**{option: value})
 
     def choose(self, row: Row) -> None:
         if row.option:
@@ -113,11 +115,9 @@ class OptionsScene:
         elif row.action is not None:
             self.listen(row.action, replace=False)
         elif row.command == "reset":
-            self.app.controls.bindings = Bindings()
-            self.app.save_bindings()
+            self.ctx.controls.bindings = Bindings()
+            self.ctx.save_bindings()
             self.note = "controls reset to the defaults"
-        else:
-            self.app.stack.pop()
 
     def listen(self, action: Action, replace: bool) -> None:
         """Wait for the key or button that joins ``action``'s (or, ``replace``, replaces them)."""
@@ -126,7 +126,7 @@ class OptionsScene:
         self.note = f"press a key or pad button {how} {action.title}'s (Esc: cancel)"
 
     def _rebind(self, event: pygame.event.Event) -> bool:
-        action, b = self.waiting, self.app.controls.bindings
+        action, b = self.waiting, self.ctx.controls.bindings
         assert action is not None  # rebinding happens only while an action waits for its key
         if event.type == pygame.KEYDOWN:
             if event.key == pygame.K_ESCAPE:
@@ -137,22 +137,22 @@ class OptionsScene:
             else:
                 b.bind_key(action, event.key, self.replace)
                 self.note = f"{action.title}: {b.describe(action)}"
-                self.app.save_bindings()
+                self.ctx.save_bindings()
         elif event.type == pygame.JOYBUTTONDOWN:
             b.bind_button(action, event.button, self.replace)
             self.note = f"{action.title}: {b.describe(action)}"
-            self.app.save_bindings()
+            self.ctx.save_bindings()
         else:
             return event.type in (pygame.KEYUP, pygame.JOYBUTTONUP)
         self.waiting = None
         return True
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     # ------------------------------------------------------------------ drawing
     def value(self, row: Row) -> str:
-        o = self.app.options
+        o = self.ctx.options
         if row.option == "difficulty":
             return f"< {o.difficulty.title} >"
         if row.option == "palette":
@@ -165,12 +165,12 @@ class OptionsScene:
         if row.option:
             return "on" if getattr(o, row.option) else "off"
         if row.action is not None:
-            return "press..." if self.waiting is row.action else self.app.controls.bindings.describe(row.action)
+            return "press..." if self.waiting is row.action else self.ctx.controls.bindings.describe(row.action)
         return ""
 
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         p.veil(120)
         w = surf.get_width()
         p.text("OPTIONS", 60, ui.BIG, ui.GOLD)
@@ -192,5 +192,5 @@ class OptionsScene:
             580,
             colour=ui.WARN if "fixed" in self.note else ui.DIM,
         )
-        if app.message:
-            p.text(app.message, 606, 20, ui.WARN)
+        if ctx.message:
+            p.text(ctx.message, 606, 20, ui.WARN)

@@ -9,6 +9,9 @@ from ...sim.hitlog import HitRecord
 from .. import ui
 from ..controls import Action
 from ..hitview import draw_hit, inset_rect, mark_on_field
+from .base import Go, Handled, Tick
+from .context import SceneContext
+from .in_play import InPlay
 
 #: The PAUSED heading's centre, px down the field.
 PAUSED_Y = 320
@@ -19,34 +22,34 @@ HIT_Y = 130
 class Pause:
     opaque = False
 
-    def __init__(self, app, play):
-        self.app, self.play = app, play
+    def __init__(self, ctx: SceneContext, play: InPlay):
+        self.ctx, self.play = ctx, play
         self.step_once = False
         self.show_hit = False  # H: the stage's last hit, enlarged
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if actions & {Action.PAUSE, Action.BACK}:
-            self.app.stack.pop()
             self.play.accumulator = 0.0
-        elif Action.STEP in actions:
+            return Go.POP
+        if event.type == pygame.KEYDOWN and event.key == pygame.K_q:
+            return Go.TO_TITLE
+        if Action.STEP in actions:
             self.step_once = True
         elif Action.OVERLAY in actions:
-            self.app.overlay.visible = not self.app.overlay.visible
-        elif event.type == pygame.KEYDOWN and event.key == pygame.K_q:
-            self.app.to_title()
+            self.ctx.overlay.visible = not self.ctx.overlay.visible
         elif event.type == pygame.KEYDOWN and event.key == pygame.K_h and self.last_hit is not None:
             self.show_hit = not self.show_hit
         else:
             return False
         return True
 
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
+        """F2 steps the stage one frame (what its end leads to comes over this screen)."""
         if not self.step_once or self.play.ended:
-            return 0
+            return Tick()
         self.step_once = False
-        self.play.step()
-        return 1
+        return Tick(1, self.play.step())
 
     @property
     def last_hit(self) -> HitRecord | None:
@@ -54,7 +57,7 @@ class Pause:
         return self.play.world.hit_log.last
 
     def draw(self, surf: pygame.Surface) -> None:
-        p = self.app.painter
+        p = self.ctx.painter
         p.veil(110)
         hit = self.last_hit
         keys = "Esc / P resume   F2 step a frame   " + ("H what hit you   " if hit is not None else "") + "Q quit"

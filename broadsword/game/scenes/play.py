@@ -1,12 +1,11 @@
 """A stage in play: the world stepping at a fixed rate, driven by the player, the autopilot
 or a recording, drawn with interpolation, the overlay on top when toggled.
 
-The stage runs in the run's :class:`~broadsword.runner.Runner` (which records it, and checks
-a replay frame by frame): :meth:`Play.step` is the runner's step, the one the benchmark times.
-Where its input comes from is an :class:`InputSource`: :class:`PlayerInput` (keys and pad
-through the bindings), :class:`Pilot` (the autopilot) or :class:`ReplayInput` (a recording's
-inputs and live toggles, every stage of it). What a stage's end or a game over leads to
-(results, continue, game over, the replay's end) is pushed over this scene.
+The stage runs in the run's :class:`~broadsword.runner.Runner` (which records it):
+:meth:`Play.step` is the runner's step, the one the benchmark times. Where its input comes
+from is an :class:`InputSource`: :class:`PlayerInput` (keys and pad through the bindings) or
+:class:`AutopilotInput`. What a stage's end or a game over leads to (results, continue, game
+over) is pushed over this scene. A recording is watched in the theatre (:mod:`.theatre`).
 """
 
 from __future__ import annotations
@@ -15,15 +14,24 @@ from typing import Protocol
 
 import pygame
 
-from ...data import DataError
 from ...data.recordings import RunKind
-from ...runner import Playback, Runner
+from ...runner import Runner
 from ...sim import DT, Input, Pilot, World
 from ...sim.hitlog import Outcome
 from .. import heap
 from ..controls import Action, Controls
 from ..lasers import draw_laser_armatures
+from ..practice_run import Outcome as PracticeOutcome
 from ..practice_run import PracticeRun
+from ..run import Run
+from .base import Handled, Push, Tick
+from .context import SceneContext
+from .continue_screen import Continue
+from .game_over import GameOver
+from .hit_freeze import HitFreeze
+from .pause import Pause
+from .practice_result import PracticeResult
+from .results import Results
 
 #: Slow motion (F3) runs the world at this share of real time.
 SLOW_MOTION = 0.25
@@ -38,8 +46,8 @@ class InputSource(Protocol):
     #: never enters the high-score table.
     watched: bool
 
-    def next(self, world: World) -> Input | None:
-        """This step's input (None: the source has run out)."""
+    def next(self, world: World) -> Input:
+        """This step's input."""
 
     def stepped(self, world: World) -> None:
         """Called after each step."""
@@ -71,36 +79,6 @@ class AutopilotInput:
         pass
 
 
-class ReplayInput:
-    """A recording's inputs, played by a runner made by :meth:`Runner.replaying` (read from
-    ``path``); its ``playback`` says where it first differed, if it did."""
-
-    watched = True
-
-    def __init__(self, runner: Runner, path: str):
-        self.runner, self.path = runner, path
-        self.error: str | None = None  # why the next stage could not open, if it could not
-
-    @property
-    def playback(self) -> Playback:
-        assert self.runner.playback is not None  # a replaying runner has one
-        return self.runner.playback
-
-    def next(self, world: World) -> Input | None:
-        return self.runner.replay_input()
-
-    def stepped(self, world: World) -> None:
-        pass
-
-    def next_stage(self, armatures: dict) -> bool:
-        """Go on to the recording's next stage when this one was played to its end."""
-        try:
-            return self.runner.replay_next_stage(self.path, armatures)
-        except DataError as exc:
-            self.error = str(exc)
-            return False
-
-
 class Play:
     """A stage in play. ``world`` steps in :meth:`update`; ``step_once`` runs one step
     whatever the pause state (F2)."""
@@ -108,18 +86,23 @@ class Play:
     opaque = True
 
     def __init__(
-        self, app, runner: Runner, run, source: InputSource | None = None, practice: PracticeRun | None = None
+        self,
+        ctx: SceneContext,
+        runner: Runner,
+        run: Run,
+        source: InputSource | None = None,
+        practice: PracticeRun | None = None,
     ):
-        self.app, self.run, self.runner = app, run, runner
+        self.ctx, self.run, self.runner = ctx, run, runner
         self.practice = practice  # a practice: it ends when its phase does (or the lives run out)
         self.world = runner.world
         self.level_ref = runner.stage.level_ref
         if source is None:
-            source = AutopilotInput() if app.demo else PlayerInput(app.controls)
-        self.source = source
+            source = AutopilotInput() if ctx.demo else PlayerInput(ctx.controls)
+        self.source: InputSource = source
         self.accumulator = 0.0
         self.slow_motion = False
-        self.ended = False  # the stage is over (results, continue, game over or replay end on top)
+        self.ended = False  # the stage is over (results, continue or game over on top)
         heap.settle()  # the stage is loaded: no full garbage collection walks it in play
 
     @property
@@ -134,99 +117,78 @@ class Play:
 
     @property
     def speed(self) -> int:
-        """The game speed this stage runs at, % of real time: a replay's as recorded
-        (``Recording.info.speed``), else the options' (the run records it: App.play_stage)."""
-        if isinstance(self.source, ReplayInput):
-            return self.source.playback.rec.info.speed
-        return self.app.options.speed
+        """The game speed this stage runs at, % of real time: the options' (the run records
+        it: App.play_stage; the theatre plays a recording at its own)."""
+        return self.ctx.options.speed
 
     # ------------------------------------------------------------------ events
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         if Action.OVERLAY in actions:
-            self.app.overlay.visible = not self.app.overlay.visible
+            self.ctx.overlay.visible = not self.ctx.overlay.visible
         elif Action.SLOW_MOTION in actions:
             self.slow_motion = not self.slow_motion
-        elif Action.ROTATION in actions and not isinstance(self.source, ReplayInput):
+        elif Action.ROTATION in actions:
             self.world.set_rotation("exact" if self.world.rotation == "lut" else "lut")
         elif actions & {Action.PAUSE, Action.BACK}:
-            from .pause import Pause
-
-            self.app.audio.play("pause")
-            self.app.stack.push(Pause(self.app, self))
+            self.ctx.audio.play("pause")
+            return Push(Pause(self.ctx, self))
         else:
             return False
         return True
 
     # ------------------------------------------------------------------ stepping
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
+        """Steps due by the wall clock (at most ``MAX_CATCH_UP``), up to the first whose end
+        brings a screen over the stage."""
         # the game speed scales the wall clock only: the same steps, fewer a second
         self.accumulator += dt * (SLOW_MOTION if self.slow_motion else 1.0) * self.speed / 100
         steps = 0
         while self.accumulator >= DT and steps < MAX_CATCH_UP and not self.ended:
-            self.step()
+            then = self.step()
             steps += 1
             self.accumulator -= DT
-            if self.app.stack.top is not self:
-                break
+            if then is not None:
+                return Tick(steps, then)
         if steps == MAX_CATCH_UP:
             self.accumulator = min(self.accumulator, DT)  # drop the backlog: slow down, don't spiral
-        return steps
+        return Tick(steps)
 
-    def step(self) -> None:
-        """One fixed step: input, world, sounds and effects, then what its end leads to."""
+    def step(self) -> Push | None:
+        """One fixed step: input, world, sounds and effects; returns the screen its end
+        brings over the stage, if any: a miss's freeze (what hit), then the stage's end."""
         world = self.world
         inp = self.source.next(world)
-        if inp is None:  # a recording's stage ran out (or ended, or differed)
-            if isinstance(self.source, ReplayInput) and self.source.next_stage(self.app.bank.armatures):
-                self.ended = True
-                self.app.watch_stage(self.runner, self.source.path)  # its next stage, with its music
-            else:
-                self._end_replay()
-            return
         ev = self.runner.step(inp)
         self.source.stepped(world)
-        self.app.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
-        if ev.hit is not None and ev.hit.outcome is Outcome.MISS and self.app.options.show_hits and not self.app.demo:
-            from .hit_freeze import HitFreeze
+        self.ctx.feedback.stepped(ev, world)  # effects, captions and sounds: never the world
+        practice = self.practice.outcome(ev, world) if self.practice is not None else None
+        end = self._ended(ev.game_over, ev.level_complete, practice)
+        if ev.hit is not None and ev.hit.outcome is Outcome.MISS and self.ctx.options.show_hits and not self.ctx.demo:
+            return Push(HitFreeze(self.ctx, self, ev.hit, then=end))  # a wall-clock freeze, never state
+        return end
 
-            self.app.stack.push(HitFreeze(self.app, self, ev.hit))  # what hit: a wall-clock freeze, never state
-        if self.practice is not None and (outcome := self.practice.outcome(ev, world)) is not None:
-            from .practice_result import PracticeResult
-
+    def _ended(self, game_over: bool, cleared: bool, practice: PracticeOutcome | None) -> Push | None:
+        """The screen the stage's end brings: a practice's result, the continue or game-over
+        screen, the results; None while it goes on."""
+        if practice is not None and self.practice is not None:
             self.ended = True
-            self.app.stack.push(PracticeResult(self.app, self.practice, outcome))
-        elif isinstance(self.source, ReplayInput):
-            playback = self.source.playback
-            if playback.divergence is not None or playback.done:
-                playback.end_stage(world)
-                self._end_replay()
-        elif ev.game_over:
-            self._game_over()
-        elif ev.level_complete:
-            self._cleared()
+            return Push(PracticeResult(self.ctx, self.practice, practice))
+        if game_over:
+            return self._game_over()
+        if cleared:
+            return self._cleared()
+        return None
 
-    def _game_over(self) -> None:
-        from .continue_screen import Continue
-        from .game_over import GameOver
-
+    def _game_over(self) -> Push:
         self.ended = True
         if not self.watched and self.world.progress.can_continue:
-            self.app.stack.push(Continue(self.app, self))
-        else:
-            self.app.stack.push(GameOver(self.app, self, victory=False))
+            return Push(Continue(self.ctx, self))
+        return Push(GameOver(self.ctx, self, victory=False))
 
-    def _cleared(self) -> None:
-        from .results import Results
-
+    def _cleared(self) -> Push:
         self.ended = True
-        self.app.stack.push(Results(self.app, self))
-
-    def _end_replay(self) -> None:
-        from .replay_end import ReplayEnd
-
-        self.ended = True
-        self.app.stack.push(ReplayEnd(self.app, self))
+        return Push(Results(self.ctx, self))
 
     def resume(self) -> None:
         """Back from a continue: play on."""
@@ -243,18 +205,16 @@ class Play:
         return modes
 
     def draw(self, surf: pygame.Surface) -> None:
-        app = self.app
-        alpha = min(self.accumulator / DT, 1.0) if app.stack.top is self else 1.0
-        hitbox = app.options.always_hitbox or (not self.watched and app.controls.input().slow)
-        on_top = app.stack.top is self  # else a screen's heading (pause, replay end) is over the field
-        app.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
+        ctx = self.ctx
+        alpha = min(self.accumulator / DT, 1.0) if ctx.scenes.top is self else 1.0
+        hitbox = ctx.options.always_hitbox or (not self.watched and ctx.controls.input().slow)
+        on_top = ctx.scenes.top is self  # else a screen's heading (pause, results) is over the field
+        ctx.renderer.draw(surf, self.world, alpha, show_armature=hitbox, title_card=on_top)
         modes = self.modes()
         if modes:  # top centre, between graze and bombs (below the lives): why the game looks different
-            app.painter.text("   ".join(modes), 38, MODE_SIZE, colour=MODE_COLOUR)
-        if app.overlay.visible:
+            ctx.painter.text("   ".join(modes), 38, MODE_SIZE, colour=MODE_COLOUR)
+        if ctx.overlay.visible:
             record = self.world.collision
-            from .pause import Pause
-
-            paused = isinstance(app.stack.top, Pause)
+            paused = isinstance(ctx.scenes.top, Pause)
             draw_laser_armatures(surf, self.world)  # under the overlay's panel
-            app.overlay.draw(surf, record.result if record is not None else None, app.fps, paused)
+            ctx.overlay.draw(surf, record.result if record is not None else None, ctx.fps, paused)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 from enum import Enum
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import pygame
 
@@ -39,9 +39,9 @@ from ..controls import Action
 from ..practice_run import PracticeRun
 from ..practicefile import FILE_NAME, RecordFile
 from ..run import Run, stage_start
-
-if TYPE_CHECKING:
-    from ..app import App
+from .base import IDLE, Go, Handled, PlayStage, Push, Tick, Transition
+from .context import SceneContext
+from .practice_prepare import Preparing
 
 #: Left/Right change power by this much (0.25 on the panel's scale).
 POWER_CHANGE = 5 * POWER_STEP
@@ -65,13 +65,13 @@ LOADOUT_ROWS = {Row.LIVES: "lives", Row.BOMBS: "bombs", Row.POWER: "power"}
 class PracticeMenu:
     opaque = True
 
-    def __init__(self, app: App, index: int | None = None, choice: PracticeChoice | None = None):
-        self.app = app
-        self.index = app.start_index if index is None else index  # the shipped stage
+    def __init__(self, ctx: SceneContext, index: int | None = None, choice: PracticeChoice | None = None):
+        self.ctx = ctx
+        self.index = ctx.choice.index if index is None else index  # the shipped stage
         self.choice = choice or PracticeChoice(0)  # the phase, and the values changed (None: defaults)
         self.row = 0
         self.cache = PracticeCache.default()
-        self.record = RecordFile(app.data / FILE_NAME)
+        self.record = RecordFile(ctx.data / FILE_NAME)
         self.note = ""  # one line: a cache not used, a phase not reached, a stage that cannot load
         self.stage: Stage | None = None  # the chosen stage, opened at its start
         self.names: list[str] = []
@@ -81,11 +81,11 @@ class PracticeMenu:
     # ------------------------------------------------------------------ the chosen stage
     @property
     def difficulty(self) -> Difficulty:
-        return self.app.difficulty
+        return self.ctx.difficulty
 
     def _open(self) -> Stage:
         run = Run(self.index, self.difficulty)
-        return open_stage(stage_start(run, self.app.levels, self.app.seed), self.app.bank.armatures)
+        return open_stage(stage_start(run, self.ctx.levels, self.ctx.seed), self.ctx.bank.armatures)
 
     def open_chosen(self) -> None:
         """Open the chosen stage (its phases' names) and read its starts from the cache."""
@@ -129,17 +129,17 @@ class PracticeMenu:
         return own if own is not None else (getattr(d, name) if d is not None else None)
 
     # ------------------------------------------------------------------ events
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         row = ROWS[self.row]
         if Action.BACK in actions:
-            self.app.stack.pop()
-        elif actions & {Action.UP, Action.DOWN}:
+            return Go.POP
+        if actions & {Action.CONFIRM, Action.FIRE}:
+            return self.go() or True
+        if actions & {Action.UP, Action.DOWN}:
             self.row = (self.row + (1 if Action.DOWN in actions else -1)) % len(ROWS)
         elif actions & {Action.LEFT, Action.RIGHT}:
             self.change(row, 1 if Action.RIGHT in actions else -1)
-        elif actions & {Action.CONFIRM, Action.FIRE}:
-            self.go()
         elif event.type == pygame.KEYDOWN and event.key in DEFAULT_KEYS and row in LOADOUT_ROWS:
             self.choice = _with(self.choice, LOADOUT_ROWS[row], None)
         else:
@@ -148,7 +148,7 @@ class PracticeMenu:
 
     def change(self, row: Row, step: int) -> None:
         if row is Row.STAGE:
-            self.index = (self.index + step) % len(self.app.levels)
+            self.index = (self.index + step) % len(self.ctx.levels)
             self.choice = PracticeChoice(0)
             self.open_chosen()
         elif row is Row.PHASE and self.names:
@@ -164,46 +164,45 @@ class PracticeMenu:
             size = POWER_CHANGE if row is Row.POWER else 1
             self.choice = _with(self.choice, name, min(high, max(low, now + step * size)))
 
-    def go(self) -> None:
+    def go(self) -> Transition | None:
         """Start the practice; first prepare the stage's phase starts if they are needed."""
         if self.stage is None:
-            return
+            return None
         if self.choice.phase > 0 and self.starts is None:
-            from .practice_prepare import Preparing
-
-            self.app.stack.push(Preparing(self.app, self, self._open()))
-            return
+            return Push(Preparing(self.ctx, self._open(), self.cache, self.prepared))
         defaults = self.defaults()
         if defaults is None:  # a phase the autopilot did not reach: the note says so
-            return
-        self.app.audio.play("select")
-        self.refused(start_practice(self.app, self.index, self.choice, self.starts, self.record))
+            return None
+        self.ctx.audio.play("select")
+        started = start_practice(self.ctx, self.index, self.choice, self.starts, self.record)
+        if isinstance(started, PlayStage):
+            return started
+        self.refused(started)
+        return None
 
-    def refused(self, why: DataError | PracticeError | None) -> None:
-        """Say why a practice could not start (None: it started); a kept start that no longer
-        fits is prepared again at the next Enter."""
-        if why is None:
-            return
+    def refused(self, why: DataError | PracticeError) -> None:
+        """Say why a practice could not start; a kept start that no longer fits is prepared
+        again at the next Enter."""
         self.note = str(why)
         if isinstance(why, StartUnfit):
             self.starts = None
             self.note += "; Enter prepares the stage again"
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     # ------------------------------------------------------------------ drawing
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         p.veil(120)
         w = surf.get_width()
         p.text("PRACTICE", 56, ui.BIG, ui.GOLD)
         p.text(f"on {self.difficulty.title} (the title's difficulty)", 100, 20, ui.DIM)
         c, record = self.choice, self.record.record
-        level = app.levels[self.index]
+        level = ctx.levels[self.index]
         y = 140
-        self._row(surf, Row.STAGE, y, f"< {app.stage_title(level)} >")
+        self._row(surf, Row.STAGE, y, f"< {ctx.stage_title(level)} >")
         y += 40
         p.text("captured / tried", y - 20, 16, ui.DIM, x=w - 16, anchor="midright")
         p.text("Phase", y, colour=ui.GOLD if ROWS[self.row] is Row.PHASE else ui.WHITE, x=w * 0.3, anchor="midright")
@@ -251,7 +250,7 @@ class PracticeMenu:
         p.text("Up/Down choose   Left/Right change   Backspace default   Esc back", 616, 20, ui.DIM)
 
     def _row(self, surf: pygame.Surface, row: Row, y: float, value: str) -> None:
-        p, w = self.app.painter, surf.get_width()
+        p, w = self.ctx.painter, surf.get_width()
         chosen = ROWS[self.row] is row
         if chosen:
             pygame.draw.rect(surf, (40, 50, 100), (12, y - 12, w - 24, 24))
@@ -260,27 +259,25 @@ class PracticeMenu:
 
 
 def start_practice(
-    app: App, index: int, choice: PracticeChoice, starts: PhaseStarts | None, record: RecordFile
-) -> DataError | PracticeError | None:
+    ctx: SceneContext, index: int, choice: PracticeChoice, starts: PhaseStarts | None, record: RecordFile
+) -> PlayStage | DataError | PracticeError:
     """Open shipped stage ``index`` at the choice's phase with its loadout (each value chosen,
-    else the default) and play it as a practice: recorded, marked PRACTICE, never in the high
-    scores; the attempt is counted in ``record``. A boss phase needs ``starts``. Returns why
-    it could not start (None: it started): :meth:`PracticeMenu.refused` says so."""
-    run = Run(index, app.difficulty)
+    else the default), to play as a practice: recorded, marked PRACTICE, never in the high
+    scores; the attempt is counted in ``record``. A boss phase needs ``starts``. Returns the
+    transition that plays it, or why it cannot start (:meth:`PracticeMenu.refused` says so)."""
+    run = Run(index, ctx.difficulty)
     try:
-        stage = open_stage(stage_start(run, app.levels, app.seed), app.bank.armatures)
+        stage = open_stage(stage_start(run, ctx.levels, ctx.seed), ctx.bank.armatures)
         at = start_of(stage) if choice.phase == 0 and starts is None else _start(starts, choice.phase)
         loadout = choice.loadout(at.loadout)
         practice_stage(stage, at, loadout)
     except (DataError, PracticeError) as exc:
         return exc
     phase = phase_names(stage)[choice.phase]
-    label = f"{app.stage_title(app.levels[index])}: {phase if choice.phase == 0 else f'{choice.phase}. {phase}'}"
-    practice = PracticeRun(index, choice, loadout, app.difficulty, stage.world, record, label)
+    label = f"{ctx.stage_title(ctx.levels[index])}: {phase if choice.phase == 0 else f'{choice.phase}. {phase}'}"
+    practice = PracticeRun(index, choice, loadout, ctx.difficulty, stage.world, record, label)
     practice.counted(None)
-    app.hint = False
-    app.play_stage(stage, run, Runner(stage, info=practice_info(choice.phase)), practice=practice)
-    return None
+    return PlayStage(stage, run, Runner(stage, info=practice_info(choice.phase)), practice)
 
 
 def _with(choice: PracticeChoice, name: str, value: int | None) -> PracticeChoice:

@@ -6,18 +6,19 @@ in the cache and the practice screen shows the defaults. Esc stops it (nothing i
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING
+from collections.abc import Callable
 
 import pygame
 
 from ...runner import Stage
-from ...runner.practice import PhaseCollector
+from ...runner.practice import PhaseCollector, PhaseStarts, PracticeCache
 from .. import ui
 from ..controls import Action
+from .base import Go, Handled, Tick
+from .context import SceneContext
 
-if TYPE_CHECKING:
-    from ..app import App
-    from .practice_menu import PracticeMenu
+#: Told the starts found, and why they could not be kept in the cache (None: kept).
+Prepared = Callable[[PhaseStarts, str | None], None]
 
 #: Wall-clock time the pass may take per screen frame, s (the screen stays responsive).
 BUDGET_S = 0.05
@@ -27,36 +28,34 @@ BAR = (90, 170, 255)
 class Preparing:
     opaque = True
 
-    def __init__(self, app: App, menu: PracticeMenu, stage: Stage):
-        self.app, self.menu = app, menu
-        self.title = app.stage_title(stage.level_ref)
+    def __init__(self, ctx: SceneContext, stage: Stage, cache: PracticeCache, done: Prepared):
+        """Prepare ``stage`` (opened at its start); the starts go into ``cache``, then to ``done``."""
+        self.ctx, self.cache, self.done = ctx, cache, done
+        self.title = ctx.stage_title(stage.level_ref)
         self.collector = PhaseCollector(stage)
         self.seconds = 0.0
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        if Action.BACK in self.app.controls.actions(event):
-            self.app.stack.pop()
-            return True
+    def handle(self, event: pygame.event.Event) -> Handled:
+        if Action.BACK in self.ctx.controls.actions(event):
+            return Go.POP
         return False
 
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
         self.seconds += dt
         t0 = time.perf_counter()  # pacing only: the pass is the same however it is chunked
         while time.perf_counter() - t0 < BUDGET_S:
             if self.collector.advance(10):
                 starts = self.collector.result()
-                problem = self.menu.cache.save(starts)
-                self.app.stack.pop()
-                self.menu.prepared(starts, problem)
-                break
-        return 0
+                self.done(starts, self.cache.save(starts))
+                return Tick(then=Go.POP)
+        return Tick()
 
     def draw(self, surf: pygame.Surface) -> None:
-        p, w = self.app.painter, surf.get_width()
+        p, w = self.ctx.painter, surf.get_width()
         surf.fill((12, 14, 30))
         c = self.collector
         p.text("PREPARING PRACTICE", 200, ui.HEADING, ui.GOLD)
-        p.text(f"{self.title} on {self.app.difficulty.title}", 244, colour=ui.CREAM)
+        p.text(f"{self.title} on {self.ctx.difficulty.title}", 244, colour=ui.CREAM)
         p.text("The autopilot plays the stage once, to the start", 290, 20, ui.DIM)
         p.text("of each boss phase (kept for next time)", 312, 20, ui.DIM)
         bar = pygame.Rect(40, 350, w - 80, 18)

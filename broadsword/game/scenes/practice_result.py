@@ -3,49 +3,44 @@ phase's captures/attempts; Enter tries again, Esc goes back to the practice scre
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import pygame
 
 from .. import ui
 from ..controls import Action
 from ..practice_run import Ending, Outcome, PracticeRun
-
-if TYPE_CHECKING:
-    from ..app import App
+from .base import IDLE, Handled, PlayStage, Reset, Tick
+from .context import SceneContext
+from .practice_menu import PracticeMenu, start_practice
 
 
 class PracticeResult:
     opaque = False
 
-    def __init__(self, app: App, practice: PracticeRun, outcome: Outcome):
-        self.app, self.practice, self.outcome = app, practice, outcome
+    def __init__(self, ctx: SceneContext, practice: PracticeRun, outcome: Outcome):
+        self.ctx, self.practice, self.outcome = ctx, practice, outcome
         practice.counted(outcome)
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        from .practice_menu import PracticeMenu, start_practice
-
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         pr = self.practice
-        if actions & {Action.CONFIRM, Action.FIRE}:
-            menu = PracticeMenu(self.app, pr.index, pr.choice)
-            why = start_practice(self.app, pr.index, pr.choice, menu.starts, pr.record)
-            if why is not None:
-                menu.refused(why)
-                self.app.stack.reset(menu)
-        elif Action.BACK in actions:
-            self.app.stack.reset(PracticeMenu(self.app, pr.index, pr.choice))
-        else:
-            return False
-        return True
+        if actions & {Action.CONFIRM, Action.FIRE}:  # again, or the menu saying why not
+            menu = PracticeMenu(self.ctx, pr.index, pr.choice)
+            started = start_practice(self.ctx, pr.index, pr.choice, menu.starts, pr.record)
+            if isinstance(started, PlayStage):
+                return started
+            menu.refused(started)
+            return Reset(menu)
+        if Action.BACK in actions:
+            return Reset(PracticeMenu(self.ctx, pr.index, pr.choice))
+        return False
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        p, o, pr = self.app.painter, self.outcome, self.practice
+        p, o, pr = self.ctx.painter, self.outcome, self.practice
         p.veil()
-        w = self.app.screen.get_width()
+        w = self.ctx.display.screen.get_width()
         p.panel(pygame.Rect(24, 190, w - 48, 320))  # over the field's own captions
         p.text("PRACTICE", 220, ui.HEADING, ui.DIM)
         p.text(pr.label, 256, colour=ui.CREAM)

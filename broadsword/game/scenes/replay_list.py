@@ -12,18 +12,17 @@ back to the title.
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING
 
 import pygame
 
+from ...data import DataError
 from .. import ui
 from ..controls import Action
 from ..replaylib import KIND_LABELS, ReplayEntry, date_label
-from ..replays import watch_file
+from .base import IDLE, Go, Handled, Push, Tick
+from .context import SceneContext
 from .save_replay import SAVE_KEY, SaveReplay
-
-if TYPE_CHECKING:
-    from ..app import App
+from .theatre import load_theatre
 
 #: The rows' place: the first row's top, each row's height, how many show at once.
 ROWS_Y, ROW_H, ROWS_SHOWN = 100, 50, 8
@@ -58,8 +57,8 @@ def title_line(entry: ReplayEntry) -> tuple[str, str]:
 class ReplayList:
     opaque = True
 
-    def __init__(self, app: App):
-        self.app = app
+    def __init__(self, ctx: SceneContext):
+        self.ctx = ctx
         self.entries: list[ReplayEntry] = []
         self.index = 0  # the row chosen
         self.first = 0  # the first row shown
@@ -74,13 +73,13 @@ class ReplayList:
         if not self.entries:
             return None
         if self.entries[self.index].unread:
-            self.entries[self.index] = self.app.replays.library.read(self.entries[self.index], self._digests)
+            self.entries[self.index] = self.ctx.replays.library.read(self.entries[self.index], self._digests)
         return self.entries[self.index]
 
     def refresh(self) -> None:
         """List the library again, and read what can be read at once (each file is parsed
         once while it stays the same: reopening the list costs a ``stat`` a file)."""
-        self.entries = self.app.replays.library.listing()
+        self.entries = self.ctx.replays.library.listing()
         self._digests: dict = {}  # each level's digest, read once a listing
         self.index = min(self.index, max(0, len(self.entries) - 1))
         self.first = min(self.first, self.index)
@@ -88,7 +87,7 @@ class ReplayList:
 
     def read_some(self, budget: float) -> None:
         """Read the rows not read yet, in order, for about ``budget`` seconds (at least one)."""
-        library, start = self.app.replays.library, time.perf_counter()
+        library, start = self.ctx.replays.library, time.perf_counter()
         for i, entry in enumerate(self.entries):
             if entry.unread:
                 self.entries[i] = library.read(entry, self._digests)
@@ -99,8 +98,8 @@ class ReplayList:
         self.note, self.note_bad = note, bad
 
     # ------------------------------------------------------------------ keys
-    def handle(self, event: pygame.event.Event) -> bool:
-        actions = self.app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        actions = self.ctx.controls.actions(event)
         key = event.key if event.type == pygame.KEYDOWN else None
         if self.deleting is not None:  # Enter: yes; anything else: no
             if actions & {Action.CONFIRM, Action.FIRE}:
@@ -112,16 +111,16 @@ class ReplayList:
                 return False
             return True
         if key == SAVE_KEY:  # before the actions: S also moves down by default (WASD)
-            self.save_chosen()
-        elif key == DELETE_KEY:
+            return self.save_chosen() or True
+        if actions & {Action.CONFIRM, Action.FIRE}:
+            return self.watch_chosen() or True
+        if Action.BACK in actions:
+            return Go.TO_TITLE
+        if key == DELETE_KEY:
             if self.chosen is not None:
                 self.deleting = self.chosen
         elif actions & {Action.UP, Action.DOWN}:
             self.move(1 if Action.DOWN in actions else -1)
-        elif actions & {Action.CONFIRM, Action.FIRE}:
-            self.watch_chosen()
-        elif Action.BACK in actions:
-            self.app.to_title()
         else:
             return False
         return True
@@ -133,56 +132,60 @@ class ReplayList:
         self.first = min(max(self.first, self.index - ROWS_SHOWN + 1), self.index)
         self.note = None
 
-    def watch_chosen(self) -> None:
+    def watch_chosen(self) -> Push | None:
+        """The chosen replay in the theatre, over the list (Esc comes back here); one that
+        cannot be watched says why, and the list stays (None)."""
         entry = self.chosen
         if entry is None:
-            return
+            return None
         if entry.broken is not None:
             self.say(f"cannot watch it: {entry.broken}", bad=True)
-            return
-        app = self.app
-        why = watch_file(app, entry.path, back=lambda: app.stack.reset(ReplayList(app)))
-        if why is not None:
-            self.say(why, bad=True)
+            return None
+        try:
+            return Push(load_theatre(self.ctx, entry.path))
+        except DataError as exc:
+            self.say(str(exc), bad=True)
+            return None
 
-    def save_chosen(self) -> None:
+    def save_chosen(self) -> Push | None:
+        """The prompt to save the chosen recent run under a name (None: it cannot be saved, said why)."""
         entry = self.chosen
         if entry is None:
-            return
+            return None
         if not entry.recent:
             self.say("saved already (S saves a recent run)")
-            return
+            return None
         if entry.broken is not None:
             self.say("a broken replay cannot be saved", bad=True)
-            return
-        library = self.app.replays.library
+            return None
+        library = self.ctx.replays.library
 
         def saved(name: str) -> None:
             self.refresh()
             self.say(f"saved as {name}")
 
-        self.app.stack.push(
-            SaveReplay(self.app, lambda name, overwrite: library.save_recent(entry.path, name, overwrite), saved)
+        return Push(
+            SaveReplay(self.ctx, lambda name, overwrite: library.save_recent(entry.path, name, overwrite), saved)
         )
 
     def delete(self, entry: ReplayEntry) -> None:
         self.deleting = None
         try:
-            self.app.replays.library.delete(entry.path)
+            self.ctx.replays.library.delete(entry.path)
         except OSError as exc:
             self.say(f"could not delete {entry.path.name}: {exc.strerror or exc}", bad=True)
             return
         self.refresh()
         self.say(f"deleted {entry.path.name}")
 
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
         self.read_some(FRAME_BUDGET)
-        return 0
+        return IDLE
 
     # ------------------------------------------------------------------ drawing
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         p.veil()
         w = surf.get_width()
         p.text("REPLAYS", 50, ui.HEADING + 8, ui.GOLD)
@@ -205,7 +208,7 @@ class ReplayList:
         p.text("Delete: delete   Esc: back", 582, 20, ui.DIM)
 
     def _draw_row(self, entry: ReplayEntry, y: int, selected: bool, w: int) -> None:
-        p = self.app.painter
+        p = self.ctx.painter
         fill, edge = SELECTED if selected else ROW
         p.panel(pygame.Rect(10, y, w - 20, ROW_H - 4), fill, edge)
         name, kind = title_line(entry)

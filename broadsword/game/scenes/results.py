@@ -12,8 +12,11 @@ import pygame
 from ...sim.scoring import NO_BOMB_BONUS, NO_MISS_BONUS
 from .. import ui
 from ..controls import Action
-from ..replays import keep_run
-from .save_replay import SAVE_KEY, can_save_last, draw_save_line, save_last_run
+from .base import IDLE, Handled, NextStage, Replace, Tick, Transition
+from .context import SceneContext
+from .game_over import GameOver
+from .in_play import InPlay
+from .save_replay import SAVE_KEY, draw_save_line, save_last_run
 
 #: The bonuses a stage's end may pay, as ``Progress`` names them.
 NO_MISS, NO_BOMB = "no miss", "no bomb"
@@ -22,14 +25,14 @@ NO_MISS, NO_BOMB = "no miss", "no bomb"
 class Results:
     opaque = False
 
-    def __init__(self, app, play):
-        self.app, self.play = app, play
+    def __init__(self, ctx: SceneContext, play: InPlay):
+        self.ctx, self.play = ctx, play
         if self.final:  # the run ends here
-            keep_run(app)
+            ctx.keep_run(play.runner)
 
     @property
     def final(self) -> bool:
-        return not self.play.run.has_next(self.app.levels)
+        return not self.play.run.has_next(self.ctx.levels)
 
     def rows(self) -> list[tuple[str, str, tuple]]:
         """``(label, value, colour)`` for each line of the table."""
@@ -67,32 +70,29 @@ class Results:
         rows.append(("Score", f"{w.score.points:,}", ui.GOLD))
         return rows
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        if event.type == pygame.KEYDOWN and event.key == SAVE_KEY and self.final and can_save_last(self.app):
-            save_last_run(self.app)
-            return True
-        if self.app.controls.actions(event) & {Action.CONFIRM, Action.FIRE}:
-            self.next()
-            return True
+    def handle(self, event: pygame.event.Event) -> Handled:
+        if event.type == pygame.KEYDOWN and event.key == SAVE_KEY and self.final:
+            saving = save_last_run(self.ctx, self.play.runner)
+            if saving is not None:
+                return saving
+        if self.ctx.controls.actions(event) & {Action.CONFIRM, Action.FIRE}:
+            return self.next()
         return False
 
-    def next(self) -> None:
+    def next(self) -> Transition:
         """On to the next stage, or to the run's end."""
-        from .game_over import GameOver
-
         run, w = self.play.run, self.play.world
         run.carry_from(w)
-        if run.has_next(self.app.levels):
+        if run.has_next(self.ctx.levels):
             run.level_index += 1
-            self.app.begin_stage(run, go_on=True)
-        else:
-            self.app.stack.replace(GameOver(self.app, self.play, victory=True))
+            return NextStage(run)
+        return Replace(GameOver(self.ctx, self.play, victory=True))
 
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        p = self.app.painter
+        p = self.ctx.painter
         w = self.play.world
         p.veil(170)
         p.text("STAGE CLEAR", 150, ui.BIG, ui.GOOD)
@@ -103,4 +103,4 @@ class Results:
             p.text(value, y, colour=colour, x=surf.get_width() / 2 + 8, anchor="midleft")
         p.text("Enter for the final results" if self.final else "Enter for the next stage", 560, colour=ui.DIM)
         if self.final:
-            draw_save_line(self.app, 590)
+            draw_save_line(self.ctx, self.play.runner, 590)

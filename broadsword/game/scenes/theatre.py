@@ -7,7 +7,8 @@ Keys: Space pause/play; Left/Right one frame back/forward (paused; held: repeat)
 Shift+Left/Right 5 s back/forward; Up/Down or ] / [ the speed (0.25x to 16x); PageUp/PageDown
 or P/N the previous/next mark; Home/End the start/end; F1 the overlay; H what hit the player
 at the last miss (at or before this frame: the theatre goes there and shows it, enlarged);
-T take over (play on yourself from this frame); Esc leave. The mouse: click or drag on the bar.
+T take over (play on yourself from this frame); Esc leave (back to the scene under the theatre:
+the replay list, the title). The mouse: click or drag on the bar.
 1x is the speed the run was played at (its recorded game speed).
 
 The run is a :class:`~broadsword.runner.seek.Seeker`: the theatre prepares it in the
@@ -16,8 +17,8 @@ is prepared (the bar's thin line). A seek lands one frame early and steps that f
 world has its collision record for the overlay. A replay that differs from its recording
 plays to the first frame that differs and says so in a banner.
 
-:func:`open_theatre` is the one way in (the command line's ``--replay`` in a window, the
-replay list).
+:func:`load_theatre` is the one way in (the command line's ``--replay`` in a window:
+:meth:`broadsword.game.app.App.watch`; the replay list).
 """
 
 from __future__ import annotations
@@ -25,7 +26,6 @@ from __future__ import annotations
 import time
 from enum import Enum
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import pygame
 
@@ -43,9 +43,8 @@ from ..run import Run
 from ..seekbar import SeekBar
 from ..sidebar import FIELD_RECT
 from ..window import to_surface
-
-if TYPE_CHECKING:
-    from ..app import App
+from .base import Go, Handled, PlayStage, Tick, Transition
+from .context import SceneContext
 
 #: The speeds, slowest first.
 SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0)
@@ -138,8 +137,8 @@ class Theatre:
 
     opaque = True
 
-    def __init__(self, app: App, seeker: Seeker, path: str | Path):
-        self.app, self.seeker, self.path = app, seeker, str(path)
+    def __init__(self, ctx: SceneContext, seeker: Seeker, path: str | Path):
+        self.ctx, self.seeker, self.path = ctx, seeker, str(path)
         self.bar = SeekBar(pygame.Rect(0, 0, FIELD_RECT.width, BAR_HEIGHT), seeker.frames)
         self.keys = TheatreKeys()
         self.paused = False
@@ -169,7 +168,7 @@ class Theatre:
         frame = min(max(0, frame), self.seeker.reached)
         if frame == self.frame:
             return
-        renderer = self.app.renderer
+        renderer = self.ctx.renderer
         renderer.effects.clear()
         renderer.captions.clear()
         if frame == 0:
@@ -186,7 +185,8 @@ class Theatre:
             return next((f for f in frames if f > frame), None)
         return next((f for f in reversed(frames) if f < frame), None)
 
-    def obey(self, command: Command) -> None:
+    def obey(self, command: Command) -> Transition | None:
+        """Do what ``command`` asks; a take-over returns the play it starts."""
         here = self.frame
         if command is Command.PAUSE:
             self.paused = not self.paused
@@ -209,9 +209,10 @@ class Theatre:
         elif command is Command.END:
             self.go(self.seeker.reached)
         elif command is Command.TAKE_OVER:
-            self.take_over()
+            return self.take_over()
         elif command is Command.WHAT_HIT:
             self.show_hit()
+        return None
 
     def show_hit(self) -> None:
         """Go to the last miss at or before this frame and show what hit (its hit record).
@@ -234,40 +235,40 @@ class Theatre:
         self.paused, self.accumulator = True, 0.0
         self.hit, self.hit_frame = hit, self.frame
 
-    def take_over(self) -> None:
+    def take_over(self) -> PlayStage | None:
         """Play on from this frame yourself: a new run whose first stage is this world, as it
         is now, in the normal play scene (marked TAKE-OVER). Its recording starts from this
-        state (the recorder keeps the stage's start snapshot) and says where it came from."""
-        app, seeker = self.app, self.seeker
+        state (the recorder keeps the stage's start snapshot) and says where it came from. A
+        stage that cannot open is said on the title's line (None: the theatre stays)."""
+        ctx, seeker = self.ctx, self.seeker
         pb = seeker.runner.playback
         index = pb.index if pb is not None else 0
         data = seeker.snapshot()
         try:
-            stage = open_recorded(seeker.rec.stages[index], index, self.path, app.bank.armatures)
+            stage = open_recorded(seeker.rec.stages[index], index, self.path, ctx.bank.armatures)
         except DataError as exc:
-            app.report(exc)
-            return
+            ctx.report(exc)
+            return None
         Snapshots(stage.world).restore(stage.world, data)
-        run = Run.of_level(stage.level_ref, app.levels, stage.world.settings.difficulty)
+        run = Run.of_level(stage.level_ref, ctx.levels, stage.world.settings.difficulty)
         source = f"{Path(self.path).name} at frame {self.frame}"
         runner = Runner(stage, info=RecordingInfo(kind=RunKind.TAKE_OVER, source=source))
-        app.renderer.effects.clear()
-        app.play_stage(stage, run, runner)
+        ctx.renderer.effects.clear()
+        return PlayStage(stage, run, runner)
 
     # ------------------------------------------------------------------ events
-    def handle(self, event: pygame.event.Event) -> bool:
-        app = self.app
+    def handle(self, event: pygame.event.Event) -> Handled:
+        ctx = self.ctx
         if event.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEMOTION, pygame.MOUSEBUTTONUP):
             return self._mouse(event)
         command = self.keys.command(event)
         if command is not None:
-            self.obey(command)
-            return True
-        actions = app.controls.actions(event)
+            return self.obey(command) or True
+        actions = ctx.controls.actions(event)
         if Action.OVERLAY in actions:
-            app.overlay.visible = not app.overlay.visible
+            ctx.overlay.visible = not ctx.overlay.visible
         elif Action.BACK in actions:
-            self.leave()
+            return Go.POP  # back to the scene under the theatre (none: the title)
         else:
             return event.type == pygame.KEYUP and event.key in ARROWS
         return True
@@ -289,23 +290,11 @@ class Theatre:
         win = pygame.display.get_surface()
         if win is None:
             return float(pos[0]), float(pos[1])
-        at = to_surface(pos, win.get_size(), self.app.canvas.get_size())
+        at = to_surface(pos, win.get_size(), self.ctx.display.canvas.get_size())
         return None if at is None else (at[0] - FIELD_RECT.left, at[1] - FIELD_RECT.top)
 
-    def leave(self) -> None:
-        """Esc: back to what opened the theatre (``app.after_replay``, the replay list's way
-        back; else the scene under it), else the title."""
-        back, self.app.after_replay = self.app.after_replay, None
-        stack = self.app.stack
-        if back is not None:
-            back()
-        elif len(stack.scenes) > 1 and stack.top is self:
-            stack.pop()
-        else:
-            self.app.to_title()
-
     # ------------------------------------------------------------------ time
-    def update(self, dt: float) -> int:
+    def update(self, dt: float) -> Tick:
         """Play on at the speed (unless paused or dragging), within :data:`PLAY_MS`; repeat
         a held step; then prepare the run further within :data:`PREPARE_MS`."""
         t0 = time.perf_counter()
@@ -325,14 +314,14 @@ class Theatre:
                     0.0, self.accumulator - DT
                 )  # (1e-9: whole steps of real time are not lost to rounding)
                 if SPEEDS[self.speed] <= 1.0:
-                    self.app.feedback.stepped(ev, self.world)  # sounds too, at normal speed or slower
+                    self.ctx.feedback.stepped(ev, self.world)  # sounds too, at normal speed or slower
                 else:
-                    self.app.renderer.on_events(ev, self.world)
+                    self.ctx.renderer.on_events(ev, self.world)
             self.accumulator = min(self.accumulator, DT)  # a backlog is dropped: slower, never frozen
         t1 = time.perf_counter()
         while not self.seeker.prepared and (time.perf_counter() - t1) * 1e3 < PREPARE_MS:
             self.seeker.prepare(2)
-        return steps
+        return Tick(steps)
 
     # ------------------------------------------------------------------ drawing
     def note(self) -> str:
@@ -341,13 +330,13 @@ class Theatre:
         return f"PAUSED  {shown}" if self.paused else shown
 
     def draw(self, surf: pygame.Surface) -> None:
-        app, world = self.app, self.world
+        ctx, world = self.ctx, self.world
         alpha = 1.0 if self.paused else min(self.accumulator / DT, 1.0)
-        on_top = app.stack.top is self
-        app.renderer.draw(surf, world, alpha, show_armature=app.options.always_hitbox, title_card=on_top)
+        on_top = ctx.scenes.top is self
+        ctx.renderer.draw(surf, world, alpha, show_armature=ctx.options.always_hitbox, title_card=on_top)
         if world.rotation != world.level.scene.rotation:
-            app.painter.text(f"rotation {world.rotation}", BAR_HEIGHT + 12, 18, colour=ui.GOLD)
-        overlay = app.overlay
+            ctx.painter.text(f"rotation {world.rotation}", BAR_HEIGHT + 12, 18, colour=ui.GOLD)
+        overlay = ctx.overlay
         if overlay.visible:
             record = world.collision
             keys = overlay.step_key, overlay.rotation_key
@@ -355,18 +344,18 @@ class Theatre:
                 "Right",
                 None,
             )  # the theatre's step key; a replay's rotation is its own
-            overlay.draw(surf, record.result if record is not None else None, app.fps, self.paused)
+            overlay.draw(surf, record.result if record is not None else None, ctx.fps, self.paused)
             overlay.step_key, overlay.rotation_key = keys
         self._banner()
         if self.hit is not None and self.hit_frame == self.frame:
-            draw_hit(surf, inset_rect(surf.get_size()), self.hit, app.painter.font(20))
-        self.bar.draw(surf, app.painter, self.frame, self.seeker.reached, self.seeker.marks, self.note())
+            draw_hit(surf, inset_rect(surf.get_size()), self.hit, ctx.painter.font(20))
+        self.bar.draw(surf, ctx.painter, self.frame, self.seeker.reached, self.seeker.marks, self.note())
 
     def _banner(self) -> None:
         d, error = self.seeker.divergence, self.seeker.error
         if d is None and error is None:
             return
-        p = self.app.painter
+        p = self.ctx.painter
         rect = pygame.Rect(0, BAR_HEIGHT + 24, FIELD_RECT.width, 44)
         p.panel(rect, fill=(60, 10, 16), edge=ui.BAD)
         if d is not None:
@@ -378,25 +367,11 @@ class Theatre:
             p.text(f"{error.field}: {error.message}", rect.top + 32, 13, ui.DIM, width=rect.width - 16)
 
 
-def load_theatre(app: App, path: str | Path) -> Theatre:
-    """The theatre of the recording at ``path`` (not shown yet). DataError (naming the file
-    and field) if it cannot be read or played: broken, another version, a level changed or
-    missing."""
+def load_theatre(ctx: SceneContext, path: str | Path) -> Theatre:
+    """The theatre of the recording at ``path`` (not shown yet: push it). DataError (naming
+    the file and field) if it cannot be read or played: broken, another version, a level
+    changed or missing. A theatre that opens clears the title's load error."""
     rec = load_recording(path)
-    seeker = Seeker(rec, path, app.bank.armatures)
-    app.error = None
-    app.runner = None
-    return Theatre(app, seeker, path)
-
-
-def open_theatre(app: App, path: str | Path) -> None:
-    """Open the recording at ``path`` in the theatre, over the scene on top (Esc goes back to
-    it, or to ``app.after_replay`` when that is set). A file that cannot be read or played is
-    said where the game says load errors (:meth:`App.report`: the title's line), and nothing
-    opens."""
-    try:
-        theatre = load_theatre(app, path)
-    except DataError as exc:
-        app.report(exc)
-        return
-    app.stack.push(theatre)
+    seeker = Seeker(rec, path, ctx.bank.armatures)
+    ctx.error = None
+    return Theatre(ctx, seeker, path)

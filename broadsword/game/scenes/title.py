@@ -4,6 +4,7 @@ in a panel where the controls list goes, so another can be picked."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pygame
@@ -12,6 +13,14 @@ from ...data.difficulty import Difficulty
 from ...sim import FIELD
 from .. import ui
 from ..controls import Action, Bindings, confirm_label, keys_label, move_label
+from .armatures import ArmatureList
+from .base import IDLE, Go, Handled, Push, Scene, Tick
+from .context import SceneContext
+from .high_scores import HighScoresScene
+from .how_to_play import HowToPlay
+from .options_screen import OptionsScene
+from .practice_menu import PracticeMenu
+from .replay_list import ReplayList
 
 ERROR_LINES = 7  # at most this many wrapped lines of a load error (the rest: "...")
 ERROR_TEXT = (255, 214, 200)
@@ -50,113 +59,106 @@ def controls_list(b: Bindings) -> list[tuple[str, str]]:
     ]
 
 
+#: The screens a key opens from the title: scores, hit shapes, replays, practice, options, how to play.
+SCREENS: dict[int, Callable[[SceneContext], Scene]] = {
+    pygame.K_h: HighScoresScene,
+    pygame.K_e: ArmatureList,
+    REPLAYS_KEY: ReplayList,
+    PRACTICE_KEY: PracticeMenu,
+    pygame.K_o: OptionsScene,
+    HOW_TO_PLAY_KEY: HowToPlay,
+}
+
+
 class Title:
     opaque = True
 
-    def __init__(self, app):
-        self.app = app
+    def __init__(self, ctx: SceneContext):
+        self.ctx = ctx
 
-    def handle(self, event: pygame.event.Event) -> bool:
-        app = self.app
-        actions = app.controls.actions(event)
+    def handle(self, event: pygame.event.Event) -> Handled:
+        ctx = self.ctx
+        actions = ctx.controls.actions(event)
         key = event.key if event.type == pygame.KEYDOWN else None
         if actions & {Action.CONFIRM, Action.FIRE}:
-            app.audio.play("select")
-            app.start_run()
-        elif actions & {Action.LEFT, Action.RIGHT}:
-            if app.custom_level is not None:
-                app.custom_level = None  # back to the shipped levels
+            ctx.audio.play("select")
+            return Go.START_RUN
+        if actions & {Action.LEFT, Action.RIGHT}:
+            choice = ctx.choice
+            if choice.custom is not None:
+                choice.custom = None  # back to the shipped levels
             else:
-                step = 1 if Action.RIGHT in actions else -1
-                app.start_index = (app.start_index + step) % len(app.levels)
-        elif actions & {Action.UP, Action.DOWN}:
-            i = DIFFICULTIES.index(app.difficulty) + (1 if Action.DOWN in actions else -1)
-            app.set_options(difficulty=DIFFICULTIES[i % len(DIFFICULTIES)])
-        elif key == pygame.K_h:
-            from .high_scores import HighScoresScene
+                choice.index = (choice.index + (1 if Action.RIGHT in actions else -1)) % len(ctx.levels)
+            return True
+        if actions & {Action.UP, Action.DOWN}:
+            i = DIFFICULTIES.index(ctx.difficulty) + (1 if Action.DOWN in actions else -1)
+            ctx.set_options(difficulty=DIFFICULTIES[i % len(DIFFICULTIES)])
+            return True
+        if Action.BACK in actions:
+            return Go.QUIT
+        return self.open(key) or False
 
-            app.stack.push(HighScoresScene(app))
-        elif key == pygame.K_e:
-            from .armatures import ArmatureList
+    def open(self, key: int | None) -> Push | None:
+        """The screen a key opens from here (:data:`SCREENS`), pushed over the title; None
+        for any other key."""
+        screen = SCREENS.get(key) if key is not None else None
+        return Push(screen(self.ctx)) if screen is not None else None
 
-            app.stack.push(ArmatureList(app))
-        elif key == REPLAYS_KEY:
-            from .replay_list import ReplayList
-
-            app.stack.push(ReplayList(app))
-        elif key == PRACTICE_KEY:
-            from .practice_menu import PracticeMenu
-
-            app.stack.push(PracticeMenu(app))
-        elif key == pygame.K_o:
-            from .options_screen import OptionsScene
-
-            app.stack.push(OptionsScene(app))
-        elif key == HOW_TO_PLAY_KEY:
-            from .how_to_play import HowToPlay
-
-            app.stack.push(HowToPlay(app))
-        elif Action.BACK in actions:
-            app.running = False
-        else:
-            return False
-        return True
-
-    def update(self, dt: float) -> int:
-        return 0
+    def update(self, dt: float) -> Tick:
+        return IDLE
 
     def draw(self, surf: pygame.Surface) -> None:
-        app, p = self.app, self.app.painter
-        app.renderer.draw_idle(surf)
+        ctx, p = self.ctx, self.ctx.painter
+        ctx.renderer.draw_idle(surf)
         w = surf.get_width()
         p.text("BROADSWORD", 110, ui.BIG, ui.GOLD)
         p.text("polygon-armature shoot-'em-up", 150, colour=(160, 180, 220))
-        ship = pygame.transform.scale_by(app.bank.images["player"], 2)
+        ship = pygame.transform.scale_by(ctx.bank.images["player"], 2)
         surf.blit(ship, ship.get_rect(center=(w / 2, 190)))
-        if not app.options.played:  # the first run: point at the help, pulsing
-            glow = 200 + int(55 * ((app.renderer.tick // 20) % 2))
+        if not ctx.options.played:  # the first run: point at the help, pulsing
+            glow = 200 + int(55 * ((ctx.renderer.tick // 20) % 2))
             p.text("New here? Press I for how to play", HINT_Y, 24, (255, glow, 120))
         else:
             p.text("I: how to play", HINT_Y, 20, ui.DIM)
-        if app.custom_level:
-            name, hint = Path(app.custom_level).name, "(Left/Right: shipped levels)"
+        if ctx.choice.custom:
+            name, hint = Path(ctx.choice.custom).name, "(Left/Right: shipped levels)"
         else:
-            name, hint = app.stage_title(app.levels[app.start_index]), "(Left/Right)"
+            name, hint = ctx.stage_title(ctx.levels[ctx.choice.index]), "(Left/Right)"
         font = p.font()
         while len(name) > 8 and font.size(f"Stage: {name}   {hint}")[0] > w - 20:
             name = "..." + name[4:]  # a long file name loses its start, keeps its end
         p.text(f"Stage: {name}   {hint}", 258, colour=ui.CREAM)
-        p.text(f"Difficulty: < {app.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
+        p.text(f"Difficulty: < {ctx.difficulty.title} >   (Up/Down)", 282, colour=ui.CREAM)
         p.text(
-            f"{confirm_label(app.controls.bindings)} play   P practice   R replays   O options   H scores   E hit shapes   Esc quit",
+            f"{confirm_label(ctx.controls.bindings)} play   P practice   R replays   O options   H scores   E hit shapes   Esc quit",
             310,
             colour=ui.DIM,
         )
-        if app.error:
-            self._draw_error()
+        if ctx.error:
+            self._draw_error(ctx.error)
         else:
             self._draw_controls()
-        table = app.scores.of(app.difficulty)
+        table = ctx.scores.of(ctx.difficulty)
         if table:
-            p.text(f"High score on {app.difficulty.title}: {table[0].score:,}  {table[0].name}", 570, colour=ui.GOOD)
-        if app.message:  # below the high score: up to MESSAGE_LINES small lines
-            message = app.message.replace(str(app.data / "_")[:-1], "")  # files in the data dir by name
+            p.text(f"High score on {ctx.difficulty.title}: {table[0].score:,}  {table[0].name}", 570, colour=ui.GOOD)
+        if ctx.message:  # below the high score: up to MESSAGE_LINES small lines
+            message = ctx.message.replace(str(ctx.data / "_")[:-1], "")  # files in the data dir by name
             for i, line in enumerate(p.lines(message, w - 20, MESSAGE_LINES, MESSAGE_SIZE)):
                 p.text(line, 592 + 14 * i, MESSAGE_SIZE, colour=ui.WARN)
 
     def _draw_controls(self) -> None:
-        p = self.app.painter
-        for i, (key, what) in enumerate(controls_list(self.app.controls.bindings)):
+        p = self.ctx.painter
+        for i, (key, what) in enumerate(controls_list(self.ctx.controls.bindings)):
             y = 346 + 17 * i
             p.text(key, y, 22, ui.GOLD, x=150, anchor="midright")
             p.text(what, y, 22, ui.DIM, x=162, anchor="midleft")
 
-    def _draw_error(self) -> None:
+    def _draw_error(self, error: str) -> None:
         """The level load error, wrapped, in a panel where the controls list goes (y 334 to
         at most 546): at most ``ERROR_LINES`` lines; a longer error ends in "..."."""
-        p = self.app.painter
+        p = self.ctx.painter
         wrap = ERROR_WRAP
-        lines = p.lines(self.app.error, wrap, ERROR_LINES)
+        lines = p.lines(error, wrap, ERROR_LINES)
         panel = pygame.Rect(ERROR_X, ERROR_Y, wrap + 24, 72 + 20 * len(lines))
         p.panel(panel, (44, 12, 18), (255, 110, 110))
         p.text("The level could not be loaded", panel.y + 18, colour=ui.WARN)

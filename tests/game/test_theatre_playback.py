@@ -1,18 +1,22 @@
-"""``broadsword --replay FILE`` with a window: the recording drives the world on screen, with
-pause, single-step and the overlay; at its end or first difference, a message says which."""
+"""A recording watched in the replay theatre (``broadsword --replay FILE`` in a window, the
+replay list): it plays as recorded, live toggles on their frames, with the recorded stage's
+music, stage after stage; where it differs from its recording, a banner says the frame and
+the part of the state; pause and single-step; a file that cannot be played leaves the game on
+the title, saying why. (The theatre's seeking, marks and take-over: test_theatre.py.)"""
 
 from __future__ import annotations
 
 import dataclasses
+from types import SimpleNamespace
 
 import pygame
 import pytest
+from support.events import post_key as key
 
 from broadsword import cli
 from broadsword.data.recordings import save_recording
 from broadsword.game.app import App
-from broadsword.game.scenes import Pause, Play
-from broadsword.game.scenes.replay_end import ReplayEnd
+from broadsword.game.panel_state import panel_info
 from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.game.sidebar import Mark
@@ -37,63 +41,69 @@ def recording():
     return runner.recording(), world.state_hash()
 
 
-@pytest.fixture
-def app(tmp_path):
-    a = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    yield a
-    pygame.quit()
+def watch(app, rec, path) -> Theatre:
+    """Open ``rec`` (saved at ``path``) in the theatre, as the replay list does."""
+    save_recording(path, rec)
+    app.watch(path)
+    assert isinstance(app.scene, Theatre), app.ctx.error
+    return app.scene
 
 
-def key(k):
-    pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0))
-
-
-def test_replay_window__plays_the_recording_to_its_end_and_says_it_matches(app, recording):
-    rec, final_hash = recording
-    play = app.watch_replay(rec, "run.json")
-    assert play.watched and app.panel_info().mark is Mark.REPLAY  # the side panel says so
-    for _ in range(FRAMES + 5):
+def play_out(app, theatre, frames) -> None:
+    """Frames of 1/60 s until the theatre pauses at the run's end (at most ``frames``)."""
+    for _ in range(frames):
         app.frame(DT)
-    assert isinstance(app.scene, ReplayEnd) and app.scene.ok
+        if theatre.paused:
+            return
+
+
+def test_theatre__plays_the_recording_to_its_end_as_recorded(app, recording, tmp_path):
+    rec, final_hash = recording
+    theatre = watch(app, rec, tmp_path / "run.json")
+    assert panel_info(app.ctx).mark is Mark.REPLAY  # the side panel says so
+    play_out(app, theatre, FRAMES + 5)
+    assert theatre.paused and theatre.frame == FRAMES and theatre.seeker.divergence is None
     assert app.world.frame == FRAMES and app.world.state_hash() == final_hash
     assert app.world.toggles[0].frame == 40  # the recorded toggle was applied on its frame
-    assert "every frame matched" in " ".join(app.scene.lines)
+    app.render()
+    assert not any("REPLAY" in line for line in app.ctx.painter.said)  # no banner: it matched
 
 
-def test_replay_window__pause_and_single_step(app, recording):
+def test_theatre__pause_single_step_overlay_and_no_live_toggle(app, recording, tmp_path):
     rec, _ = recording
-    app.watch_replay(rec, "run.json")
+    theatre = watch(app, rec, tmp_path / "run.json")
     for _ in range(10):
         app.frame(DT)
-    key(pygame.K_p)
+    key(pygame.K_SPACE)
     app.frame(DT)
-    assert isinstance(app.scene, Pause)
-    frame = app.world.frame
+    assert theatre.paused
+    frame, rotation = app.world.frame, app.world.rotation
     app.frame(1.0)
     assert app.world.frame == frame
-    key(pygame.K_F2)
+    key(pygame.K_RIGHT)
     app.frame(0.0)
     assert app.world.frame == frame + 1
     key(pygame.K_F1)
     app.frame(0.0)
-    assert app.overlay.visible
-    key(pygame.K_F4)  # a live toggle would change a replay's outcome: not during one
-    key(pygame.K_p)
+    assert app.ctx.overlay.visible
+    key(pygame.K_F4)  # a live toggle would change a replay's outcome: not while watching
+    key(pygame.K_RIGHT)
     app.frame(0.0)
-    assert isinstance(app.scene, Play) and not app.world.toggles[1:]
+    assert app.scene is theatre and app.world.frame == frame + 2
+    assert app.world.rotation == rotation and not app.world.toggles
 
 
-def test_replay_window__a_different_ending_is_said(app, recording):
+def test_theatre__a_different_ending_is_said(app, recording, tmp_path):
     rec, _ = recording
     st = dataclasses.replace(rec.first, state_hash="0" * 64)
-    app.watch_replay(dataclasses.replace(rec, stages=(st,)), "run.json")
-    for _ in range(FRAMES + 5):
-        app.frame(DT)
-    assert isinstance(app.scene, ReplayEnd) and not app.scene.ok
-    assert f"differs at frame {FRAMES}: a checkpoint's hash" in app.scene.lines[0]
+    theatre = watch(app, dataclasses.replace(rec, stages=(st,)), tmp_path / "run.json")
+    play_out(app, theatre, FRAMES + 5)
+    assert theatre.paused and theatre.seeker.divergence is not None
+    app.render()
+    assert f"REPLAY DIFFERS from frame {FRAMES}: a checkpoint's hash" in app.ctx.painter.said
 
 
-def test_replay_window__the_first_frame_that_differs_and_its_part_are_said(app, recording):
+def test_theatre__the_first_frame_that_differs_and_its_part_are_said(app, recording, tmp_path):
     """The banner says what the headless JSON says: the frame and the part; the replay stops there."""
     from broadsword.sim import Input
 
@@ -103,14 +113,11 @@ def test_replay_window__the_first_frame_that_differs_and_its_part_are_said(app, 
     old = Input.from_byte(raw[k])
     raw[k] = Input(-old.dx, old.dy, old.fire, old.slow).to_byte()
     st = dataclasses.replace(rec.first, inputs=bytes(raw))
-    app.watch_replay(dataclasses.replace(rec, stages=(st,)), "run.json")
-    for _ in range(FRAMES + 5):
-        app.frame(DT)
-    assert isinstance(app.scene, ReplayEnd) and not app.scene.ok
-    assert app.scene.lines[0] == f"The replay differs at frame {k + 1:,}: the player"
-    assert app.world.frame == k + 1
-    surf = pygame.Surface((480, 640))
-    app.stack.draw(surf)
+    theatre = watch(app, dataclasses.replace(rec, stages=(st,)), tmp_path / "run.json")
+    play_out(app, theatre, FRAMES + 5)
+    assert theatre.paused and app.world.frame == k + 1
+    app.render()
+    assert f"REPLAY DIFFERS from frame {k + 1:,}: the player" in app.ctx.painter.said
 
 
 def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
@@ -139,28 +146,33 @@ def test_replay_window__from_the_command_line(tmp_path, recording, monkeypatch):
 
 
 @pytest.mark.parametrize("index", [1, 4])
-def test_replay_window__plays_the_recorded_stages_music(app, index):
-    """A recording of a later stage plays that stage's loop (and its boss is the final boss
-    on the last stage), not stage 1's."""
+def test_theatre__plays_the_recorded_stages_music(app, index, tmp_path):
+    """A recording of a later stage plays that stage's loop, not stage 1's (nor the title's);
+    its boss's loop is the final boss's only on the last stage."""
     from broadsword.game.music import Track
-    from broadsword.game.soundtrack import soundtrack
+    from broadsword.game.run import Run
+    from broadsword.game.soundtrack import soundtrack, stage_track
     from broadsword.runner import Runner, StageStart
     from broadsword.sim import Input
 
-    level = app.levels[index]
-    runner = Runner.open(StageStart(level, 3), app.bank.armatures)
+    level = app.ctx.levels[index]
+    runner = Runner.open(StageStart(level, 3), app.ctx.bank.armatures)
     for _ in range(5):
         runner.step(Input())
-    play = app.watch_replay(runner.recording(), "run.json")
+    theatre = watch(app, runner.recording(), tmp_path / "run.json")
     app.frame(DT)
-    assert soundtrack(app) is Track.stage(index + 1)
-    assert play.run.has_next(app.levels) == (index + 1 < len(app.levels))
+    assert soundtrack(app.ctx) is Track.stage(index + 1)
+    run = Run.of_level(theatre.runner.stage.level_ref, app.ctx.levels, theatre.world.settings.difficulty)
+    fighting = SimpleNamespace(boss=SimpleNamespace(fighting=True))  # a world whose boss fights
+    assert stage_track(run, fighting, app.ctx.levels) is (
+        Track.FINAL_BOSS if index + 1 == len(app.ctx.levels) else Track.BOSS
+    )
 
 
 def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(tmp_path, monkeypatch, capsys):
     """``--record FILE`` on a windowed run that goes on to stage 2: FILE holds both stages,
     stage 2 with where it started and the score it started with; the headless replay plays
-    both to the state the run was left in, and so does the window, stage after stage with
+    both to the state the run was left in, and so does the theatre, stage after stage with
     each stage's music."""
     from broadsword.data.recordings import load_recording
     from broadsword.game.music import Track
@@ -172,9 +184,9 @@ def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(t
     def run(self):
         for _ in range(30):
             self.frame(DT)
-        self.play._cleared()  # stage 1 ends (its results screen), then on to stage 2
+        self.apply(self.play._cleared())  # stage 1 ends (its results screen), then on to stage 2
         ends.append(self.world.score.points)
-        self.scene.next()
+        self.apply(self.scene.next())
         for _ in range(20):
             self.frame(DT)
         ends.append(self.world.state_hash())
@@ -191,13 +203,15 @@ def test_record_window__a_run_of_two_stages_is_one_recording_that_replays_both(t
     assert summary["replay_matches"] is True and summary["state_hash"] == ends[1]
     assert summary["frames"] == 50 and summary["stages"] == 2
 
-    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"))
-    app.watch_replay(rec, str(path))
+    app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path / "data")
+    app.watch(path)
+    theatre = app.scene
+    assert isinstance(theatre, Theatre)
     tracks = set()
     for _ in range(60):
         app.frame(DT)
-        tracks.add(soundtrack(app))
-    assert isinstance(app.scene, ReplayEnd) and app.scene.ok, app.scene.lines
+        tracks.add(soundtrack(app.ctx))
+    assert theatre.paused and theatre.frame == 50 and theatre.seeker.divergence is None
     assert app.world.level.name == "2-gauntlet" and app.world.state_hash() == ends[1]
     assert {Track.stage(1), Track.stage(2)} <= tracks
     pygame.quit()
@@ -222,7 +236,7 @@ def test_replay_window__a_bad_recording_opens_the_title_and_says_why(tmp_path, r
 
     def run(self):
         self.frame(DT)
-        seen.append((type(self.scene), self.error))
+        seen.append((type(self.scene), self.ctx.error))
 
     monkeypatch.setattr(App, "run", run)
     assert cli.main(["--replay", str(path), "--mute"]) == 0
