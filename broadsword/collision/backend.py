@@ -299,5 +299,5 @@ def backend_for(choice: Backend | Kernel | str | None = None) -> Backend:
     if isinstance(choice, (NumpyBackend, NumbaBackend)):
         return choice
     if choice is not None and not isinstance(choice, (Kernel, str)):
-        raise ArgumentTypeError(f"kernel must be 'numpy', 'numba', a Kernel or None, got {choice!r}")
+        raise ArgumentTypeError(f"kernel must be 'numpy', 'numba', a Kernel, a Backend or None, got {choice!r}")
     return _BY_KERNEL[check_kernel(choice)]

@@ -376,7 +376,8 @@ def laser_pieces(
 def pieces_touching(laser: Laser, polygon, kernel: Backend | Kernel | str | None = None) -> np.ndarray:
     """``(2 n - 3,)`` bool: which of ``laser``'s pieces touch ``polygon`` (a simple polygon,
     ``(k, 2)`` reals, ``k >= 3``, for example an armature's posed vertices). Exact for every
-    finite input (closed sets: touching counts)."""
+    finite input (closed sets: touching counts). ``kernel``: the backend of the narrow phase
+    (:func:`broadsword.collision.backend.backend_for`; ``None``, the default, as everywhere)."""
     if not isinstance(laser, Laser):
         raise arguments.ArgumentTypeError(f"laser must be a Laser, got {type(laser).__name__}")
     q = np.asarray(arguments.polygon(polygon, "polygon"), dtype=np.float64)
