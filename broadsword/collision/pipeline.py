@@ -128,7 +128,6 @@ class Pipeline:
         self.rotation = rotation
         self.keep_tier_pairs = arguments.flag(keep_tier_pairs, "keep_tier_pairs")
         self.backend = backend_for(kernel)
-        self.kernel: Kernel = self.backend.kernel
         self.backend.warm()  # load (or compile, saying so) now, not in the first frame
         broad = self.tiers[0]
         self.broad_phase: BroadPhase = (
@@ -138,6 +137,12 @@ class Pipeline:
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
         self.laser_table = laser_table(self.layers)  # the table with a shadow layer for laser pieces
+
+    @property
+    def kernel(self) -> Kernel:
+        """Which backend this pipeline runs (read-only: a pipeline keeps the backend it was
+        made with; make another to change it)."""
+        return self.backend.kernel
 
     def step(
         self,
