@@ -27,6 +27,11 @@ one point) goes to the scalar predicate.
 
 Arrays are laid out ``(vertex, pair)`` -- pairs along the last, contiguous axis -- and the
 pairs are processed in blocks that fit in cache.
+
+This module is the numpy reference (:func:`polygons_collide_reference`). The public
+:func:`polygons_collide_padded` and :func:`collide_pairs` run on a backend
+(:mod:`broadsword.collision.backend`): the reference itself, or the compiled float filter,
+which hands the reference every pair it cannot certify.
 """
 
 from __future__ import annotations
