@@ -14,6 +14,7 @@ the game. Modules, one idea each:
 * ``broadphase``  the bin grid, quadtrees and brute force behind one protocol (a package,
   one module per method; ``base`` holds the protocol and its statistics)
 * ``narrow``      the exact narrow phase over many pairs at once
+* ``backend``     the numpy reference or the compiled (numba) kernels behind one protocol, chosen once
 * ``lasers``      lasers: polylines with a width, as pieces (convex quads) collided exactly
 * ``laserframe``  lasers in the pipeline: a frame's pieces as objects of every tier, and what they hit
 * ``pixels``      pixel masks per integer degree: the slow image-based reference tier
@@ -29,6 +30,7 @@ the game. Modules, one idea each:
 from ._kernel import Kernel, check_kernel
 from ._warm import warm_kernel
 from .armature import Armature, convex_hull, lut_max_displacement
+from .backend import Backend, backend_for
 from .broadphase import (
     AUTO_BIN_FACTOR,
     BROAD_PHASES,
@@ -92,6 +94,8 @@ __all__ = [
     "FrameResult",
     "GridLayout",
     "Kernel",
+    "Backend",
+    "backend_for",
     "LAST_TIERS",
     "TIERS",
     "Tier",

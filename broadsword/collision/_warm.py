@@ -1,6 +1,6 @@
 """Loading every compiled kernel at once, before the first frame (numba; optional).
 
-The kernel modules (:mod:`._pose_kernel`, :mod:`.broadphase._grid_kernel`,
+The kernel modules (:mod:`._pose_kernel`, :mod:`._grid_kernel`,
 :mod:`._bounds_kernel`, :mod:`._narrow_kernel`) import :func:`._kernel.jit`; this module
 imports them. It lives apart from :mod:`._kernel` so that the imports point one way
 (``_warm`` -> kernels -> ``_kernel``): no import loop inside ``collision``.
@@ -26,8 +26,7 @@ _KERNEL_FUNCTIONS = {
 
 def _kernel_modules() -> list[Any]:
     """The modules holding the compiled kernels, each with ``load()`` and its Python twin."""
-    from . import _bounds_kernel, _narrow_kernel, _pose_kernel
-    from .broadphase import _grid_kernel
+    from . import _bounds_kernel, _grid_kernel, _narrow_kernel, _pose_kernel
 
     return [_bounds_kernel, _narrow_kernel, _grid_kernel, _pose_kernel]
 

@@ -30,7 +30,7 @@ from enum import Enum
 import numpy as np
 
 from . import arguments
-from ._kernel import Kernel
+from .backend import backend_for
 from .frame import FrameResult
 from .posing import Posed
 from .predicates import orient
@@ -254,7 +254,7 @@ def tiers_passed(result: FrameResult, i: int, j: int) -> tuple[TierVerdict, ...]
         out.append(TierVerdict(tiers[0], verdict, True))
         reached = verdict is Verdict.PASSED
     pair = np.array([[i, j]], dtype=np.int64)
-    inp = TierInput(o, result.posed, result.boxes, Workspace(), None, Kernel.NUMPY)
+    inp = TierInput(o, result.posed, result.boxes, Workspace(), None, backend_for("numpy"))
     for name in tiers[1:]:
         if not reached:
             out.append(TierVerdict(name, Verdict.NOT_REACHED, False))

@@ -52,6 +52,7 @@ import numpy as np
 from . import arguments
 from ._kernel import Kernel
 from .armature import convex_hull
+from .backend import Backend
 from .narrow import polygons_collide_padded
 from .posing import _box_unbounded as _box_unbounded_rows
 from .posing import _sweep
@@ -372,10 +373,11 @@ def laser_pieces(
     return px, py, owner
 
 
-def pieces_touching(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> np.ndarray:
+def pieces_touching(laser: Laser, polygon, kernel: Backend | Kernel | str | None = None) -> np.ndarray:
     """``(2 n - 3,)`` bool: which of ``laser``'s pieces touch ``polygon`` (a simple polygon,
     ``(k, 2)`` reals, ``k >= 3``, for example an armature's posed vertices). Exact for every
-    finite input (closed sets: touching counts)."""
+    finite input (closed sets: touching counts). ``kernel``: the backend of the narrow phase
+    (:func:`broadsword.collision.backend.backend_for`; ``None``, the default, as everywhere)."""
     if not isinstance(laser, Laser):
         raise arguments.ArgumentTypeError(f"laser must be a Laser, got {type(laser).__name__}")
     q = np.asarray(arguments.polygon(polygon, "polygon"), dtype=np.float64)
@@ -386,7 +388,7 @@ def pieces_touching(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> np.
     return polygons_collide_padded(px, py, qx, qy, kernel=kernel)
 
 
-def laser_touches(laser: Laser, polygon, kernel: Kernel = Kernel.NUMPY) -> bool:
+def laser_touches(laser: Laser, polygon, kernel: Backend | Kernel | str | None = None) -> bool:
     """``laser`` and ``polygon`` share at least one point: some piece of the laser touches the
     polygon (:func:`pieces_touching`). Exact for every finite input."""
     return bool(pieces_touching(laser, polygon, kernel).any())
@@ -412,7 +414,7 @@ def swept_polygon(polygon, path) -> np.ndarray:
     return np.stack([x[:, 0], y[:, 0]], axis=1)
 
 
-def laser_touches_swept(laser: Laser, polygon, path, kernel: Kernel = Kernel.NUMPY) -> bool:
+def laser_touches_swept(laser: Laser, polygon, path, kernel: Backend | Kernel | str | None = None) -> bool:
     """``laser`` touches the region ``polygon`` swept through this frame (:func:`swept_polygon`):
     a player that crossed the laser between two frames is hit. Exact for every finite input,
     as :func:`laser_touches` is on the swept polygon."""

@@ -27,13 +27,18 @@ one point) goes to the scalar predicate.
 
 Arrays are laid out ``(vertex, pair)`` -- pairs along the last, contiguous axis -- and the
 pairs are processed in blocks that fit in cache.
+
+This module is the numpy reference (:func:`polygons_collide_reference`). The public
+:func:`polygons_collide_padded` and :func:`collide_pairs` run on a backend
+(:mod:`broadsword.collision.backend`): the reference itself, or the compiled float filter,
+which hands the reference every pair it cannot certify.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from . import _narrow_kernel
+from . import backend
 from ._kernel import Kernel
 from .arguments import usable
 from .posing import Posed
@@ -41,7 +46,7 @@ from .predicates import _orient_exact, _polygons_collide
 from .tolerance import ORIENT_EPS, PAIR_EPS, UNDERFLOW_GUARD
 from .workspace import Workspace
 
-__all__ = ["collide_pairs", "paper_collide_padded", "polygons_collide_padded"]
+__all__ = ["collide_pairs", "paper_collide_padded", "polygons_collide_padded", "polygons_collide_reference"]
 
 #: Pairs per block: keeps the (K1+1, K2+1, block) temporaries inside a core's L2 cache.
 BLOCK = 4096
@@ -233,7 +238,7 @@ def _touching(o1, o2, o3, o4, valid, pxe, pye, qxe, qye) -> np.ndarray:
 
 
 def polygons_collide_padded(
-    px, py, qx, qy, workspace: Workspace | None = None, kernel: Kernel = Kernel.NUMPY
+    px, py, qx, qy, workspace: Workspace | None = None, kernel: backend.Backend | Kernel | str | None = None
 ) -> np.ndarray:
     """Exact closed-polygon collision for many pairs at once.
 
@@ -247,9 +252,10 @@ def polygons_collide_padded(
 
     workspace : Workspace, optional
         Scratch buffers to reuse across calls (a pipeline passes its own).
-    kernel : Kernel
-        ``Kernel.NUMPY`` (the reference) or ``Kernel.NUMBA``: the compiled float filter
-        decides the pairs whose signs it certifies and hands the rest to the reference.
+    kernel : Backend, Kernel, {"numpy", "numba"} or None
+        The backend (:func:`broadsword.collision.backend.backend_for`; ``None``: the
+        default). The numpy one is :func:`polygons_collide_reference`; the compiled float
+        filter decides the pairs whose signs it certifies and hands the rest to it.
 
     Returns
     -------
@@ -259,14 +265,15 @@ def polygons_collide_padded(
     """
     # Read-only arrays copied: the compiled filter takes writeable ones only.
     px, py, qx, qy = (usable(np.asarray(a, dtype=np.float64)) for a in (px, py, qx, qy))
+    return backend.backend_for(kernel).collide_padded(
+        px, py, qx, qy, workspace or Workspace(), polygons_collide_reference
+    )
+
+
+def polygons_collide_reference(px, py, qx, qy, workspace: Workspace | None = None) -> np.ndarray:
+    """The numpy reference of :func:`polygons_collide_padded` (same arguments, float64)."""
+    px, py, qx, qy = (np.asarray(a, dtype=np.float64) for a in (px, py, qx, qy))
     ws = workspace or Workspace()
-    if kernel is Kernel.NUMBA:
-        verdict = _narrow_kernel.filter_pairs(px, py, qx, qy)
-        out = verdict == _narrow_kernel.HIT
-        rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
-        if rest.size:
-            out[rest] = polygons_collide_padded(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], ws)
-        return out
     k1, n = px.shape
     k2 = qx.shape[0]
     pxe, pye = ws.get("pxe", (k1 + 1, n)), ws.get("pye", (k1 + 1, n))
@@ -315,15 +322,16 @@ def collide_pairs(
     posed: Posed,
     pairs: np.ndarray,
     workspace: Workspace | None = None,
-    narrow=polygons_collide_padded,
-    kernel: Kernel = Kernel.NUMPY,
+    narrow=None,
+    kernel: backend.Backend | Kernel | str | None = None,
 ) -> np.ndarray:
     """(m,) bool: collision of the posed polygons of each pair in ``pairs`` (m, 2).
 
-    Pairs are grouped by the two objects' size classes so each group is one padded batch
-    for ``narrow`` (by default the exact
-    :func:`~broadsword.collision.narrow.polygons_collide_padded`, with the float filter
-    ``kernel``).
+    Pairs are grouped by the two objects' size classes so each group is one batch: by
+    default the exact narrow phase of the backend ``kernel``
+    (:func:`~broadsword.collision.backend.backend_for`; ``None``: the default), or
+    ``narrow`` when given, a function of the padded polygons ``(px, py, qx, qy) -> (P,)
+    bool`` (:func:`paper_collide_padded`, to measure the paper's test).
     """
     out = np.zeros(len(pairs), dtype=bool)
     if not len(pairs):
@@ -338,27 +346,12 @@ def collide_pairs(
         for g in np.flatnonzero(np.bincount(group)).tolist():  # a handful (np.unique sorts: slower)
             chosen = np.flatnonzero(group == g)
             groups.append((chosen, np.take(i, chosen), np.take(j, chosen)))
+    exact = backend.backend_for(kernel) if narrow is None else None
     for sel, a, b in groups:
         k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
         sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
-        if kernel is Kernel.NUMBA and narrow is polygons_collide_padded:
-            out[sel] = _compiled_group(posed, k1, sa, k2, sb, ws)
-            continue
-        batch = (*posed.gather(k1, sa), *posed.gather(k2, sb))  # sweeps built for these columns only
-        out[sel] = narrow(*batch, ws, kernel) if narrow is polygons_collide_padded else narrow(*batch)
-    return out
-
-
-def _compiled_group(posed: Posed, k1: int, sa: np.ndarray, k2: int, sb: np.ndarray, ws: Workspace) -> np.ndarray:
-    """One (class, class) group of pairs, columns ``sa`` of class ``k1`` against ``sb`` of
-    ``k2``: the compiled filter reads the class arrays in place and builds the sweeps it
-    reads; the pairs it leaves undecided are gathered and settled by the numpy reference."""
-    verdict, undecided = _narrow_kernel.decide(
-        posed.vx[k1], posed.vy[k1], sa, posed.vx[k2], posed.vy[k2], sb, posed.sweeps.get(k1), posed.sweeps.get(k2)
-    )
-    out = verdict == _narrow_kernel.HIT
-    if undecided:
-        rest = np.flatnonzero(verdict == _narrow_kernel.UNDECIDED)
-        ra, rb = np.take(sa, rest), np.take(sb, rest)
-        out[rest] = polygons_collide_padded(*posed.gather(k1, ra), *posed.gather(k2, rb), ws)
+        if exact is not None:
+            out[sel] = exact.collide_columns(posed, k1, sa, k2, sb, ws, polygons_collide_reference)
+        else:  # sweeps built for these columns only
+            out[sel] = narrow(*posed.gather(k1, sa), *posed.gather(k2, sb))
     return out

@@ -24,10 +24,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import _pose_kernel, arguments, bounds, laserframe
-from ._kernel import Kernel, check_kernel
-from ._warm import warm_kernel
+from . import arguments, bounds, laserframe
+from ._kernel import Kernel
 from .armature import Armature
+from .backend import Backend, backend_for
 from .broadphase import BROAD_PHASES, BinGrid, BroadPhase
 from .frame import FrameObjects, FrameResult, TierStats
 from .laserframe import laser_table
@@ -73,12 +73,13 @@ class Pipeline:
     keep_tier_pairs : bool
         Keep every tier's surviving pairs in :attr:`FrameResult.tier_pairs` (for the
         overlay and for tests); costs a little memory.
-    kernel : Kernel, {"numpy", "numba"} or None
-        How the bin grid and the exact narrow phase's float filter run. ``None``:
-        ``BROADSWORD_KERNEL`` if set, else numba when it is installed
-        (``pip install 'broadsword[fast]'``), else numpy. Both give the same pairs in the
-        same order; pairs the compiled filter cannot decide go to the numpy reference and
-        its rational fallback.
+    kernel : Backend, Kernel, {"numpy", "numba"} or None
+        The backend of the stages with a compiled twin (posing and boxing, the bin grid,
+        the ``aabb`` tier, the exact narrow phase's float filter:
+        :mod:`broadsword.collision.backend`). ``None``: ``BROADSWORD_KERNEL`` if set, else
+        numba when it is installed (``pip install 'broadsword[fast]'``), else numpy. Both
+        give the same pairs in the same order; pairs the compiled filter cannot decide go
+        to the numpy reference and its rational fallback.
 
     Raises
     ------
@@ -94,6 +95,10 @@ class Pipeline:
         The configured tiers (each equal to its name as a string).
     broad_phase : BroadPhase
         The first tier's phase: configuration only, it keeps nothing of a frame.
+    backend : Backend
+        The chosen backend (loaded when the pipeline is made, never in a frame).
+    kernel : Kernel
+        Which one it is.
     """
 
     def __init__(
@@ -105,7 +110,7 @@ class Pipeline:
         bin_size: float | None = None,
         field: Sequence[float] | None = None,
         keep_tier_pairs: bool = False,
-        kernel: Kernel | str | None = None,
+        kernel: Backend | Kernel | str | None = None,
     ):
         self.armatures = armatures if isinstance(armatures, ArmatureSet) else ArmatureSet(armatures)
         if layers is not None:
@@ -122,19 +127,22 @@ class Pipeline:
             raise ValueError(f"tiers: {exc}") from None
         self.rotation = rotation
         self.keep_tier_pairs = arguments.flag(keep_tier_pairs, "keep_tier_pairs")
-        if kernel is not None and not isinstance(kernel, (Kernel, str)):
-            raise arguments.ArgumentTypeError(f"kernel must be 'numpy', 'numba', a Kernel or None, got {kernel!r}")
-        self.kernel = check_kernel(kernel)
-        if self.kernel is Kernel.NUMBA:
-            warm_kernel()  # load (or compile, saying so) now, not in the first frame
+        self.backend = backend_for(kernel)
+        self.backend.warm()  # load (or compile, saying so) now, not in the first frame
         broad = self.tiers[0]
         self.broad_phase: BroadPhase = (
-            BinGrid(bin_size, field, kernel=self.kernel) if broad is Tier.BINS else BROAD_PHASES[broad]()
+            BinGrid(bin_size, field, kernel=self.backend) if broad is Tier.BINS else BROAD_PHASES[broad]()
         )
         self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
         self.laser_table = laser_table(self.layers)  # the table with a shadow layer for laser pieces
+
+    @property
+    def kernel(self) -> Kernel:
+        """Which backend this pipeline runs (read-only: a pipeline keeps the backend it was
+        made with; make another to change it)."""
+        return self.backend.kernel
 
     def step(
         self,
@@ -241,21 +249,14 @@ class Pipeline:
             objects.prev_angles,
             swept,
         )
-        compiled = None
-        if self.kernel is Kernel.NUMBA and self.needs_vertices:
-            compiled = _pose_kernel.pose(*args, self.workspace)  # None: a frame for numpy's special paths
-        if compiled is not None:
-            posed, boxes = compiled
-        else:
-            posed = pose_checked(*args, vertices=self.needs_vertices, workspace=self.workspace)
         if self.needs_vertices:
             # Posing every object at once and boxing the polygons tightly beats posing only
             # the survivors of cheap tiers: measured, the tighter boxes save the broad phase
             # more than the skipped posing costs (docs/PERFORMANCE.md).
-            if compiled is None:
-                boxes = bounds.aabbs(posed)
-        else:
-            boxes = bounds.circle_boxes(posed)  # a scene without polygon tiers poses nothing
+            posed, boxes = self.backend.pose_and_box(*args, self.workspace)
+        else:  # a scene without polygon tiers poses no vertices
+            posed = pose_checked(*args, vertices=False, workspace=self.workspace)
+            boxes = bounds.circle_boxes(posed)
         # The pieces of the lasers near an object they test join the frame as objects
         # n .. n + p - 1 (laserframe.py).
         joined = None
@@ -277,7 +278,7 @@ class Pipeline:
         if self.keep_tier_pairs:
             tier_pairs[self.tiers[0].value] = pairs
 
-        inp = TierInput(objects, all_posed, all_boxes, self.workspace, self.masks, self.kernel)
+        inp = TierInput(objects, all_posed, all_boxes, self.workspace, self.masks, self.backend)
         for tier in self.tiers[1:]:
             t0 = clock()
             keep = TIERS[tier].keep

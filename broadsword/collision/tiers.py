@@ -30,8 +30,8 @@ from enum import Enum, StrEnum
 
 import numpy as np
 
-from . import _bounds_kernel, bounds, kdop
-from ._kernel import Kernel
+from . import bounds, kdop
+from .backend import Backend
 from .frame import FrameObjects
 from .narrow import collide_pairs, paper_collide_padded
 from .pixels import MaskCache
@@ -83,7 +83,8 @@ class TierInput:
 
     ``posed`` is ``None`` when no configured tier needs vertices; ``boxes`` (n, 4) are the
     boxes the broad phase used; ``masks`` exists when the ``pixel`` tier is configured;
-    ``kernel`` is the narrow phase's float filter (:class:`~broadsword.collision.Kernel`).
+    ``backend`` runs the stages with a compiled twin (the ``aabb`` test, the exact narrow
+    phase: :mod:`broadsword.collision.backend`).
     """
 
     objects: FrameObjects
@@ -91,7 +92,7 @@ class TierInput:
     boxes: np.ndarray
     workspace: Workspace
     masks: MaskCache | None
-    kernel: Kernel = Kernel.NUMPY
+    backend: Backend
 
 
 #: A filtering tier: (frame input, pairs (m, 2) int64) -> (m,) bool, True to keep the pair.
@@ -116,9 +117,7 @@ def _pixel(inp: TierInput, pairs: np.ndarray) -> np.ndarray:
 
 
 def _aabb(inp: TierInput, pairs: np.ndarray) -> np.ndarray:
-    if inp.kernel is Kernel.NUMBA:
-        return _bounds_kernel.boxes_overlap(inp.boxes, pairs)
-    return bounds.boxes_overlap(inp.boxes, pairs)
+    return inp.backend.boxes_overlap(inp.boxes, pairs)
 
 
 def _spec(tier, kind, vertices=False, keep=None):
@@ -145,7 +144,7 @@ TIERS: Mapping[Tier, TierSpec] = dict(
             Tier.ARMATURE,
             TierKind.EXACT,
             True,
-            lambda inp, pairs: collide_pairs(inp.posed, pairs, inp.workspace, kernel=inp.kernel),
+            lambda inp, pairs: collide_pairs(inp.posed, pairs, inp.workspace, kernel=inp.backend),
         ),
         _spec(
             Tier.PAPER,

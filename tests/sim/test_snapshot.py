@@ -84,12 +84,13 @@ def test_restore__steps_like_the_uninterrupted_world(name, rotation):
 
 
 @pytest.mark.skipif(not numba_available(), reason="numba is not installed")
-def test_restore__across_kernels():
+def test_restore__across_kernels(monkeypatch):
     """Saved with one collision kernel, restored under the other: the same bits."""
     run = _run("3-broadsword", "lut")
     for kernel in (Kernel.NUMBA, Kernel.NUMPY):
+        monkeypatch.setenv("BROADSWORD_KERNEL", kernel.value)  # the world's pipeline takes the default
         w = _fresh("3-broadsword")
-        w.pipeline.kernel = kernel
+        assert w.pipeline.kernel is kernel
         snaps = Snapshots(w)
         snaps.restore(w, run[2][120])
         _step_and_compare(w, snaps, 120, AFTER, run)

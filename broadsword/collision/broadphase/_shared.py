@@ -13,27 +13,25 @@ from collections.abc import Iterable
 import numpy as np
 
 from .. import arguments
+from .._gridrules import AUTO_BIN_FACTOR, DENSE_KEYS, DIRECT_PAIRS, DIRECT_SIDE, MEDIAN_SAMPLE, MIN_BIN
 from .._indexing import selector
 from ..layers import LayerTable
 from .base import BroadPhaseStats, GridLayout, TreeLayout
 
-__all__ = ["AUTO_BIN_FACTOR", "DIRECT_SIDE", "Driver", "Frame", "auto_bin_size"]
+__all__ = [
+    "AUTO_BIN_FACTOR",
+    "DENSE_KEYS",
+    "DIRECT_PAIRS",
+    "DIRECT_SIDE",
+    "MIN_BIN",
+    "Driver",
+    "Frame",
+    "auto_bin_size",
+]
 
 _EMPTY = np.empty((0, 2), dtype=np.int64)
-_MEDIAN_SAMPLE = 64
 #: Up to this many boxes, :func:`auto_bin_size` takes every box's extent in one pass.
 _EXTENTS_AT_ONCE = 4096
-#: Bins this much larger than the largest layer's median object (docs/PERFORMANCE.md).
-AUTO_BIN_FACTOR = 1.25
-#: A layer of at most this many objects is *few*: a table entry with a side this small
-#: compares bin ranges directly (the bin grid's ``ranges_meet``), never registering in
-#: bins, so its objects' size does not choose the bin size (:func:`auto_bin_size`).
-DIRECT_SIDE = 8
-#: Key spaces up to this size are joined with a counting sort instead of binary search.
-DENSE_KEYS = 1 << 17
-#: The smallest bin side: the smallest normal double, whose inverse is finite. Smaller bins
-#: (a frame of subnormal-sized boxes) made ``1 / size`` infinite and ``0 * inf`` a nan bin.
-MIN_BIN = 2.0**-1022
 
 
 class Frame:
@@ -150,7 +148,7 @@ def auto_bin_size(boxes: np.ndarray, groups: Iterable[np.ndarray] | None = None,
     # calls), of each group's sample in a large one (fewer boxes); the same values either way.
     every = _half_extents(boxes) if len(boxes) <= _EXTENTS_AT_ONCE else None
     for idx in groups:
-        sample = idx[:: max(1, len(idx) // _MEDIAN_SAMPLE)]
+        sample = idx[:: max(1, len(idx) // MEDIAN_SAMPLE)]
         ext = np.take(every, sample) if every is not None else _half_extents(boxes[sample])
         # The upper median (np.median costs 10x more).
         m = max(m, float(np.partition(ext, len(ext) // 2)[len(ext) // 2]))

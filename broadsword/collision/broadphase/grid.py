@@ -7,21 +7,14 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .. import arguments
+from .. import _grid_kernel, arguments, backend
 from .._indexing import pick, selector
-from .._kernel import Kernel, check_kernel
+from .._kernel import Kernel
 from ..layers import LayerTable
-from ._shared import _EMPTY, DENSE_KEYS, DIRECT_SIDE, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
+from ._shared import _EMPTY, DENSE_KEYS, DIRECT_PAIRS, DIRECT_SIDE, MIN_BIN, Driver, Frame, auto_bin_size, expand, join
 from .base import BroadPhaseStats, GridLayout
 
 __all__ = ["BinGrid"]
-
-#: A table entry with at most this many objects on one side skips the bins (see
-#: _GridFrame.ranges_meet); such a layer does not choose the automatic bin size either.
-_DIRECT_SIDE = DIRECT_SIDE
-#: ... and so does one with at most this many object pairs (small scenes: comparing every
-#: pair's bin ranges is a handful of numpy calls, registering in bins a few dozen).
-_DIRECT_PAIRS = 1 << 14
 
 
 class BinGrid(Driver):
@@ -38,11 +31,11 @@ class BinGrid(Driver):
         field register in the bins along its border (clamping keeps every overlap).
     max_cells : int
         Upper bound on bins; a frame whose field would need more uses larger bins.
-    kernel : Kernel or str
-        ``Kernel.NUMBA`` runs each query as one compiled call (:mod:`._grid_kernel`: the
-        same pairs in the same order; numba must be installed; a grid of more than
-        ``DENSE_KEYS`` cells runs numpy); ``Kernel.NUMPY`` (the default, and the
-        reference) as numpy passes.
+    kernel : Backend, Kernel, {"numpy", "numba"} or None
+        Which backend runs the query (:func:`broadsword.collision.backend.backend_for`:
+        ``None``, the default, is ``BROADSWORD_KERNEL`` if set, else numba when installed,
+        else numpy). Both give the same pairs in the same order; the compiled query runs
+        as one call (:mod:`broadsword.collision._grid_kernel`).
 
     Each object registers in every bin its box overlaps. For each table entry the side
     with fewer bin entries is indexed and the other looks its bins up; a pair found in a
@@ -58,29 +51,43 @@ class BinGrid(Driver):
         bin_size: float | None = None,
         field: Sequence[float] | None = None,
         max_cells: int = 1 << 16,
-        kernel: Kernel | str = Kernel.NUMPY,
+        kernel: backend.Backend | Kernel | str | None = None,
     ):
         self.bin_size = None if bin_size is None else arguments.positive(bin_size, "bin_size")
         self.field = None if field is None else arguments.bounds4(field, "field")
         self.max_cells = arguments.whole(max_cells, "max_cells", 1)
-        self.kernel = check_kernel(kernel)  # a clear error when numba is asked for but missing
-        if self.kernel is Kernel.NUMBA:
-            from . import _grid_kernel
+        self.backend = backend.backend_for(kernel)  # a clear error when numba is asked for but missing
+        self.backend.warm()  # numba imported and the kernels loaded now, not in a frame
 
-            _grid_kernel.load()  # numba imported and the kernel loaded now, not in a frame
+    @property
+    def kernel(self) -> Kernel:
+        """Which implementation runs the query."""
+        return self.backend.kernel
 
     def query(self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable) -> tuple[np.ndarray, BroadPhaseStats]:
-        """``(pairs (m, 2) int64, stats)``; see :mod:`broadsword.collision.broadphase.base`."""
-        if self.kernel is not Kernel.NUMBA or self.max_cells > DENSE_KEYS:
+        """``(pairs (m, 2) int64, stats)``; see :mod:`broadsword.collision.broadphase.base`.
+        The backend runs :meth:`reference_query` or :meth:`compiled_query`."""
+        return self.backend.grid_pairs(self, boxes, layers, table)
+
+    def reference_query(
+        self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable
+    ) -> tuple[np.ndarray, BroadPhaseStats]:
+        """The numpy query (the reference the compiled one is tested against)."""
+        return super().query(boxes, layers, table)
+
+    def compiled_query(
+        self, boxes: np.ndarray, layers: np.ndarray, table: LayerTable
+    ) -> tuple[np.ndarray, BroadPhaseStats]:
+        """The same query as one compiled call (:mod:`broadsword.collision._grid_kernel`; numba must import)."""
+        if self.max_cells > DENSE_KEYS:
             # The compiled join counts keys in a dense table: grids allowed more bins than
             # DENSE_KEYS (never the default) run the numpy grid, which searches instead.
-            return super().query(boxes, layers, table)
-        from . import _grid_kernel as gk
-
+            return self.reference_query(boxes, layers, table)
         boxes, layers = self._arrays(boxes, layers, table)
         entries = np.array(table.entries, dtype=np.int64).reshape(-1, 2)
+        gk = _grid_kernel
         pairs, ranges, sel, info = gk.grid_query(
-            boxes, layers, entries, self.bin_size, self.field, self.max_cells, _DIRECT_SIDE, _DIRECT_PAIRS
+            boxes, layers, entries, self.bin_size, self.field, self.max_cells, DIRECT_SIDE, DIRECT_PAIRS
         )
         if info[gk.NOT_FINITE]:
             raise ValueError("boxes must be finite")
@@ -166,7 +173,7 @@ class _GridFrame(Frame):
         )
 
     def between(self, ia, ib, la, lb):
-        if min(len(ia), len(ib)) <= _DIRECT_SIDE or len(ia) * len(ib) <= _DIRECT_PAIRS:
+        if min(len(ia), len(ib)) <= DIRECT_SIDE or len(ia) * len(ib) <= DIRECT_PAIRS:
             return self.ranges_meet(ia, ib)
         oa, ka, ma = self.layer_entries(ia, la)
         ob, kb, mb = self.layer_entries(ib, lb)

@@ -21,9 +21,8 @@ import math
 
 import numpy as np
 
-from .._kernel import jit
-from ._shared import _MEDIAN_SAMPLE as MEDIAN_SAMPLE
-from ._shared import AUTO_BIN_FACTOR, MIN_BIN
+from ._gridrules import AUTO_BIN_FACTOR, MEDIAN_SAMPLE, MIN_BIN
+from ._kernel import jit
 
 __all__ = ["grid_query", "load"]
 

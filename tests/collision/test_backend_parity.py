@@ -1,0 +1,446 @@
+"""Every stage of the compiled backend against the numpy reference (issue 24.1): the parity suite.
+
+Each stage of :class:`broadsword.collision.backend.Backend` runs on both backends with the
+strategies of ``kernels.py`` (one frame strategy feeds posing, the grid, the box tier, the
+narrow phase and the whole pipeline) and on constructed families (touching, one-ulp-off,
+integer grids, extreme magnitudes, crowds, grids capped by ``max_cells``). Not the same
+set only: the same pairs *in the same order*, the same posed bits, the same grid layout.
+The game applies hits in the pipeline's order, so a replay must not depend on whether
+numba is installed.
+
+Where numba cannot be imported, every test here FAILS with a message saying to install the
+``test`` extra (``kernels.require_numba``), never skips.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from kernels import (
+    MIXED,
+    ONE,
+    PAIR_OFFSETS,
+    PAIR_SCALES,
+    SHMUP,
+    backend_named,
+    box_sets,
+    frames,
+    grid_polygons,
+    grid_settings,
+    half_polygons,
+    require_numba,
+)
+from test_narrow import BASE, M, R, exact_map, grid_pairs, pad, random_pairs, simple_grid_pairs, touching_pairs
+
+from broadsword.collision import Armature, ArmatureSet, BinGrid, Kernel, LayerTable, Pipeline
+from broadsword.collision.backend import NumbaBackend, NumpyBackend
+from broadsword.collision.narrow import collide_pairs, polygons_collide_padded
+from broadsword.collision.posing import Posed
+from broadsword.collision.scenarios import ReferenceScene, random_armature
+from broadsword.collision.workspace import Workspace
+
+PROPERTY = settings(max_examples=60, deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+@pytest.fixture(scope="module")
+def backends() -> tuple[NumpyBackend, NumbaBackend]:
+    """(reference, compiled); fails the test when numba cannot be imported."""
+    ref, fast = backend_named("numpy"), backend_named("numba")
+    assert isinstance(ref, NumpyBackend) and isinstance(fast, NumbaBackend)
+    return ref, fast
+
+
+def bits(a) -> bytes:
+    return np.ascontiguousarray(a).tobytes()
+
+
+# --------------------------------------------------------------------------- posing and boxing
+
+
+def same_boxes(ref: np.ndarray, got: np.ndarray) -> None:
+    """Equal values, and equal bits wherever the value is not zero (a zero extreme reached
+    both as -0.0 and 0.0 may take either sign: numpy's min and max do not define which)."""
+    assert np.array_equal(ref, got)
+    nonzero = ref != 0
+    assert bits(ref[nonzero]) == bits(np.asarray(got)[nonzero])
+
+
+def same_posed(ref: Posed, got: Posed) -> None:
+    """The same classes, slots, member order, vertices, sweep shapes and paths, bit for bit,
+    and the same swept polygons once built."""
+    assert bits(ref.klass) == bits(got.klass) and bits(ref.slot) == bits(got.slot)
+    assert list(ref.members) == list(got.members) and ref.reordered == got.reordered
+    assert set(ref.sweeps) == set(got.sweeps)
+    for k in ref.members:
+        assert bits(ref.members[k]) == bits(got.members[k])
+        split = ref.sweeps[k].split if k in ref.sweeps else ref.vx[k].shape[1]
+        assert bits(ref.vx[k][:, :split]) == bits(got.vx[k][:, :split])
+        assert bits(ref.vy[k][:, :split]) == bits(got.vy[k][:, :split])
+        if k in ref.sweeps:
+            a, b = ref.sweeps[k], got.sweeps[k]
+            assert a.split == b.split
+            for name in ("hx", "hy", "dx", "dy"):
+                assert bits(getattr(a, name)) == bits(getattr(b, name)), name
+    for k in ref.members:  # built sweeps too
+        assert bits(ref.xs[k]) == bits(got.xs[k]) and bits(ref.ys[k]) == bits(got.ys[k])
+    assert bits(ref.centre) == bits(got.centre) and bits(ref.radius) == bits(got.radius)
+
+
+def pose_both(backends, shapes, armature, pos, ang, rotation, prev=None, prev_ang=None, swept=None):
+    """Pose on both backends, assert they agree; return the reference's ``(posed, boxes)``."""
+    args = (shapes, armature, pos, ang, rotation, prev, prev_ang, swept)
+    ref = backends[0].pose_and_box(*args, Workspace())
+    got = backends[1].pose_and_box(*args, Workspace())
+    same_boxes(ref[1], got[1])
+    same_posed(ref[0], got[0])
+    return ref
+
+
+@pytest.mark.parametrize("rotation", ["lut", "exact"])
+@pytest.mark.parametrize("seed", range(3))
+def test_pose__reference_scene(backends, rotation, seed):
+    scene = ReferenceScene(enemies=40, bullets=600, seed=seed)
+    for _ in range(2):
+        pos, ang = scene.advance()
+    pose_both(backends, scene.shapes, scene.armature, pos, ang, rotation)
+    bullets = scene.layer >= 2
+    pose_both(backends, scene.shapes, scene.armature, pos, ang, rotation, pos - scene.vel * scene.dt, ang, bullets)
+    some = bullets & (np.arange(scene.n) % 3 == 0)  # swept and plain bullets in one class
+    posed, _ = pose_both(backends, scene.shapes, scene.armature, pos, ang, rotation, scene.prev_pos, ang, some)
+    assert posed.reordered
+    # Turning sweeps (the octagon) and paths past the doubles: the kernel declines, the
+    # backend still answers (numpy's special paths).
+    pose_both(backends, scene.shapes, scene.armature, pos, ang, rotation, scene.prev_pos, scene.prev_angle, some)
+
+
+def test_pose__many_shapes_far_and_odd(backends):
+    """Armatures of 3 to 30 vertices (hulls padded past the table), positions up to 1e300,
+    paths of every direction (zero included), angles far outside 0..360, paths past the
+    doubles, a -0.0 position turned 180 degrees (a zero extreme of either sign)."""
+    rng = np.random.default_rng(7)
+    triangle = Armature([(0.0, -5.0), (4.0, 3.0), (-4.0, 3.0)], name="triangle")
+    shapes = ArmatureSet(
+        [Armature.box(3, 3), triangle, *(random_armature(rng, int(v), 30.0, f"r{v}") for v in (4, 5, 9, 17, 30))]
+    )
+    n = 400
+    armature = rng.integers(0, len(shapes), n)
+    pos = rng.uniform(-1, 1, (n, 2)) * 10.0 ** rng.integers(0, 300, (n, 1))
+    ang = rng.uniform(-1e6, 1e6, n)
+    step = rng.normal(0, 50, (n, 2)) * (rng.random((n, 1)) < 0.9)
+    swept = rng.random(n) < 0.5
+    for rotation in ("lut", "exact"):
+        pose_both(backends, shapes, armature, pos, ang, rotation)
+        pose_both(backends, shapes, armature, pos, ang, rotation, pos - step, ang, swept)
+    far = np.array([[0.0, 0.0], [1.7e308, 0.0]])
+    two = np.zeros(2, dtype=np.int64)
+    pose_both(backends, shapes, two, far, np.zeros(2), "lut", -far, np.zeros(2), np.array([True, True]))
+    tri = ArmatureSet([Armature([(0.0, 5.0), (0.0, -5.0), (-5.0, 0.0)], name="t")])
+    one, at, half = np.zeros(1, dtype=np.int64), np.array([[-0.0, 0.0]]), np.array([180.0])
+    for rotation in ("lut", "exact"):
+        pose_both(backends, tri, one, at, half, rotation)
+        pose_both(backends, tri, one, at, half, rotation, at.copy(), half, np.array([True]))
+
+
+@PROPERTY
+@given(frames(), st.sampled_from(["lut", "exact"]))
+def test_pose__property(backends, f, rotation):
+    pose_both(
+        backends, f["shapes"], f["armature"], f["positions"], f["angles"], rotation,
+        f["prev_positions"], f["prev_angles"], f["swept"],
+    )  # fmt: skip
+
+
+# --------------------------------------------------------------------------- the grid query
+
+
+def grid_both(backends, boxes, layers, table, **settings) -> np.ndarray:
+    """The grid's pairs (order included), statistics and layout agree; returns the pairs."""
+    ref, ref_stats = BinGrid(**settings, kernel=backends[0]).query(boxes, layers, table)
+    got, got_stats = BinGrid(**settings, kernel=backends[1]).query(boxes, layers, table)
+    assert got.dtype == np.int64 and got.shape == ref.shape
+    np.testing.assert_array_equal(got, ref)
+    assert got_stats.objects == ref_stats.objects and got_stats.pairs == ref_stats.pairs
+    a, b = ref_stats.layout, got_stats.layout
+    if a is None:
+        assert b is None
+        return ref
+    assert (a.origin, a.size, a.shape) == (b.origin, b.size, b.shape)
+    np.testing.assert_array_equal(a.members, b.members)
+    for r, g in zip(a.ranges, b.ranges, strict=True):
+        np.testing.assert_array_equal(r, g)
+    np.testing.assert_array_equal(a.occupancy, b.occupancy)
+    return ref
+
+
+def boxes_of(rng, n, lo=0.0, hi=1000.0, smin=1.0, smax=50.0):
+    xy = rng.uniform(lo, hi, size=(n, 2))
+    return np.column_stack([xy, xy + rng.uniform(smin, smax, size=(n, 2))])
+
+
+@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("n", [0, 1, 2, 9, 60, 400, 3000])
+@pytest.mark.parametrize("table", [SHMUP, ONE, MIXED], ids=["shmup", "one", "mixed"])
+def test_grid__random_frames(backends, seed, n, table):
+    rng = np.random.default_rng(seed * 31 + n)
+    smax = float(rng.choice([3.0, 50.0, 300.0])) if n < 1000 else 20.0  # not millions of pairs
+    boxes = boxes_of(rng, n, smax=smax)
+    layers = rng.integers(0, len(table.names), n)
+    grid_both(backends, boxes, layers, table)
+    grid_both(backends, boxes, layers, table, bin_size=7.0)
+    grid_both(backends, boxes, layers, table, bin_size=20.0, field=(0.0, 0.0, 500.0, 500.0))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_grid__crowds_register_in_bins(backends, seed):
+    """Thousands a side: the registration path, not the direct comparison; ships span
+    several bins (the first-shared-bin rule) while bullets sit in one."""
+    rng = np.random.default_rng(seed)
+    ships = boxes_of(rng, 300, smin=20.0, smax=90.0)
+    bullets = boxes_of(rng, 4000, smin=2.0, smax=6.0)
+    boxes = np.concatenate([ships, bullets])
+    layers = np.concatenate([rng.integers(0, 2, 300), rng.integers(2, 4, 4000)])
+    assert len(grid_both(backends, boxes, layers, SHMUP)) > 100
+    grid_both(backends, boxes, layers, SHMUP, bin_size=8.0)  # ships over many bins
+    grid_both(backends, boxes, layers, SHMUP, bin_size=1.0, max_cells=64)  # capped grid
+    big = np.repeat(np.arange(2), [2000, 2300])
+    grid_both(backends, boxes, big, LayerTable(["a", "b"], [("a", "b"), ("b", "b")]), bin_size=12.0)
+
+
+def test_grid__outside_field_huge_touching_and_odd_layers(backends):
+    rng = np.random.default_rng(5)
+    far = boxes_of(rng, 500, lo=-1e6, hi=1e6, smax=2e4)
+    grid_both(backends, far, rng.integers(0, 4, 500), SHMUP, field=(0.0, 0.0, 640.0, 960.0))
+    huge = boxes_of(rng, 200, lo=-1e307, hi=1e307, smax=1e306)
+    grid_both(backends, huge, rng.integers(0, 4, 200), SHMUP)
+    grid = np.array([[x, y, x + 10.0, y + 10.0] for x in range(0, 200, 10) for y in range(0, 200, 10)], dtype=float)
+    grid_both(backends, grid, np.arange(len(grid)) % 4, SHMUP, bin_size=10.0)  # edges on bin boundaries
+    grid_both(backends, grid, np.zeros(len(grid), dtype=np.int64), ONE, bin_size=10.0)
+    grid_both(backends, np.zeros((50, 4)), np.arange(50) % 4, SHMUP)  # every box one point
+    # Objects in a layer no entry names take no part, whatever the id (the kernel once sized
+    # its per-layer table by the largest id present: 10**12 failed to allocate).
+    boxes = boxes_of(rng, 300)
+    grid_both(backends, boxes, rng.integers(-2, 6, 300), SHMUP)
+    grid_both(backends, boxes, np.full(300, -1), SHMUP)  # nobody takes part: no layout
+    grid_both(backends, boxes[:3], np.array([0, 10**12, 2]), SHMUP)
+
+
+def test_grid__non_finite_boxes_refused_alike(backends):
+    boxes = np.array([[0.0, 0.0, 1.0, 1.0], [0.0, 0.0, np.inf, 1.0]])
+    for backend in backends:
+        with pytest.raises(ValueError, match="^boxes: box 1 is not finite"):
+            BinGrid(kernel=backend).query(boxes, np.array([0, 1]), SHMUP)
+
+
+def test_grid__past_the_dense_key_table_the_compiled_backend_runs_numpy(backends):
+    """More cells allowed than the dense key table holds: the compiled grid hands the frame
+    to numpy (which searches), with the same answer."""
+    rng = np.random.default_rng(8)
+    grid_both(backends, boxes_of(rng, 200, smax=3.0), rng.integers(0, 4, 200), SHMUP, bin_size=2.0, max_cells=2**18)
+    huge = dict(bin_size=1e-9, max_cells=2**62)  # cells past int64 products, had numba counted them
+    assert len(grid_both(backends, np.zeros((3, 4)), np.array([0, 1, 3]), SHMUP, **huge))
+
+
+@PROPERTY
+@given(box_sets(), grid_settings())
+def test_grid__property(backends, box_set, settings):
+    boxes, layers, table = box_set
+    grid_both(backends, boxes, layers, table, **settings)
+
+
+# --------------------------------------------------------------------------- the box tier
+
+
+def overlap_both(backends, boxes, pairs) -> np.ndarray:
+    want = backends[0].boxes_overlap(boxes, pairs)
+    got = backends[1].boxes_overlap(boxes, pairs)
+    assert got.dtype == np.bool_ and np.array_equal(got, want)
+    return want
+
+
+def test_boxes_overlap__random_touching_and_huge(backends):
+    rng = np.random.default_rng(2)
+    xy = rng.integers(0, 40, (500, 2)).astype(float)  # integer corners: many touch exactly
+    boxes = np.column_stack([xy, xy + rng.integers(0, 6, (500, 2))])
+    with np.errstate(over="ignore"):
+        boxes[:20] *= 1e307  # huge, and infinite where a corner was past 17
+    pairs = rng.integers(0, 500, (20_000, 2))
+    want = overlap_both(backends, boxes, pairs)
+    assert 0 < want.sum() < len(want)
+    overlap_both(backends, boxes.T.copy().T, pairs)  # a (4, n) layout seen as (n, 4)
+    overlap_both(backends, boxes, np.empty((0, 2), dtype=np.int64))
+
+
+@PROPERTY
+@given(box_sets())
+def test_boxes_overlap__property(backends, box_set):
+    boxes, _, _ = box_set
+    n = len(boxes)
+    pairs = np.array([(i, j) for i in range(min(n, 40)) for j in range(i, min(n, 40))], dtype=np.int64).reshape(-1, 2)
+    overlap_both(backends, boxes, pairs)
+
+
+# --------------------------------------------------------------------------- the narrow phase
+
+
+def padded_both(backends, pairs, k1=None, k2=None, label="") -> np.ndarray:
+    """Both backends' exact narrow phase on padded polygon pairs agree; returns the answers."""
+    px, py = pad([p for p, _ in pairs], k1)
+    qx, qy = pad([q for _, q in pairs], k2)
+    ref = polygons_collide_padded(px, py, qx, qy, kernel=backends[0])
+    got = polygons_collide_padded(px, py, qx, qy, kernel=backends[1])
+    assert got.dtype == np.bool_ and got.shape == ref.shape
+    bad = np.flatnonzero(ref != got)
+    msg = "\n".join(f"{label} pair {i}: p={pairs[i][0]!r} q={pairs[i][1]!r}" for i in bad[:5])
+    assert bad.size == 0, f"{bad.size} of {len(pairs)} disagree\n{msg}"
+    return ref
+
+
+@pytest.mark.parametrize(
+    "family",
+    [
+        lambda rng: random_pairs(rng, 400),
+        lambda rng: touching_pairs(rng, 200),
+        lambda rng: grid_pairs(rng, 300),
+        lambda rng: simple_grid_pairs(rng, 300),
+    ],
+    ids=["random", "touching", "grid", "simple_grid"],
+)
+def test_narrow__families(backends, family):
+    ref = padded_both(backends, family(random.Random(13)))
+    assert ref.any() and not ref.all(), "test bug: a family with one answer shows nothing"
+
+
+@pytest.mark.parametrize(
+    "scale, shift",
+    [(1e-300, 0.0), (2.0**-1060, 0.0), (1e300, 0.0), (1e307 / R * 16, 0.0), (M / R, 0.0), (1.0, 1e15), (1e290, 1e300)],
+)
+def test_narrow__extreme_magnitudes(backends, scale, shift):
+    f = lambda v: v * scale + shift  # noqa: E731
+    padded_both(
+        backends, [(exact_map(p, f), exact_map(q, f)) for p, q in BASE], label=f"scale {scale:g} shift {shift:g}"
+    )
+
+
+def test_narrow__padding_and_blocks(backends):
+    padded_both(backends, random_pairs(random.Random(2), 5000), 16, 16)  # more than one numpy block
+
+
+@PROPERTY
+@given(
+    st.lists(st.tuples(grid_polygons, grid_polygons), min_size=1, max_size=6),
+    st.sampled_from(PAIR_SCALES),
+    st.sampled_from(PAIR_OFFSETS),
+    st.sampled_from(PAIR_SCALES),
+    st.sampled_from(PAIR_OFFSETS),
+    st.sampled_from([None, 8]),
+)
+def test_narrow__property_grid_polygons_anywhere(backends, pairs, s1, o1, s2, o2, k):
+    f = lambda v: v * s1 + o1  # noqa: E731
+    g = lambda v: v * s2 + o2  # noqa: E731
+    pairs = [(exact_map(p, f), exact_map(q, g)) for p, q in pairs]
+    if any(not math.isfinite(c) for p, q in pairs for v in p + q for c in v):
+        return  # overflowed building the input
+    padded_both(backends, pairs, k, k, label="hypothesis")
+
+
+@PROPERTY
+@given(st.lists(st.tuples(half_polygons, half_polygons), min_size=1, max_size=8))
+def test_narrow__property_half_floats(backends, pairs):
+    padded_both(backends, pairs, label="half floats")
+
+
+def all_pairs(n: int, limit: int = 60) -> np.ndarray:
+    m = min(n, limit)
+    return np.array([(i, j) for i in range(m) for j in range(i + 1, m)], dtype=np.int64).reshape(-1, 2)
+
+
+@PROPERTY
+@given(frames(), st.sampled_from(["lut", "exact"]))
+def test_narrow__property_posed_frames(backends, f, rotation):
+    """The narrow phase on posed class arrays (plain, swept, turning), every pair of the frame."""
+    args = (f["shapes"], f["armature"], f["positions"], f["angles"], rotation)
+    posed, _ = backends[0].pose_and_box(*args, f["prev_positions"], f["prev_angles"], f["swept"], Workspace())
+    pairs = all_pairs(len(f["armature"]))
+    ref = collide_pairs(posed, pairs, Workspace(), kernel=backends[0])
+    got = collide_pairs(posed, pairs, Workspace(), kernel=backends[1])
+    np.testing.assert_array_equal(got, ref)
+
+
+# --------------------------------------------------------------------------- the whole pipeline
+
+
+def steps_agree(pipes, f) -> int:
+    """Both pipelines give the same hits, candidates and tier counts on frame ``f``; returns
+    how many hits."""
+    args = (f["armature"], f["layer"], f["positions"], f["angles"])
+    ref, got = (p.step(*args, f["prev_positions"], f["prev_angles"], f["swept"]) for p in pipes)
+    np.testing.assert_array_equal(got.hits, ref.hits)
+    np.testing.assert_array_equal(got.candidates, ref.candidates)
+    assert [(s.name, s.pairs_in, s.pairs_out) for s in got.stats] == [
+        (s.name, s.pairs_in, s.pairs_out) for s in ref.stats
+    ]
+    same_boxes(ref.boxes, got.boxes)
+    return len(ref.hits)
+
+
+@PROPERTY
+@given(
+    frames(), st.sampled_from(["lut", "exact"]), st.sampled_from([("bins", "aabb", "armature"), ("bins", "armature")])
+)
+def test_pipeline__property(backends, f, rotation, tiers):
+    pipes = [Pipeline(f["shapes"], f["table"], tiers, rotation, kernel=b) for b in backends]
+    steps_agree(pipes, f)
+
+
+def test_pipeline__reference_scene_with_and_without_sweeps(backends):
+    """The default pipeline on the reference scene, plain and with the game's sweeps: the
+    hits and candidates come out as the same arrays."""
+    scene = ReferenceScene(60, 3000, seed=11)
+    pipes = [Pipeline(scene.shapes, scene.table, kernel=b) for b in backends]
+    assert [p.kernel for p in pipes] == [Kernel.NUMPY, Kernel.NUMBA]
+    bullet = scene.layer >= 2
+    total = 0
+    for _ in range(3):
+        pos, ang = scene.advance()
+        prev = pos - scene.vel * scene.dt
+        for swept in (np.zeros(scene.n, dtype=bool), bullet):
+            f = dict(armature=scene.armature, layer=scene.layer, positions=pos, angles=ang)
+            total += steps_agree(pipes, {**f, "prev_positions": prev, "prev_angles": ang, "swept": swept})
+    assert total, "test bug: no hits to compare"
+
+
+def test_require_numba__fails_and_names_the_test_extra(monkeypatch):
+    """Without numba the suite fails (never skips), saying how to install it."""
+    import kernels
+
+    monkeypatch.setattr(kernels, "numba_problem", lambda: "numba is not installed")
+    with pytest.raises(pytest.fail.Exception, match=r"pip install -e '\.\[test\]'"):
+        require_numba()
+    with pytest.raises(pytest.fail.Exception, match="numba is not installed"):
+        backend_named("numba")
+    assert isinstance(backend_named("numpy"), NumpyBackend)
+
+
+def test_backend_for__one_place_one_default(monkeypatch):
+    """A backend passes through; names and Kernels map to the two backends; None follows
+    ``BROADSWORD_KERNEL``, else numba when it imports; the pipeline and its grid share one."""
+    from broadsword.collision import _kernel, backend_for
+
+    ref, fast = backend_for("numpy"), backend_for(Kernel.NUMBA)
+    assert backend_for(ref) is ref and backend_for("numba") is fast and backend_for(Kernel.NUMPY) is ref
+    monkeypatch.setenv(_kernel.ENV_VAR, "numpy")
+    assert backend_for() is ref and BinGrid().backend is ref
+    pipe = Pipeline([Armature.box(4, 4)])
+    assert pipe.backend is ref and pipe.kernel is Kernel.NUMPY and pipe.broad_phase.backend is ref
+    monkeypatch.delenv(_kernel.ENV_VAR)
+    require_numba()
+    assert backend_for() is fast and Pipeline([Armature.box(4, 4)]).broad_phase.backend is fast
+    with pytest.raises(TypeError, match="^kernel must be"):
+        backend_for(5)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="^kernel must be one of"):
+        backend_for("cuda")
