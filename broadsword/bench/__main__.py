@@ -413,6 +413,11 @@ def main(argv: list[str] | None = None) -> int:
         for e, b in scales
     ]
     print(markdown(results), flush=True)
+    from .sweeps import markdown as sweeps_markdown
+    from .sweeps import run_sweep_scenes
+
+    sweep_scenes = run_sweep_scenes(args.quick, args.seed, _progress("adversarial scenes, swept and not"))
+    print(sweeps_markdown(sweep_scenes), flush=True)
 
     game = None
     drawing = None
@@ -494,6 +499,7 @@ def main(argv: list[str] | None = None) -> int:
             "host_canary_before": canary,
             "host_canary_after": host_canary(),
             "scales": results,
+            "sweep_scenes": sweep_scenes,
             "game_frame": game,
             "bullet_drawing": drawing,
             "levels_vs_sprites": visual,

@@ -119,10 +119,14 @@ class Peer:
         The library imports (checked when the peer is built).
     why : str
         When not available: the pip command that installs the library, and the error.
+    exact : bool
+        Whether it answers with exact geometry (pymunk, shapely: pair for pair the same as
+        an exact-rotation pipeline) or approximates (pygame-ce's masks).
     """
 
     name = "peer"
     pip = ""
+    exact = True
 
     def __init__(self):
         self.available = False
@@ -400,6 +404,8 @@ class PygameMaskPeer(Peer):
     hits), centre sampling without growth 8.3% (mostly misses), grown by 0.2/0.25/0.3/0.35
     px 5.7/5.5/5.6/6.4%.
     """
+
+    exact = False
 
     name = "pygame-ce (Rect + Mask)"
     pip = "pygame-ce"
