@@ -93,6 +93,7 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     )
     ap.add_argument(
         "--replay",
+        type=nonempty,
         metavar="FILE",
         help="play a recording, every stage and continue of it: on screen in the replay theatre (a seek "
         "bar with the run's marks, pause, step, speeds, the overlay, T to take over), or with --headless check it frame by frame (the JSON's replay_matches, and "

@@ -8,6 +8,7 @@ import os
 
 import pytest
 
+from broadsword import cli
 from broadsword.cli import main
 
 
@@ -80,6 +81,7 @@ def test_record__a_write_that_fails_at_the_end_saves_the_run_in_the_data_directo
     "args, says",
     [
         (["--level", ""], "--level: must not be empty"),
+        (["--headless", "--replay", ""], "--replay: must not be empty"),  # once played stage 1, silently
         (["--lab", "1000000,1000000"], "--lab: wants E,B"),
         (["--headless", "--lab", "5,5"], "--lab shows the reference scene in a window"),
         (["soak", "--max-growth", "nan"], "--max-growth: must be a finite number"),
@@ -91,6 +93,21 @@ def test_record__a_write_that_fails_at_the_end_saves_the_run_in_the_data_directo
 def test_arguments__refused_with_one_line(args, says, capsys):
     code, out, err = run(args, capsys)
     assert code == 2 and says in err and "Traceback" not in err
+
+
+def test_an_empty_replay_path_is_refused_before_a_window_opens(capsys):
+    """In a window ``--replay ''`` opened the title as if no replay were asked for."""
+    with pytest.raises(SystemExit) as exc:
+        cli._parser().parse_args(["play", "--replay", ""])
+    assert exc.value.code == 2 and "--replay: must not be empty" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("option", ["--practice", "--lives", "--hashes", "--frames", "--seed"])
+def test_a_number_of_thousands_of_digits_is_refused_in_a_short_line(option, capsys):
+    """int() refuses over 4,300 digits; the message once echoed all of them."""
+    code, out, err = run(["--headless", option, "7" * 5000], capsys)
+    line = err.strip().splitlines()[-1]
+    assert code == 2 and f"argument {option}: not a whole number" in line and len(line) < 200
 
 
 @pytest.mark.parametrize(
