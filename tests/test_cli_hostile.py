@@ -206,3 +206,30 @@ def test_kernels_that_cannot_be_loaded_leave_the_game_on_numpy(monkeypatch, caps
     err = capsys.readouterr().err
     assert "could not be loaded (OSError: LLVM ran out of memory); collision runs on numpy" in err
     assert check_kernel(None) is Kernel.NUMPY
+
+
+@pytest.mark.parametrize("other", ["--record", "--replay"])
+def test_a_hit_log_over_the_recording_or_the_replay_is_refused(other, tmp_path, capsys):
+    """``--replay X --hit-log X`` replaced the replay with a hit log, silently (exit 0)."""
+    rec = tmp_path / "run.json"
+    assert main(["--headless", "--level", "1-picket", "--frames", "5", "--record", str(rec)]) == 0
+    before = rec.read_bytes()
+    capsys.readouterr()
+    args = ["--record", str(rec), "--level", "1-picket"] if other == "--record" else ["--replay", str(rec)]
+    code = main(["--headless", *args, "--frames", "5", "--hit-log", str(tmp_path / "." / "run.json")])
+    err = capsys.readouterr().err
+    assert code == 2 and f"the same file as {other}" in err and len(err.strip().splitlines()) == 1
+    assert rec.read_bytes() == before
+
+
+def test_a_replay_whose_level_is_gone_names_the_recording_and_the_stage(tmp_path, capsys):
+    rec = tmp_path / "run.json"
+    assert main(["--headless", "--level", "1-picket", "--frames", "5", "--record", str(rec)]) == 0
+    doc = json.loads(rec.read_text())
+    doc["stages"][0]["level"] = str(tmp_path / "gone.toml")
+    doc["stages"][0].pop("level_sha256", None)
+    rec.write_text(json.dumps(doc))
+    capsys.readouterr()
+    assert main(["--headless", "--replay", str(rec)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == f"broadsword: {rec}: stages[0].level: {tmp_path / 'gone.toml'}: no such level file"
