@@ -20,7 +20,8 @@ def _int(text: str) -> int:
     try:
         return int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+        shown = text if len(text) <= 40 else f"{text[:40]}... ({len(text):,} characters)"
+        raise argparse.ArgumentTypeError(f"not a whole number: {shown!r}") from None
 
 
 def natural(text: str) -> int:

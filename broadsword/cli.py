@@ -93,6 +93,7 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
     )
     ap.add_argument(
         "--replay",
+        type=nonempty,
         metavar="FILE",
         help="play a recording, every stage and continue of it: on screen in the replay theatre (a seek "
         "bar with the run's marks, pause, step, speeds, the overlay, T to take over), or with --headless check it frame by frame (the JSON's replay_matches, and "
@@ -116,7 +117,7 @@ def _add_play_options(ap: argparse.ArgumentParser) -> None:
         metavar="FILE",
         default=None,
         help="--headless: write every hit on the player (what hit, both polygons, the edges that crossed or "
-        "the containment, the tiers that passed) to FILE as JSON (docs/FORMATS.md, 'Hit log')",
+        "the containment, the tiers that passed) to FILE as JSON (docs/FORMATS.md, 'Hit log'); not the --replay or --record file",
     )
     ap.add_argument(
         "--practice",
@@ -249,6 +250,12 @@ def _run_play(args: argparse.Namespace) -> int:
         if args.hit_log is not None and (why := check_writable(args.hit_log)):
             print(f"broadsword: --hit-log {args.hit_log!r}: {why}", file=sys.stderr)
             return 2
+        if args.hit_log is not None and (same := _same_file(args.hit_log, args.record, args.replay)):
+            print(
+                f"broadsword: --hit-log {args.hit_log!r}: the same file as {same}; it would be replaced",
+                file=sys.stderr,
+            )
+            return 2
         if (practice := _practice_choice(args, replay)) is False:
             return 2
         if args.hashes is not None and not (args.headless and replay):
@@ -307,6 +314,15 @@ def _run_play(args: argparse.Namespace) -> int:
             raise
         print(f"broadsword: {exc}", file=sys.stderr)
         return 1 if isinstance(exc, PhaseNotReached) else 2
+
+
+def _same_file(path: str, record: str | None, replay: str | None) -> str | None:
+    """Which of ``--record`` and ``--replay`` names the file ``path`` names (None: neither)."""
+    mine = os.path.realpath(path)
+    for option, other in (("--record", record), ("--replay", replay)):
+        if other and os.path.realpath(other) == mine:
+            return option
+    return None
 
 
 def _practice_choice(args: argparse.Namespace, replay: Recording | None) -> PracticeChoice | None | Literal[False]:

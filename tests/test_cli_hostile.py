@@ -8,6 +8,7 @@ import os
 
 import pytest
 
+from broadsword import cli
 from broadsword.cli import main
 
 
@@ -80,6 +81,7 @@ def test_record__a_write_that_fails_at_the_end_saves_the_run_in_the_data_directo
     "args, says",
     [
         (["--level", ""], "--level: must not be empty"),
+        (["--headless", "--replay", ""], "--replay: must not be empty"),  # once played stage 1, silently
         (["--lab", "1000000,1000000"], "--lab: wants E,B"),
         (["--headless", "--lab", "5,5"], "--lab shows the reference scene in a window"),
         (["soak", "--max-growth", "nan"], "--max-growth: must be a finite number"),
@@ -91,6 +93,21 @@ def test_record__a_write_that_fails_at_the_end_saves_the_run_in_the_data_directo
 def test_arguments__refused_with_one_line(args, says, capsys):
     code, out, err = run(args, capsys)
     assert code == 2 and says in err and "Traceback" not in err
+
+
+def test_an_empty_replay_path_is_refused_before_a_window_opens(capsys):
+    """In a window ``--replay ''`` opened the title as if no replay were asked for."""
+    with pytest.raises(SystemExit) as exc:
+        cli._parser().parse_args(["play", "--replay", ""])
+    assert exc.value.code == 2 and "--replay: must not be empty" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("option", ["--practice", "--lives", "--hashes", "--frames", "--seed"])
+def test_a_number_of_thousands_of_digits_is_refused_in_a_short_line(option, capsys):
+    """int() refuses over 4,300 digits; the message once echoed all of them."""
+    code, out, err = run(["--headless", option, "7" * 5000], capsys)
+    line = err.strip().splitlines()[-1]
+    assert code == 2 and f"argument {option}: not a whole number" in line and len(line) < 200
 
 
 @pytest.mark.parametrize(
@@ -189,3 +206,30 @@ def test_kernels_that_cannot_be_loaded_leave_the_game_on_numpy(monkeypatch, caps
     err = capsys.readouterr().err
     assert "could not be loaded (OSError: LLVM ran out of memory); collision runs on numpy" in err
     assert check_kernel(None) is Kernel.NUMPY
+
+
+@pytest.mark.parametrize("other", ["--record", "--replay"])
+def test_a_hit_log_over_the_recording_or_the_replay_is_refused(other, tmp_path, capsys):
+    """``--replay X --hit-log X`` replaced the replay with a hit log, silently (exit 0)."""
+    rec = tmp_path / "run.json"
+    assert main(["--headless", "--level", "1-picket", "--frames", "5", "--record", str(rec)]) == 0
+    before = rec.read_bytes()
+    capsys.readouterr()
+    args = ["--record", str(rec), "--level", "1-picket"] if other == "--record" else ["--replay", str(rec)]
+    code = main(["--headless", *args, "--frames", "5", "--hit-log", str(tmp_path / "." / "run.json")])
+    err = capsys.readouterr().err
+    assert code == 2 and f"the same file as {other}" in err and len(err.strip().splitlines()) == 1
+    assert rec.read_bytes() == before
+
+
+def test_a_replay_whose_level_is_gone_names_the_recording_and_the_stage(tmp_path, capsys):
+    rec = tmp_path / "run.json"
+    assert main(["--headless", "--level", "1-picket", "--frames", "5", "--record", str(rec)]) == 0
+    doc = json.loads(rec.read_text())
+    doc["stages"][0]["level"] = str(tmp_path / "gone.toml")
+    doc["stages"][0].pop("level_sha256", None)
+    rec.write_text(json.dumps(doc))
+    capsys.readouterr()
+    assert main(["--headless", "--replay", str(rec)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == f"broadsword: {rec}: stages[0].level: {tmp_path / 'gone.toml'}: no such level file"

@@ -76,8 +76,9 @@ TOGGLES = {"rotation": ("lut", "exact"), "continue": ("yes",)}
 POWER_LIMIT = 10_000
 #: At most this many toggles (one a frame would already be absurd).
 TOGGLES_MAX = 100_000
-#: A stage's start snapshot is at most this big once decompressed (a snapshot at 10,000
-#: bullets is about 1 MiB: docs/PERFORMANCE.md).
+#: A recording's start snapshots, every stage's together, are at most this big once
+#: decompressed (a snapshot at 10,000 bullets is about 1 MiB: docs/PERFORMANCE.md). A cap per
+#: stage alone would let an 8 MiB file of a hundred small zlib bombs inflate to gigabytes.
 SNAPSHOT_MAX_BYTES = 64 << 20
 #: A name or source text in ``info`` is at most this long; a game speed lies in this range (%).
 INFO_TEXT_MAX, SPEED_RANGE = 200, (10, 100)
@@ -398,8 +399,11 @@ def _digests(doc: dict, path: Path, frames: int, parts: int, pre: str) -> bytes:
     return digests
 
 
-def _snapshot(doc: dict, path: Path, pre: str) -> tuple[bytes, int]:
-    """The stage's start snapshot (uncompressed; empty if none) and its ``origin`` frame."""
+def _snapshot(doc: dict, path: Path, pre: str, budget: int = SNAPSHOT_MAX_BYTES) -> tuple[bytes, int]:
+    """The stage's start snapshot (uncompressed; empty if none) and its ``origin`` frame.
+    ``budget``: the bytes the recording's snapshots may still take once decompressed (what
+    :data:`SNAPSHOT_MAX_BYTES` leaves after the stages before); more is refused before it
+    is inflated further."""
     text = _field(doc, path, "snapshot", str, "base64 text", required=False, pre=pre)
     origin = _field(doc, path, "origin", int, "a whole number", required=text is not None, pre=pre)
     if text is None:
@@ -414,11 +418,15 @@ def _snapshot(doc: dict, path: Path, pre: str) -> tuple[bytes, int]:
         raise DataError(path, pre + "snapshot", "must be base64 text") from None
     unpack = zlib.decompressobj()
     try:
-        data = unpack.decompress(packed, SNAPSHOT_MAX_BYTES)
+        data = unpack.decompress(packed, budget + 1)
     except zlib.error as exc:
         raise DataError(path, pre + "snapshot", f"not a compressed snapshot ({exc})") from None
-    if unpack.unconsumed_tail:
-        raise DataError(path, pre + "snapshot", f"more than {SNAPSHOT_MAX_BYTES >> 20} MiB once decompressed")
+    if len(data) > budget:
+        raise DataError(
+            path,
+            pre + "snapshot",
+            f"the recording's snapshots hold more than {SNAPSHOT_MAX_BYTES >> 20} MiB once decompressed",
+        )
     if not unpack.eof or unpack.unused_data:
         raise DataError(path, pre + "snapshot", "truncated or padded (not one whole zlib stream)")
     if not data:
@@ -482,7 +490,8 @@ def _unknown(doc: dict, known: set[str], path: Path, pre: str) -> None:
         raise DataError(path, pre + extra[0], f"unknown field (expected some of {', '.join(sorted(known))})")
 
 
-def _stage(doc, path: Path, i: int, start: int, parts: int) -> StageRecording:
+def _stage(doc, path: Path, i: int, start: int, parts: int, budget: int = SNAPSHOT_MAX_BYTES) -> StageRecording:
+    """Stage ``i`` of a recording, checked; ``budget`` as :func:`_snapshot`'s."""
     pre = f"stages[{i}]."
     if not isinstance(doc, dict):
         raise DataError(path, f"stages[{i}]", f"must be a table, got {shown(doc)}")
@@ -499,7 +508,7 @@ def _stage(doc, path: Path, i: int, start: int, parts: int) -> StageRecording:
     frames = len(inputs)
     settings = _settings(doc, path, pre)
     carry = _carry(doc, path, pre)
-    snapshot, origin = _snapshot(doc, path, pre)
+    snapshot, origin = _snapshot(doc, path, pre, budget)
     toggles = _toggles(doc, path, origin, frames, pre)
     checkpoints = _checkpoints(doc, path, origin, frames, pre)
     digests = _digests(doc, path, frames, parts, pre)
@@ -564,10 +573,11 @@ def load_recording(path: str | Path) -> Recording:
     if not 1 <= len(raw) <= STAGES_MAX:
         raise DataError(path, "stages", f"must hold 1 to {STAGES_MAX} stages, got {len(raw):,}")
     stages: list[StageRecording] = []
-    at = 0
+    at, budget = 0, SNAPSHOT_MAX_BYTES
     for i, st in enumerate(raw):
-        stages.append(_stage(st, path, i, at, len(parts)))
+        stages.append(_stage(st, path, i, at, len(parts), budget))
         at += stages[-1].frames
+        budget -= len(stages[-1].snapshot)
     if not _whole(doc.get("frames")) or doc["frames"] != at:
         got = shown(doc["frames"]) if "frames" in doc else "nothing (missing)"
         raise DataError(path, "frames", f"must be the frames of every stage, {at}; got {got}")

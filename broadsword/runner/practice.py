@@ -22,11 +22,11 @@ import binascii
 import json
 import zlib
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 from .. import __version__
-from ..data.recordings import RecordingInfo, RunKind
+from ..data.recordings import SNAPSHOT_MAX_BYTES, RecordingInfo, RunKind
 from ..fileio import cache_home, read_capped, write_atomic
 from ..sim import DT, Pilot
 from ..sim.player import LIVES_MAX, POWER_MAX, POWER_MIN
@@ -78,6 +78,8 @@ class Loadout:
 
 #: What a loadout's values may be: name -> (lowest, highest).
 LOADOUT_RANGES = {"lives": (1, LIVES_MAX), "bombs": (0, BOMBS_MAX), "power": (POWER_MIN, POWER_MAX)}
+#: What a kept start's loadout may be (a level may start the player with up to 99 lives).
+KEPT_RANGES = {**LOADOUT_RANGES, "lives": (1, 99)}
 
 
 def _out_of_range(**values: int | None) -> str | None:
@@ -285,13 +287,21 @@ def _b64(data: bytes) -> str:
     return base64.b64encode(zlib.compress(data, 6)).decode("ascii")
 
 
-def _unb64(text: object) -> bytes:
+def _unb64(text: object, budget: int = SNAPSHOT_MAX_BYTES) -> bytes:
+    """A snapshot kept as base64 of zlib, inflated to at most ``budget`` bytes (a zlib bomb
+    is refused before it is inflated further: the cache file alone may hold 64 MiB)."""
     if not isinstance(text, str):
         raise ValueError("snapshot: not a string")
+    unpack = zlib.decompressobj()
     try:
-        return zlib.decompress(base64.b64decode(text.encode("ascii"), validate=True))
+        data = unpack.decompress(base64.b64decode(text.encode("ascii"), validate=True), budget + 1)
     except (binascii.Error, zlib.error, UnicodeEncodeError) as exc:
         raise ValueError(f"snapshot: not base64 of zlib data ({exc})") from None
+    if len(data) > budget:
+        raise ValueError(f"snapshot: the snapshots hold more than {SNAPSHOT_MAX_BYTES >> 20} MiB once decompressed")
+    if not unpack.eof or unpack.unused_data:
+        raise ValueError("snapshot: truncated or padded (not one whole zlib stream)")
+    return data
 
 
 def to_json(starts: PhaseStarts) -> dict:
@@ -361,15 +371,16 @@ def from_json(doc: object) -> PhaseStarts:
     rows = doc.get("starts")
     if not isinstance(rows, list) or not 1 <= len(rows) <= phases + 1:
         raise ValueError(f"starts: expected a list of 1 to {phases + 1} phase starts")
-    starts = []
+    starts, budget = [], SNAPSHOT_MAX_BYTES
     for i, row in enumerate(rows):
         if not isinstance(row, dict):
             raise ValueError(f"starts[{i}]: expected an object")
         try:
             if _int(row, "phase") != i:
                 raise ValueError(f"phase: expected {i}")
-            loadout = Loadout(_int(row, "lives"), _int(row, "bombs"), _int(row, "power"))
-            snapshot = _unb64(row.get("snapshot"))
+            loadout = Loadout(*(_int(row, name, *KEPT_RANGES[name]) for name in ("lives", "bombs", "power")))
+            snapshot = _unb64(row.get("snapshot"), budget)
+            budget -= len(snapshot)
             if bool(snapshot) != (i > 0):
                 raise ValueError("snapshot: phase 0 has none, every other phase has one")
             starts.append(PhaseStart(i, _int(row, "frame"), loadout, snapshot))
@@ -414,10 +425,8 @@ class PracticeCache:
             self.note = f"practice cache {path} is damaged ({' '.join(str(exc).split())[:160]}): it is made again"
             return None
         if starts.key != key:
-            stale = [
-                f for f in ("level_sha256", "version", "snapshot_format") if getattr(starts.key, f) != getattr(key, f)
-            ]
-            why = ", ".join(stale) or "its key"
+            stale = [f.name for f in fields(PracticeKey) if getattr(starts.key, f.name) != getattr(key, f.name)]
+            why = ", ".join(stale)
             self.note = f"practice cache {path} is stale (made for another {why}): it is made again"
             return None
         return starts
@@ -448,6 +457,13 @@ def practice_stage(stage: Stage, phase: PhaseStart, loadout: Loadout) -> Stage:
             Snapshots(world).restore(world, phase.snapshot)
         except ValueError as exc:
             raise StartUnfit(f"phase {phase.phase}'s kept start does not fit this game ({exc})") from None
+        boss = world.boss
+        at = (world.frame, boss.phase + 1 if boss is not None and boss.fighting else STAGE_START)
+        if at != (phase.frame, phase.phase):  # a start kept for another frame or phase: never practise the wrong one
+            raise StartUnfit(
+                f"phase {phase.phase}'s kept start is not that phase's (frame {at[0]}, boss phase {at[1]}; "
+                f"kept as frame {phase.frame})"
+            )
     p = world.player
     p.lives, p.bombs, p.power = loadout.lives, loadout.bombs, loadout.power
     return stage

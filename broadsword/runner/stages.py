@@ -66,7 +66,10 @@ def open_recorded(rec: StageRecording, index: int, rec_path: str | Path, armatur
     it kept: a changed level is a :class:`~broadsword.data.DataError`), seed, settings and
     carry, then the start snapshot it kept, if any (a snapshot that does not fit the level,
     or whose frame is not the stage's ``origin``, is a DataError naming ``snapshot``)."""
-    path = resolve_level(rec.level)
+    try:
+        path = resolve_level(rec.level)
+    except DataError as exc:  # a level gone: name the recording and its stage, not only the level
+        raise DataError(rec_path, f"stages[{index}].level", str(exc)) from None
     level = load_level(path)  # its size and kind checked before any digest reads it
     check_level_digest(rec, index, rec_path, path)
     start = StageStart.of(rec)

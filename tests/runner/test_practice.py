@@ -3,10 +3,12 @@ the loadout put on it, the cache of starts, and ``--headless --practice``."""
 
 from __future__ import annotations
 
+import base64
 import dataclasses
 import functools
 import json
 import tempfile
+import zlib
 from pathlib import Path
 
 import pytest
@@ -22,6 +24,7 @@ from broadsword.runner.practice import (
     PracticeCache,
     PracticeChoice,
     PracticeError,
+    StartUnfit,
     collect,
     phase_names,
     practice_stage,
@@ -200,3 +203,58 @@ def test_a_kept_start_that_no_longer_fits_is_made_again(capsys, monkeypatch, tmp
     code, s, err = run(["--headless", "--level", level_file(), "--practice", "1", "--frames", "0"], capsys)
     assert code == 0 and "does not fit this game" in err and "preparing practice" in err
     assert s["origin"] == starts().starts[1].frame and s["state_hash"] == full_run_hashes()[0][s["origin"]]
+
+
+# --------------------------------------------------------------------------- a damaged cache (audit)
+def _kept(tmp_path, edit) -> PracticeCache:
+    """The test stage's starts kept in ``tmp_path``, then the file's document edited."""
+    cache = PracticeCache(tmp_path)
+    assert cache.save(starts()) is None
+    path = cache.path(starts().key)
+    doc = json.loads(path.read_text())
+    edit(doc)
+    path.write_text(json.dumps(doc))
+    return cache
+
+
+@pytest.mark.parametrize(
+    "edit, words",
+    [
+        (lambda d: d["starts"][1].update(lives=0), "starts[1].lives: expected a whole number from 1 to 99, got 0"),
+        (lambda d: d["starts"][0].update(power=5), "starts[0].power: expected a whole number from 100 to 400"),
+        (lambda d: d["starts"][2].update(bombs=10**9), "starts[2].bombs: expected a whole number from 0 to 9"),
+        (
+            lambda d: d["starts"][2].update(snapshot=base64.b64encode(zlib.compress(bytes(65 << 20), 9)).decode()),
+            "starts[2].snapshot: the snapshots hold more than 64 MiB once decompressed",
+        ),
+        (lambda d: d["starts"][2].update(snapshot=d["starts"][2]["snapshot"][:-8]), "starts[2].snapshot"),
+    ],
+)
+def test_a_kept_loadout_out_of_range_or_a_snapshot_bomb_is_damage_not_a_usage_error(tmp_path, edit, words):
+    """A cache with lives 0 once made the practice exit 2 blaming ``--lives`` (never given),
+    and a zlib bomb in it inflated without limit: both are damage now, said and made again."""
+    cache = _kept(tmp_path, edit)
+    assert cache.load(starts().key) is None
+    assert cache.note is not None and "is damaged" in cache.note and words in cache.note
+
+
+def test_a_stale_cache_names_what_differs(tmp_path):
+    cache = _kept(tmp_path, lambda d: d["key"].update(seed=7))
+    assert cache.load(starts().key) is None
+    assert cache.note is not None and "is stale (made for another seed)" in cache.note
+
+
+@pytest.mark.parametrize("which", ["another phase's snapshot", "another frame"])
+def test_a_kept_start_of_another_phase_or_frame_is_never_practised(which):
+    """A start whose snapshot is of phase 1 kept as phase 2's (or whose frame is not the
+    snapshot's) restores into the stage: it must be refused as unfit, not played as phase 2."""
+    s = starts()
+    two = s.starts[2]
+    bad = (
+        dataclasses.replace(two, snapshot=s.starts[1].snapshot)
+        if which == "another phase's snapshot"
+        else dataclasses.replace(two, frame=two.frame - 5)
+    )
+    with pytest.raises(StartUnfit, match="kept start is not that phase's"):
+        practice_stage(open_stage(start(), ARMATURES), bad, two.loadout)
+    practice_stage(open_stage(start(), ARMATURES), two, two.loadout)  # the right one still fits

@@ -121,6 +121,21 @@ def test_a_snapshot_bomb_is_refused_before_it_is_inflated(tmp_path):
         _load(tmp_path, doc)
 
 
+def test_many_small_snapshot_bombs_are_refused_by_their_sum(tmp_path):
+    """Each stage's bomb under the cap, the stages' together over it: refused at the stage
+    that passes it, before it is inflated further (a file of a hundred 60 MiB bombs fits in
+    8 MiB and took gigabytes)."""
+    doc = _doc(tmp_path)
+    bomb = base64.b64encode(zlib.compress(bytes(40 << 20), 9)).decode()
+    first = dict(doc["stages"][0], snapshot=bomb)
+    frames = first["frames"]
+    doc["stages"] = [dict(first, start=i * frames) for i in range(3)]
+    doc["frames"] = 3 * frames
+    with pytest.raises(DataError) as err:
+        _load(tmp_path, doc)
+    assert err.value.field == "stages[1].snapshot" and "snapshots hold more than 64 MiB" in str(err.value)
+
+
 def test_a_start_snapshot_of_another_world_is_refused_when_the_stage_opens(tmp_path):
     doc = _doc(tmp_path)
     doc["stages"][0]["seed"] = 6  # the snapshot is of seed 5
