@@ -452,6 +452,7 @@ def _play(
 
     from .game.app import App
     from .game.quiet import filtered_stderr
+    from .game.scenes.context import Failed
     from .game.window import NoDisplay
 
     try:
@@ -475,7 +476,7 @@ def _play(
     if args.mute:
         app.ctx.audio.toggle_mute()
     if replay_error is not None:
-        app.ctx.report(replay_error)
+        app.ctx.report(replay_error, Failed.REPLAY)
     elif replay is not None:
         app.watch(args.replay)  # the theatre: seek, speeds, marks, take over (or the title says why not)
     elif level is not None and args.lab is None and app.ctx.error is None:

@@ -39,6 +39,7 @@ from .presence import AWAY_EVENTS, SHOW_EVENTS, Presence
 from .run import Run, load_stage
 from .scenes import Pause, Play, Title
 from .scenes.base import IDLE, Go, Handled, NextStage, PlayStage, Push, Replace, Reset, Scene, Transition
+from .scenes.context import Failed
 from .scenes.how_to_play import draw_first_run_hint
 from .scenes.stack import SceneStack
 from .scenes.theatre import Theatre, load_theatre
@@ -247,7 +248,7 @@ class App:
         try:
             self.stack.push(load_theatre(self.ctx, path))
         except DataError as exc:
-            self.ctx.report(exc)
+            self.ctx.report(exc, Failed.REPLAY)
 
     # ------------------------------------------------------------------ runs and stages
     def start_run(self, index: int | None = None) -> bool:

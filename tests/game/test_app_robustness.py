@@ -16,6 +16,7 @@ from broadsword import cli
 from broadsword.data import DataError, data_dir, load_level
 from broadsword.game.app import App
 from broadsword.game.scenes import Pause, Play, Results, Title
+from broadsword.game.scenes.context import LoadError
 from broadsword.game.scenes.play import MAX_CATCH_UP
 from broadsword.game.scenes.title import ERROR_LINES, ERROR_TEXT, ERROR_WRAP
 from broadsword.game.scores import Entry, HighScores
@@ -109,8 +110,8 @@ def test_broken_custom_level__title_shows_the_error_and_play_goes_on(tmp_path, s
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Title) and app.world is None
-    assert app.ctx.error == expected_error(path) and "player.speed" in app.ctx.error
-    assert capsys.readouterr().err.strip() == f"broadsword: {app.ctx.error}"
+    assert app.ctx.error == LoadError(expected_error(path)) and "player.speed" in app.ctx.error.text
+    assert capsys.readouterr().err.strip() == f"broadsword: {app.ctx.error.text}"
     assert error_bands(app)  # drawn
     # Fixing the file and pressing Enter again plays it: the path is read again each time.
     picket = (data_dir("levels") / "1-picket.toml").read_text()
@@ -139,12 +140,12 @@ def test_missing_level_file__no_exception_at_start_and_the_title_says_why(tmp_pa
     missing = tmp_path / "nope" / "missing.toml"
     app = App(start_level=str(missing), seed=1, audio=False, scores=scores)
     assert isinstance(app.scene, Title) and app.ctx.error is not None
-    assert str(missing) in app.ctx.error and "no such level file" in app.ctx.error
+    assert str(missing) in app.ctx.error.text and "no such level file" in app.ctx.error.text
     frames(app)
     assert error_bands(app)
     key(pygame.K_RETURN)  # trying again fails the same way, and stays on the title
     frames(app)
-    assert isinstance(app.scene, Title) and str(missing) in app.ctx.error
+    assert isinstance(app.scene, Title) and str(missing) in app.ctx.error.text
     assert len(capsys.readouterr().err.strip().splitlines()) == 2  # one line per attempt
     pygame.quit()
 
@@ -157,7 +158,7 @@ def test_level_needing_an_unloaded_armature__error_names_the_file(tmp_path, scor
     assert app.start_run() is False
     frames(app)
     assert isinstance(app.scene, Title) and app.world is None
-    assert app.ctx.error.startswith(f"{path}: ") and "nosuch" in app.ctx.error
+    assert app.ctx.error.text.startswith(f"{path}: ") and "nosuch" in app.ctx.error.text
     assert error_bands(app)
     pygame.quit()
 
@@ -171,25 +172,25 @@ def test_next_level_broken_mid_run__back_to_the_title_with_the_error(tmp_path, a
     key(pygame.K_RETURN)
     frames(app)
     assert isinstance(app.scene, Title) and app.world is None and app.play is None
-    assert app.ctx.error == expected_error(bad)
+    assert app.ctx.error == LoadError(expected_error(bad))
     assert error_bands(app)
 
 
 def test_error_panel__draws_the_message_wrapped_and_nothing_without_one(tmp_path, app):
     frames(app)
     assert app.ctx.error is None and not error_bands(app)
-    app.ctx.error = "x.toml: level.name: bad"
+    app.ctx.error = LoadError("x.toml: level.name: bad")
     frames(app)
     short = error_bands(app)
     assert len(short) == 1
     long_path = tmp_path / ("deep/" * 12) / "level.toml"
-    app.ctx.error = f"{long_path}: wave[3].fire.bullet_speed: must lie in [10, 2000], got 5000"
+    app.ctx.error = LoadError(f"{long_path}: wave[3].fire.bullet_speed: must lie in [10, 2000], got 5000")
     frames(app)
     long = error_bands(app)
-    assert len(long) == len(wrap_text(app.ctx.error, app.ctx.painter.font(), ERROR_WRAP)) >= 3
+    assert len(long) == len(wrap_text(app.ctx.error.text, app.ctx.painter.font(), ERROR_WRAP)) >= 3
     # Different text, different pixels: the message itself is drawn, not a fixed picture.
     before = pygame.surfarray.array3d(app.ctx.display.screen)[:, long[0][0] : long[0][1] + 1].copy()
-    app.ctx.error = app.ctx.error.replace("wave[3]", "wave[4]").replace("deep", "DEEP")
+    app.ctx.error = LoadError(app.ctx.error.text.replace("wave[3]", "wave[4]").replace("deep", "DEEP"))
     frames(app)
     after = pygame.surfarray.array3d(app.ctx.display.screen)[:, long[0][0] : long[0][1] + 1]
     assert (before != after).any()
@@ -201,7 +202,7 @@ def test_error_panel__draws_the_message_wrapped_and_nothing_without_one(tmp_path
 
 def test_error_panel__a_huge_error_is_cut_to_the_panel_and_leaves_the_rest_of_the_title(app):
     app.ctx.scores.add(Entry("ACE", 1234, "1-picket", "2024-01-01"))
-    app.ctx.error = "levels/x.toml: wave[1]: " + "much too long " * 80
+    app.ctx.error = LoadError("levels/x.toml: wave[1]: " + "much too long " * 80)
     frames(app)
     bands = error_bands(app)
     assert len(bands) == ERROR_LINES and bands[-1][1] < 546  # inside the panel, clear of the high score
@@ -215,7 +216,7 @@ def test_play__broken_level_opens_the_game_on_the_title(tmp_path, monkeypatch, c
     seen = []
     monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.ctx.error, self.world)))
     assert cli.main(["--level", str(bad), "--mute"]) == 0
-    assert seen == [(Title, expected_error(bad), None)]
+    assert seen == [(Title, LoadError(expected_error(bad)), None)]
     assert capsys.readouterr().err.strip() == f"broadsword: {expected_error(bad)}"
     pygame.quit()
     # The headless command still ends with status 2 and one line.
@@ -230,7 +231,7 @@ def test_play__missing_level_opens_the_game_on_the_title(tmp_path, monkeypatch, 
     monkeypatch.setattr(App, "run", lambda self: seen.append((type(self.scene), self.ctx.error)))
     missing = tmp_path / "missing.toml"
     assert cli.main(["--level", str(missing), "--mute"]) == 0
-    assert seen == [(Title, f"{missing}: no such level file")]
+    assert seen == [(Title, LoadError(f"{missing}: no such level file"))]
     assert len(capsys.readouterr().err.strip().splitlines()) == 1  # said once, not once per attempt
     pygame.quit()
 

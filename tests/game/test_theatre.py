@@ -14,6 +14,7 @@ from broadsword.game.app import App
 from broadsword.game.panel_state import panel_info
 from broadsword.game.scenes import Play
 from broadsword.game.scenes import theatre as theatre_module
+from broadsword.game.scenes.context import Failed
 from broadsword.game.scenes.theatre import JUMP, SPEEDS, Theatre
 from broadsword.game.scores import HighScores
 from broadsword.game.sidebar import Mark
@@ -191,7 +192,8 @@ def test_open_theatre__a_broken_file_says_why_and_opens_nothing(tmp_path):
     app = App(seed=0, audio=False, scores=HighScores(tmp_path / "scores.json"), data=tmp_path)
     try:
         app.watch(path)
-        assert not isinstance(app.scene, Theatre) and app.ctx.error is not None and "broken.json" in app.ctx.error
+        assert not isinstance(app.scene, Theatre) and app.ctx.error is not None and "broken.json" in app.ctx.error.text
+        assert app.ctx.error.failed is Failed.REPLAY  # the title says a replay failed, not a level
     finally:
         pygame.quit()
 

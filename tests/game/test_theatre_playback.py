@@ -17,6 +17,7 @@ from broadsword import cli
 from broadsword.data.recordings import save_recording
 from broadsword.game.app import App
 from broadsword.game.panel_state import panel_info
+from broadsword.game.scenes.context import Failed
 from broadsword.game.scenes.theatre import Theatre
 from broadsword.game.scores import HighScores
 from broadsword.game.sidebar import Mark
@@ -242,7 +243,7 @@ def test_replay_window__a_bad_recording_opens_the_title_and_says_why(tmp_path, r
     assert cli.main(["--replay", str(path), "--mute"]) == 0
     pygame.quit()
     ((scene, error),) = seen
-    assert scene is Title and error is not None and str(path) in error
-    assert ("bad JSON" if fault == "truncated" else "has changed") in error
+    assert scene is Title and error is not None and str(path) in error.text and error.failed is Failed.REPLAY
+    assert ("bad JSON" if fault == "truncated" else "has changed") in error.text
     err = capsys.readouterr().err
     assert err.count(str(path)) == 1 and "Traceback" not in err

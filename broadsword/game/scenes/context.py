@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import sys
 from dataclasses import dataclass, field
+from enum import Enum
 from pathlib import Path
 from typing import Any
 
@@ -41,12 +42,36 @@ class StageChoice:
     custom: str | None = None
 
 
+class Failed(Enum):
+    """What a load error on the title was loading: its heading and the keys that help."""
+
+    LEVEL = ("The level could not be loaded", "Enter: try again   Left/Right: another level")
+    REPLAY = ("The replay could not be opened", "R: the replay list   Enter: play")
+
+    @property
+    def heading(self) -> str:
+        return self.value[0]
+
+    @property
+    def hint(self) -> str:
+        return self.value[1]
+
+
+@dataclass(frozen=True)
+class LoadError:
+    """A load failure for the title: ``text`` (one line, naming the file and field) and
+    what was being loaded."""
+
+    text: str
+    failed: Failed = Failed.LEVEL
+
+
 @dataclass(eq=False)
 class SceneContext:
     """The services and shared values a scene uses (the app makes one, and hands it to each
     scene). ``scenes`` is the scene stack, read only; ``options`` are this session's
     (``saved_difficulty`` is the one options.json keeps, whatever ``--difficulty`` says);
-    ``error`` is the last level load failure (one line, shown on the title); ``message`` a
+    ``error`` is the last load failure (a level's or a replay's, shown on the title); ``message`` a
     warning for the menus (a file not used, a save that failed); ``fps`` the loop's rate."""
 
     display: Display
@@ -68,7 +93,7 @@ class SceneContext:
     seed: int = 0
     demo: bool = False
     choice: StageChoice = field(default_factory=StageChoice)
-    error: str | None = None
+    error: LoadError | None = None
     message: str | None = None
     fps: float = 60.0
 
@@ -103,9 +128,9 @@ class SceneContext:
         except OSError as exc:
             self.message = f"could not save controls: {exc}"
 
-    def report(self, exc: DataError) -> None:
+    def report(self, exc: DataError, failed: Failed = Failed.LEVEL) -> None:
         """A level or replay failed to load: keep its one-line error for the title, and say it on stderr."""
-        self.error = str(exc)
+        self.error = LoadError(str(exc), failed)
         print(f"broadsword: {exc}", file=sys.stderr)
 
     def warn(self, line: str) -> None:

@@ -44,7 +44,7 @@ from ..seekbar import SeekBar
 from ..sidebar import FIELD_RECT
 from ..window import to_surface
 from .base import Go, Handled, PlayStage, Tick, Transition
-from .context import SceneContext
+from .context import Failed, SceneContext
 
 #: The speeds, slowest first.
 SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0)
@@ -247,7 +247,7 @@ class Theatre:
         try:
             stage = open_recorded(seeker.rec.stages[index], index, self.path, ctx.bank.armatures)
         except DataError as exc:
-            ctx.report(exc)
+            ctx.report(exc, Failed.REPLAY)
             return None
         Snapshots(stage.world).restore(stage.world, data)
         run = Run.of_level(stage.level_ref, ctx.levels, stage.world.settings.difficulty)

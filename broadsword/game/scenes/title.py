@@ -15,7 +15,7 @@ from .. import ui
 from ..controls import Action, Bindings, confirm_label, keys_label, move_label
 from .armatures import ArmatureList
 from .base import IDLE, Go, Handled, Push, Scene, Tick
-from .context import SceneContext
+from .context import LoadError, SceneContext
 from .high_scores import HighScoresScene
 from .how_to_play import HowToPlay
 from .options_screen import OptionsScene
@@ -153,15 +153,15 @@ class Title:
             p.text(key, y, 22, ui.GOLD, x=150, anchor="midright")
             p.text(what, y, 22, ui.DIM, x=162, anchor="midleft")
 
-    def _draw_error(self, error: str) -> None:
-        """The level load error, wrapped, in a panel where the controls list goes (y 334 to
+    def _draw_error(self, error: LoadError) -> None:
+        """The load error (a level's or a replay's), wrapped, in a panel where the controls list goes (y 334 to
         at most 546): at most ``ERROR_LINES`` lines; a longer error ends in "..."."""
         p = self.ctx.painter
         wrap = ERROR_WRAP
-        lines = p.lines(error, wrap, ERROR_LINES)
+        lines = p.lines(error.text, wrap, ERROR_LINES)
         panel = pygame.Rect(ERROR_X, ERROR_Y, wrap + 24, 72 + 20 * len(lines))
         p.panel(panel, (44, 12, 18), (255, 110, 110))
-        p.text("The level could not be loaded", panel.y + 18, colour=ui.WARN)
+        p.text(error.failed.heading, panel.y + 18, colour=ui.WARN)
         for i, line in enumerate(lines):
             p.text(line, panel.y + 42 + 20 * i, colour=ERROR_TEXT, x=panel.x + 12, anchor="midleft")
-        p.text("Enter: try again   Left/Right: another level", panel.bottom - 16, colour=ui.DIM)
+        p.text(error.failed.hint, panel.bottom - 16, colour=ui.DIM)
