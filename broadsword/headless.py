@@ -131,6 +131,19 @@ def run_headless(
     return summary, runner.recording()
 
 
+class _Tenths:
+    """A long pass's progress as one line per tenth done (``say``: where lines go)."""
+
+    def __init__(self, say: Callable[[str], None]):
+        self.say, self.shown = say, 0
+
+    def __call__(self, fraction: float) -> None:
+        tenth = min(10, int(10 * fraction))
+        if tenth > self.shown:
+            self.shown = tenth
+            self.say(f"preparing practice: {10 * tenth}%")
+
+
 def _practice_runner(
     start: StageStart,
     choice: PracticeChoice,
@@ -144,13 +157,14 @@ def _practice_runner(
     if (problem := choice.problem()) is not None:
         raise PracticeError(problem)
     cache = cache or PracticeCache.default()
-    at = prepare(stage, cache, say).start(choice.phase)
+    tenths = _Tenths(say) if say is not None else None
+    at = prepare(stage, cache, say, tenths).start(choice.phase)
     try:
         stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
     except StartUnfit as exc:  # kept by a game whose snapshots differ: made again, once
         if say is not None:
             say(f"{exc}: it is made again")
-        at = prepare(open_stage(start), cache, say, fresh=True).start(choice.phase)
+        at = prepare(open_stage(start), cache, say, tenths, fresh=True).start(choice.phase)
         stage = practice_stage(open_stage(start), at, choice.loadout(at.loadout))
     d = at.loadout
     extra = {

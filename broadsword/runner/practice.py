@@ -274,9 +274,11 @@ class PhaseCollector:
 
 def collect(stage: Stage, progress: Callable[[float], None] | None = None, chunk: int = 600) -> PhaseStarts:
     """Every phase start of ``stage`` (just opened), in one autopilot pass; ``progress`` is
-    told the fraction done after each ``chunk`` frames."""
+    told the fraction done after each ``chunk`` frames (the last time 1.0)."""
     collector = PhaseCollector(stage)
-    while not collector.advance(chunk):
+    done = False
+    while not done:
+        done = collector.advance(chunk)
         if progress is not None:
             progress(collector.fraction)
     return collector.result()

@@ -202,6 +202,9 @@ def test_a_kept_start_that_no_longer_fits_is_made_again(capsys, monkeypatch, tmp
     PracticeCache(tmp_path / "practice").save(dataclasses.replace(starts(), starts=other.starts))
     code, s, err = run(["--headless", "--level", level_file(), "--practice", "1", "--frames", "0"], capsys)
     assert code == 0 and "does not fit this game" in err and "preparing practice" in err
+    # the long pass shows its progress, a line a tenth, ending at 100%
+    tenths = [ln for ln in err.splitlines() if "preparing practice: " in ln and ln.endswith("%")]
+    assert tenths and tenths[-1].endswith("preparing practice: 100%") and len(tenths) <= 10
     assert s["origin"] == starts().starts[1].frame and s["state_hash"] == full_run_hashes()[0][s["origin"]]
 
 
