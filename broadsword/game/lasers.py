@@ -4,8 +4,9 @@ lines' axes and the lit lasers' nodes (the overlay draws their pieces -- the arm
 :mod:`broadsword.collision.lasers`' bevel-joined quadrilaterals -- from the collision record,
 coloured by what each tier did with them).
 
-The body is the laser's exact hit shape (the same pieces the sim collides), in the laser's
-colour; the glow (wider, dim) is added over the field on a black layer (``BLEND_RGB_ADD``),
+The body is the laser's hit shape (one mitred outline a laser: exactly the one piece of a
+straight laser, within a hundredth of a pixel of a curvy laser's pieces at its gentle bends),
+in the laser's colour; the glow (wider, dim) is added over the field on a black layer (``BLEND_RGB_ADD``),
 and the white core (narrower) drawn over it, so what is hit is what reads as the laser.
 Presentation only: nothing here changes the world.
 """
@@ -15,7 +16,6 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from ..collision.lasers import laser_pieces
 from ..data.levels import LaserKind
 from ..sim import World
 from ..sim.lasers import Lasers, frames
@@ -33,10 +33,38 @@ BLINK = 4
 OVERLAY_WARNING, OVERLAY_NODE = (255, 80, 220), (255, 255, 255)
 
 
-def _polys(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list[list[tuple[float, float]]]:
-    """Every piece of the chains, as pygame polygons."""
-    x, y, _ = laser_pieces(nodes, widths, starts)
-    return [list(zip(x[:, j].tolist(), y[:, j].tolist())) for j in range(x.shape[1])]
+#: A chain's outline is filled in runs of this many segments (a fill's cost grows with its
+#: rows times its edges: short runs are cheaper than one long outline).
+CHUNK = 8
+
+
+def _outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list[list[tuple[float, float]]]:
+    """Each chain's outline as one pygame polygon: its nodes offset by half their width
+    along the mitred normal (the two segments' normals' mean, stretched by the secant of
+    half the bend, at most twice the half width), out along the left and back along the
+    right, in runs of :data:`CHUNK` segments. A chain of two nodes is exactly its one piece; at a bend the mitre meets the
+    pieces' inner edges where they cross and reaches past the bevel by ``h (sec(a/2) - 1)``
+    (a bend of ``a``: under 0.01 px for the curvy lasers' few degrees a node). A few polygons
+    a chain, not one a piece: 200 curvy lasers of 64 nodes are 4,800 fills a frame, not
+    75,000 (docs/PERFORMANCE.md). Drawing only: never on the path to state."""
+    n = len(nodes)
+    d = nodes[1:] - nodes[:-1]
+    length = np.hypot(d[:, 0], d[:, 1])
+    length[length == 0] = 1.0
+    u = np.column_stack([-d[:, 1], d[:, 0]]) / length[:, None]  # each segment's unit normal
+    ends = np.append(starts[1:], n) - 1
+    before, after = np.vstack([u[:1], u]), np.vstack([u, u[-1:]])  # the segments each side of a node
+    before[starts], after[ends] = after[starts], before[ends]  # a chain's ends: its own segment only
+    a = before + after
+    m = a * (2.0 / np.maximum((a * a).sum(axis=1), 1.0))[:, None]  # the mitre: length 2 / |a|, at most 2
+    h = (0.5 * widths)[:, None] * m
+    left, right = (nodes + h).tolist(), (nodes - h).tolist()
+    out = []
+    for i, j in zip(starts.tolist(), ends.tolist()):
+        for k in range(i, j, CHUNK):  # runs of CHUNK segments sharing their end nodes' offsets: no seam
+            e = min(k + CHUNK, j) + 1
+            out.append(left[k:e] + right[k:e][::-1])
+    return out
 
 
 def _by_kind(lasers: Lasers, rows: list[int]) -> dict[LaserKind, list[int]]:
@@ -73,21 +101,21 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPa
 
 def draw_chains(surf: pygame.Surface, chains: list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]]) -> None:
     """Lit lasers over ``surf``: each ``((nodes (N, 2), widths (N,), starts (L,)), colour)``
-    of ``chains`` as its glow (``GLOW`` times wider, dimmed) and body (its exact pieces)
-    added over the field (``BLEND_RGB_ADD``), then its near-white core (``CORE`` times as
+    of ``chains`` as its glow (``GLOW`` times wider, dimmed) and body (its hit shape: one
+    outline a laser, :func:`_outlines`) added over the field (``BLEND_RGB_ADD``), then its near-white core (``CORE`` times as
     wide) over them. What :func:`draw_lasers` and the palette check
     (:mod:`.palette_check`) draw."""
     glow = pygame.Surface(surf.get_size())
     for (nodes, widths, starts), colour in chains:
         dim = tuple(int(c * GLOW_DIM) for c in colour)
-        for poly in _polys(nodes, widths * GLOW, starts):
+        for poly in _outlines(nodes, widths * GLOW, starts):
             pygame.draw.polygon(glow, dim, poly)
-        for poly in _polys(nodes, widths, starts):
+        for poly in _outlines(nodes, widths, starts):
             pygame.draw.polygon(glow, colour, poly)
     surf.blit(glow, (0, 0), special_flags=pygame.BLEND_RGB_ADD)
     for (nodes, widths, starts), colour in chains:
         core = tuple(min(255, 200 + c // 4) for c in colour)
-        for poly in _polys(nodes, np.maximum(widths * CORE, 1.0), starts):
+        for poly in _outlines(nodes, np.maximum(widths * CORE, 1.0), starts):
             pygame.draw.polygon(surf, core, poly)
 
 

@@ -93,6 +93,7 @@ def test_overlay__outlines_the_pieces_from_the_record_by_tier(world):
     w.step(IDLE)
     record = w.collision.result
     assert record.lasers is not None and record.lasers.pieces.count == 1
+    assert set(record.lasers.tier_pairs) == set(record.tiers)  # kept while a laser is lit: every tier shows
     assert w.collision.laser_hits_on(Group.GRAZE).tolist() == [[w.collision.spans[Group.GRAZE].start, 0, 0]]
     surf = blank()
     overlay = Overlay()
