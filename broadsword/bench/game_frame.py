@@ -170,10 +170,17 @@ def run_all(quick: bool = False, seed: int = 0) -> list[dict]:
 
 def run_laser_game(quick: bool = False, seed: int = 0) -> dict:
     """The ``laser_game_frame`` entry: the laser scene's whole frame once it shows 5,000
-    enemy bullets and :data:`LASERS` lit lasers (``where`` says so), with the kernel the
-    pipeline ran (``BROADSWORD_KERNEL``, else numba when installed)."""
-    out = run_game_frames(LASER_LEVEL, 5000, 900, 5 if quick else 60, seed, LASERS)
-    out["where"] = f"laser scene, once 5,000 enemy bullets and {LASERS} lit lasers were reached"
+    enemy bullets and :data:`LASERS` lit lasers at once, or after 900 steps if it does not
+    (``where`` says which), with the kernel the pipeline ran (``BROADSWORD_KERNEL``, else
+    numba when installed)."""
+    warmup = 900
+    out = run_game_frames(LASER_LEVEL, 5000, warmup, 5 if quick else 60, seed, LASERS)
+    if out["warmup"] < warmup:
+        out["where"] = f"laser scene, once 5,000 enemy bullets and {LASERS} lit lasers were reached"
+    else:  # say so: the frames were timed without the count asked for
+        out["where"] = (
+            f"laser scene, after {warmup} steps: 5,000 enemy bullets and {LASERS} lit lasers not both reached"
+        )
     return out
 
 
