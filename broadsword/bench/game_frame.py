@@ -22,7 +22,7 @@ stages) hold about 5,000 and 10,000 live enemy bullets; ``3-broadsword`` is the 
 bullet-hell stage at its peak.
 
 The laser scene (``stress/stress-lasers.toml``: the 5,000 scene's gunships and a boss firing
-20 curvy lasers of 64 nodes every half second, each living 8 s) times the same whole frame
+24 curvy lasers of 64 nodes every half second, each living 8 s) times the same whole frame
 once about 5,000 bullets and 200 lit lasers are on screen (:func:`run_laser_game`): the
 lasers are the game's own, moved and collided by the runner's step in the frame's one
 pipeline call, and drawn by the renderer (glow, body, core).
