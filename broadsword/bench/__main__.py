@@ -11,7 +11,8 @@ Sections (all in one run; ``--quick`` shrinks each to finish in under a minute):
    the exact answer at the method's own poses, and against pixel truth;
 2. a whole game frame on the bullet-hell level (at its peak in a full run; ``--quick``
    measures frames early in the level and says so) and on stress scenes holding 5,000
-   and 10,000 enemy bullets, drawing bullets batched against one by one, and the game's
+   and 10,000 enemy bullets, then the laser scene (200 of the game's curvy lasers of 64
+   nodes and 5,000 bullets, JSON ``laser_game_frame``), drawing bullets batched against one by one, and the game's
    levels against their sprites' own masks (how often an armature hit disagrees with
    what is seen);
 3. BulletML: 2,000 bullets each mid-action, the patterns' median ms per frame beside the
@@ -420,6 +421,7 @@ def main(argv: list[str] | None = None) -> int:
     print(sweeps_markdown(sweep_scenes), flush=True)
 
     game = None
+    laser_game = None
     drawing = None
     visual = []
     if not args.no_game:
@@ -430,6 +432,11 @@ def main(argv: list[str] | None = None) -> int:
         print("  whole game frame: the bullet-hell stage's peak and the stress scenes ...", file=sys.stderr, flush=True)
         game = run_all(args.quick, args.seed)
         print(frame_markdown(game), flush=True)
+        from .game_frame import laser_markdown, run_laser_game
+
+        print("  whole game frame: 200 curvy lasers and 5,000 bullets ...", file=sys.stderr, flush=True)
+        laser_game = run_laser_game(args.quick, args.seed)
+        print(laser_markdown(laser_game), flush=True)
         for level in list_levels():
             print(f"  {level} against its sprites ...", file=sys.stderr, flush=True)
             visual.append(level_visual_truth(level, 120 if args.quick else 1200, args.seed))
@@ -501,6 +508,7 @@ def main(argv: list[str] | None = None) -> int:
             "scales": results,
             "sweep_scenes": sweep_scenes,
             "game_frame": game,
+            "laser_game_frame": laser_game,
             "bullet_drawing": drawing,
             "levels_vs_sprites": visual,
             "patterns": patterns,

@@ -20,6 +20,12 @@ timed apart as ``pilot_ms``. The stress scenes
 (``stress/stress-5000.toml``, ``stress/stress-10000.toml``, benchmark data, not shipped
 stages) hold about 5,000 and 10,000 live enemy bullets; ``3-broadsword`` is the shipped
 bullet-hell stage at its peak.
+
+The laser scene (``stress/stress-lasers.toml``: the 5,000 scene's gunships and a boss firing
+24 curvy lasers of 64 nodes every half second, each living 8 s) times the same whole frame
+once about 5,000 bullets and 200 lit lasers are on screen (:func:`run_laser_game`): the
+lasers are the game's own, moved and collided by the runner's step in the frame's one
+pipeline call, and drawn by the renderer (glow, body, core).
 """
 
 from __future__ import annotations
@@ -33,6 +39,8 @@ import numpy as np
 STRESS = Path(__file__).resolve().parent / "stress"
 #: Enemy-bullet count -> stress scene.
 STRESS_LEVELS = {5000: STRESS / "stress-5000.toml", 10_000: STRESS / "stress-10000.toml"}
+#: The laser scene, and the lit lasers it is timed at (with 5,000 enemy bullets).
+LASER_LEVEL, LASERS = STRESS / "stress-lasers.toml", 200
 #: The window's scale while measuring (the game's default window).
 SCALE = 1.25
 
@@ -46,14 +54,20 @@ def _present(screen) -> None:
 
 
 def run_game_frames(
-    level: str | Path = "3-broadsword", bullets: int | None = None, warmup: int = 660, frames: int = 60, seed: int = 0
+    level: str | Path = "3-broadsword",
+    bullets: int | None = None,
+    warmup: int = 660,
+    frames: int = 60,
+    seed: int = 0,
+    lasers: int | None = None,
 ) -> dict:
     """Play ``level`` (a shipped level's name or a file) until it shows ``bullets`` enemy
-    bullets (at most ``warmup`` steps; with ``bullets=None``, exactly ``warmup`` steps),
-    then time ``frames`` whole frames. Returns the ``game_frame`` entry of DESIGN.md
-    (``bullets`` is the median live enemy-bullet count over the timed frames) plus
-    ``level``, ``frames``, ``warmup`` (steps taken), ``max_ms``, ``player_bullets`` and the
-    1-minute load average."""
+    bullets and ``lasers`` lit lasers (at most ``warmup`` steps; with both None, exactly
+    ``warmup`` steps), then time ``frames`` whole frames. Returns the ``game_frame`` entry
+    of DESIGN.md (``bullets`` is the median live enemy-bullet count over the timed frames)
+    plus ``level``, ``frames``, ``warmup`` (steps taken), ``max_ms``, ``player_bullets``,
+    ``lasers`` and ``laser_nodes`` (the median lit lasers and their nodes), the kernel and
+    the 1-minute load average."""
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     import pygame
@@ -74,7 +88,16 @@ def run_game_frames(
     renderer = Renderer(bank, seed)
     pilot = Pilot()
     steps, peak, peak_step = 0, 0, 0
-    while steps < warmup and (bullets is None or world.enemy_bullets.n < bullets) and not world.over:
+
+    def lit() -> tuple[int, int]:
+        rows = world.lasers.live_rows()
+        return len(rows), int(world.lasers.pool.count[rows].sum()) if rows else 0
+
+    def short() -> bool:
+        few_bullets = bullets is not None and world.enemy_bullets.n < bullets
+        return few_bullets or (lasers is not None and lit()[0] < lasers)
+
+    while steps < warmup and (short() if bullets is not None or lasers is not None else True) and not world.over:
         renderer.on_events(runner.step(pilot(world)), world)
         steps += 1
         if world.enemy_bullets.n > peak:
@@ -82,7 +105,7 @@ def run_game_frames(
     renderer.draw(screen, world, 1.0)  # fills the rotation tables before timing
     settle()  # as the game does when a stage starts (game/heap.py)
     clock = time.perf_counter
-    rows, counts, own = [], [], []
+    rows, counts, own, beams = [], [], [], []
     pilots = []
     for _ in range(frames):
         tp = clock()
@@ -100,6 +123,7 @@ def run_game_frames(
         rows.append(((t1 - t0) * 1e3 - collide, collide, (t2 - t1) * 1e3, (t3 - t2) * 1e3))
         counts.append(world.enemy_bullets.n)
         own.append(world.player_bullets.n)
+        beams.append(lit())
     pygame.quit()
     a = np.array(rows)
     med = np.median(a, axis=0)
@@ -117,6 +141,9 @@ def run_game_frames(
         "frames": frames,
         "warmup": steps,
         "player_bullets": int(np.median(own)),
+        "lasers": int(np.median([b[0] for b in beams])),
+        "laser_nodes": int(np.median([b[1] for b in beams])),
+        "kernel": world.pipeline.kernel.value,
         "game_over": bool(world.over),
         "peak_bullets": max(peak, max(counts)),  # the most this run saw, and at which step
         "peak_frame": peak_step if peak >= max(counts) else steps + 1 + int(np.argmax(counts)),
@@ -139,6 +166,38 @@ def run_all(quick: bool = False, seed: int = 0) -> list[dict]:
         out.append(run_game_frames(path, count, 900, 5 if quick else 60, seed))
         out[-1]["where"] = f"stress scene, once {count:,} enemy bullets were reached"
     return out
+
+
+def run_laser_game(quick: bool = False, seed: int = 0) -> dict:
+    """The ``laser_game_frame`` entry: the laser scene's whole frame once it shows 5,000
+    enemy bullets and :data:`LASERS` lit lasers at once, or after 900 steps if it does not
+    (``where`` says which), with the kernel the pipeline ran (``BROADSWORD_KERNEL``, else
+    numba when installed)."""
+    warmup = 900
+    out = run_game_frames(LASER_LEVEL, 5000, warmup, 5 if quick else 60, seed, LASERS)
+    if out["warmup"] < warmup:
+        out["where"] = f"laser scene, once 5,000 enemy bullets and {LASERS} lit lasers were reached"
+    else:  # say so: the frames were timed without the count asked for
+        out["where"] = (
+            f"laser scene, after {warmup} steps: 5,000 enemy bullets and {LASERS} lit lasers not both reached"
+        )
+    return out
+
+
+def laser_markdown(e: dict) -> str:
+    """The laser scene's row, with its lasers and their nodes."""
+    la = f"{e['load_average']:.1f}" if e.get("load_average") is not None else ""
+    return "\n".join(
+        [
+            "\n### Whole game frame with lasers (the laser scene; as above)\n",
+            "| kernel | enemy bullets | lit lasers | their nodes | frames | median ms | step | collision | render "
+            "| present | max ms | load |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+            f"| {e['kernel']} | {e['bullets']:,} | {e['lasers']} | {e['laser_nodes']:,} | {e['frames']} "
+            f"| {e['median_ms']:.2f} | {e['step_ms']:.2f} | {e['collision_ms']:.2f} | {e['render_ms']:.2f} "
+            f"| {e['present_ms']:.2f} | {e['max_ms']:.2f} | {la} |",
+        ]
+    )
 
 
 def markdown(entries: list[dict]) -> str:

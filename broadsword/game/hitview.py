@@ -28,6 +28,7 @@ FILL, EDGE = (10, 12, 30), (255, 110, 110)
 #: Header and footer heights and the margin round the drawing, px.
 HEADER, LINE, PAD = 26, 17, 14
 LEGEND = "cyan: you   magenta: it   yellow, white: edges that met"
+LEGEND_PATH = "cyan: you (thin: your path)  magenta: it  yellow: edges"
 #: The ring round the hit's place on the field, px.
 RING = 26
 
@@ -140,6 +141,8 @@ def draw_hit(surface: pygame.Surface, rect: pygame.Rect, hit: HitRecord, font: p
     what = "nothing recorded"
     if first is not None:
         what = f"{first.kind} ({first.source.value}{', swept' if first.swept else ''})"
+        if first.laser is not None:
+            what = f"{first.kind}, piece {first.laser.piece}{' (a join)' if first.laser.join else ''}"
         if len(hit.hitters) > 1:
             what += f" and {len(hit.hitters) - 1} more"
     outcome = {None: "HIT", "miss": "MISS", "saved": "SAVED BY A BOMB"}[hit.outcome.value if hit.outcome else None]
@@ -147,7 +150,10 @@ def draw_hit(surface: pygame.Surface, rect: pygame.Rect, hit: HitRecord, font: p
     footer = 3 * LINE + 6 if first is not None else LINE + 6
     area = pygame.Rect(rect.left + PAD, rect.top + HEADER + PAD // 2, rect.width - 2 * PAD, 0)
     area.height = max(rect.bottom - footer - PAD // 2 - area.top, 10)
-    points = np.concatenate([hit.player, *(h.polygon for h in hit.hitters)])
+    # A laser's piece may be the field's length: the view fits the player, its path and
+    # the other hitters, and the pieces are cut at the panel's edge.
+    paths = [h.player for h in hit.hitters if h.player is not None]
+    points = np.concatenate([hit.player, *paths, *(h.polygon for h in hit.hitters if h.laser is None)])
     view = _View(points, area)
     clip = surface.get_clip()
     surface.set_clip(rect.inflate(-4, -4))
@@ -155,22 +161,25 @@ def draw_hit(surface: pygame.Surface, rect: pygame.Rect, hit: HitRecord, font: p
     for h in hit.hitters:
         _polygon(surface, view, h.polygon, HITTER_FILL, 0)
     _polygon(surface, view, hit.player, PLAYER, 2)
+    for path in paths:
+        _polygon(surface, view, path, PLAYER, 1)  # what a laser tests: the hit armature swept
     for h in hit.hitters:
         _polygon(surface, view, h.polygon, HITTER, 2)
     for h in hit.hitters:
-        _contact(surface, view, area, hit.player, h)
+        _contact(surface, view, area, hit.player if h.player is None else h.player, h)
     surface.set_clip(clip)
     if first is not None:
         _line(surface, font, describe(first), rect, rect.bottom - 3 * LINE - 4, ui.WHITE)
         if first.tiers:
             _line(surface, font, tiers_line(first), rect, rect.bottom - 2 * LINE - 4, ui.GOOD)
-    _line(surface, font, LEGEND, rect, rect.bottom - LINE - 4, ui.DIM)
+    _line(surface, font, LEGEND_PATH if paths else LEGEND, rect, rect.bottom - LINE - 4, ui.DIM)
 
 
 def mark_on_field(surface: pygame.Surface, hit: HitRecord) -> None:
     """Show where ``hit`` happened on the field: both shapes at their true size and place,
     in a ring (field px are surface px)."""
-    for poly, colour in [*((h.polygon, HITTER) for h in hit.hitters), (hit.player, PLAYER)]:
+    paths = [(h.player, PLAYER) for h in hit.hitters if h.player is not None]
+    for poly, colour in [*((h.polygon, HITTER) for h in hit.hitters), *paths, (hit.player, PLAYER)]:
         if len(poly) >= 3:
             pygame.draw.polygon(surface, colour, [tuple(p) for p in poly.tolist()], 1)
     cx, cy = hit.player.mean(axis=0).tolist()

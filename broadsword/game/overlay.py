@@ -8,13 +8,18 @@ the game. It reads at any density:
 * the bin grid's occupancy as a heat map, and its lines;
 * every object as its armature's vertices and centre in its layer's colour (one numpy
   write per size class, :mod:`.overlay_dense`), hits as red crosses;
+* every laser's pieces (its armature) outlined in the colour of the last tier a pair of
+  theirs passed (:func:`~broadsword.collision.debugdraw.draw_lasers`: none, the broad
+  phase ... the tier before the exact test; red: touching), a red line from each object a
+  laser touches to the first piece it touches;
 * a *lens* (F7 on/off) around the mouse pointer, or the player when the pointer is away,
   inside which the full armatures, boxes, candidate pairs and hit lines are drawn through
   the library's debug-draw protocol (:class:`~broadsword.game.drawing.PygameDraw`);
 * swept volumes of fast movers (moved more than their bounding radius in the frame) as
   thin outlines, on F5;
 * a legend, and a panel (F6: next corner, then collapsed) with the rate, the broad
-  phase's layout, the per-tier funnel (pairs in and out, bars on a log scale) and a
+  phase's layout, the per-tier funnel (pairs in and out, bars on a log scale; with lasers,
+  a dim row under each tier: how many of its pairs were (object, laser piece) pairs) and a
   frame-time graph of the last four seconds stacked by tier.
 """
 
@@ -27,7 +32,8 @@ import numpy as np
 import pygame
 
 from ..collision import FrameResult, GridLayout, TreeLayout
-from ..collision.debugdraw import FrameColours, draw_layout, posed_polygons
+from ..collision.debugdraw import FrameColours, draw_lasers, draw_layout, posed_polygons
+from ..collision.lasers import LaserSet
 from .drawing import PygameDraw
 from .overlay_dense import crosses, heat_map, marks, stacked_graph
 from .render import LAYER_COLOURS
@@ -81,10 +87,24 @@ def panel_lines(
     elif isinstance(layout, TreeLayout):
         lines.append(f"{result.broad.name} depth {layout.depth}, {len(layout.nodes)} nodes in use")
     lines.append(f"{'tier':<10}{'in':>9}{'out':>8}{'ms':>8}")
+    lasers = result.lasers is not None
     for s in result.stats:
         lines.append(f"{s.name:<10}{s.pairs_in:>9}{s.pairs_out:>8}{s.ms:>8.3f}")
+        if lasers and s.name != "layers":
+            lines.append(f"{'  laser':<10}{s.laser_pairs_in:>9}{s.laser_pairs_out:>8}")
     lines.append(f"total ms {result.ms:.3f}   objects {result.objects.n}")
+    if result.lasers is not None:
+        lines.append(laser_line(result))
     return lines
+
+
+def laser_line(result: FrameResult) -> str:
+    """``lasers 3, 40 pieces made of 125``: the frame's lasers, and the pieces the pipeline
+    made (those of the lasers whose box met an object they test) of all their pieces."""
+    lasers = result.lasers
+    assert lasers is not None  # a frame with lasers
+    counts = result.objects.lasers.counts if isinstance(result.objects.lasers, LaserSet) else np.empty(0)
+    return f"lasers {len(lasers.tested)}, {lasers.pieces.count} pieces made of {int((2 * counts - 3).sum())}"
 
 
 def pointer_on(surf: pygame.Surface) -> tuple[float, float] | None:
@@ -181,6 +201,7 @@ class Overlay:
         marks(surf, polys, [layer_rgb[layer[owners[a:b]]] for a, b in zip(starts[:-1], starts[1:])])
         if self.swept:
             self._swept(draw, record, owners, polys, colours)
+        draw_lasers(draw, record, colours)
         pos = record.objects.positions
         if len(record.hits):
             crosses(surf, pos[record.hits[:, 1]], colours.hit)
@@ -243,13 +264,16 @@ class Overlay:
 
     def _draw_legend(self, surf, record: FrameResult, colours: FrameColours) -> None:
         names = list(record.layers.names)
-        key = (tuple(names), self.swept)
+        lasers = record.lasers is not None
+        key = (tuple(names), self.swept, lasers and record.tiers)
         if self._legend is None or self._legend[0] != key:
             rows = [(n, c) for n, c in zip(names, colours.layers)]
             rows += [("hit", colours.hit), ("bin occupancy", colours.heat_high)]
             if self.swept:
                 rows.append(("swept (fast)", colours.swept))
-            img = pygame.Surface((130, 14 * len(rows) + 6), pygame.SRCALPHA)
+            if lasers:
+                rows += laser_legend(record.tiers, colours)
+            img = pygame.Surface((150, 14 * len(rows) + 6), pygame.SRCALPHA)
             img.fill((0, 0, 0, 150))
             for k, (name, c) in enumerate(rows):
                 pygame.draw.rect(img, c, (5, 5 + 14 * k, 9, 9))
@@ -261,7 +285,10 @@ class Overlay:
     def panel_rect(self, size: tuple[int, int], record: FrameResult, paused: bool) -> pygame.Rect:
         """Where the panel goes on a surface of ``size`` px, in its corner (``place``)."""
         rows = [s for s in record.stats if s.name != "layers"]
-        height = LINE_HEIGHT * (HEADER_LINES + paused + len(rows) + 2) + GRAPH_HEIGHT + 18
+        lines = HEADER_LINES + paused + len(rows) + 2
+        if record.lasers is not None:  # a laser row under each tier, and the lasers' line
+            lines += len(rows) + 1
+        height = LINE_HEIGHT * lines + GRAPH_HEIGHT + 18
         w, h = size
         left = w - PANEL_WIDTH - 6 if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.BOTTOM_RIGHT) else 6
         top = PANEL_TOP if self.place in (PanelPlace.TOP_RIGHT, PanelPlace.TOP_LEFT) else h - height - 40
@@ -301,7 +328,14 @@ class Overlay:
                 width=0,
             )
             y += LINE_HEIGHT
+            if record.lasers is not None:
+                cells = ("  laser", compact(s.laser_pairs_in), compact(s.laser_pairs_out), "")
+                self._row(surf, left, y, cells, _dim(colour))
+                y += LINE_HEIGHT
         total = f"total {record.ms:.2f} ms, {compact(record.objects.n)} objects; last {HISTORY // 60} s:"
+        if record.lasers is not None:
+            draw.text((left + 6, y), laser_line(record), TEXT)
+            y += LINE_HEIGHT
         draw.text((left + 6, y), total, TEXT)
         y += LINE_HEIGHT + 2
         hist = np.array(self.history) if self.history else np.zeros((0, len(rows)))
@@ -314,6 +348,20 @@ class Overlay:
         )
         surf.blit(graph, (left + 6, y))
         draw.text((left + 8, y + 1), f"{top_ms:.1f} ms", TEXT)
+
+
+def laser_legend(tiers: tuple[str, ...], colours: FrameColours) -> list[tuple[str, tuple[int, int, int]]]:
+    """The legend's rows for laser pieces: the last tier a pair of theirs passed, in the
+    shades :func:`~broadsword.collision.debugdraw.laser_piece_colours` gives (none; the
+    broad phase to the tier before the exact test), and touching."""
+    rows = [("laser: no pair", colours.laser_none)]
+    lo, hi = np.array(colours.laser_first, float), np.array(colours.laser_last, float)
+    for k, name in enumerate(tiers[:-1]):
+        share = min(k / max(len(tiers) - 2, 1), 1.0)
+        r, g, b = np.rint(lo + share * (hi - lo)).astype(int).tolist()
+        rows.append((f"laser: past {name}", (r, g, b)))
+    rows.append(("laser: touching", colours.hit))
+    return rows
 
 
 def compact(n: int) -> str:

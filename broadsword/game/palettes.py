@@ -20,6 +20,7 @@ from enum import Enum
 
 import numpy as np
 
+from ..data.levels import LaserKind
 from .colour import Vision
 
 RGB = tuple[int, int, int]
@@ -74,6 +75,29 @@ GLOWS: dict[BulletPalette, dict[str, Glow]] = {
         "needle": Glow((255, 255, 0), (255, 255, 84)),
         "orb": Glow((113, 51, 255), (229, 217, 255)),
         "shot": Glow((26, 248, 255), (210, 254, 255)),
+    },
+}
+
+
+#: Each palette's laser colours, by kind (the body; ``game/lasers.py`` draws a dimmed glow
+#: round it and a near-white core inside). The standard's are the lasers as designed; the
+#: safe palettes' keep every two kinds, and each kind and each stage's backdrop, at least
+#: :data:`MIN_DISTANCE` apart under the palette's visions (:mod:`.palette_check`).
+LASER_COLOURS: dict[BulletPalette, dict[LaserKind, RGB]] = {
+    BulletPalette.STANDARD: {
+        LaserKind.STRAIGHT: (255, 70, 120),
+        LaserKind.BEAM: (255, 150, 50),
+        LaserKind.CURVY: (90, 190, 255),
+    },
+    BulletPalette.RED_GREEN: {  # yellow, aqua and blue: no red-green contrast needed
+        LaserKind.STRAIGHT: (255, 255, 12),
+        LaserKind.BEAM: (114, 255, 231),
+        LaserKind.CURVY: (12, 53, 255),
+    },
+    BulletPalette.ALL: {  # lime, aqua and violet-blue: apart for tritan vision too
+        LaserKind.STRAIGHT: (214, 255, 12),
+        LaserKind.BEAM: (63, 255, 223),
+        LaserKind.CURVY: (53, 12, 255),
     },
 }
 

@@ -30,6 +30,7 @@ LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
     "enemy_ship": (255, 150, 60),
     "enemy_bullet": (255, 80, 220),
     "player_bullet": (120, 255, 120),
+    "player_path": (40, 190, 190),  # the hit armature swept along the step: what lasers test
 }
 
 
@@ -132,7 +133,7 @@ class Renderer:
         self._bullets(surf, world.items.pool, world, alpha)
         self._bullets(surf, world.player_bullets, world, alpha)
         self._bomb(surf, world)
-        draw_lasers(surf, world, self.tick)
+        draw_lasers(surf, world, self.tick, self.bank.palette)
         self._player(surf, world, alpha)
         self._bullets(surf, world.enemy_bullets, world, alpha)
         self._effects(surf)

@@ -63,7 +63,7 @@ def _contact(e: Explanation) -> dict:
 
 
 def _hitter(h: Hitter) -> dict:
-    return {
+    out = {
         "what": h.source.value,
         "kind": h.kind,
         "swept": h.swept,
@@ -71,6 +71,17 @@ def _hitter(h: Hitter) -> dict:
         "contact": _contact(h.explanation),
         "tiers": [{"tier": t.tier, "verdict": t.verdict.value, "recorded": t.recorded} for t in h.tiers],
     }
+    if h.laser is not None:
+        tag = h.laser.laser
+        out["laser"] = {
+            "kind": tag.kind,
+            "phase": tag.phase + 1,
+            "entry": tag.entry + 1,
+            "piece": h.laser.piece,
+            "join": h.laser.join,
+            "path": h.laser.path.tolist(),
+        }
+    return out
 
 
 def hit_json(hit: LoggedHit) -> dict:

@@ -4,6 +4,13 @@ The paper's update-order rule (section 1.4): binning objects while others have y
 lets things that overlap for a single update pass through each other. So the world moves
 everything first, then this step poses, bins and tests it all at once, and returns one
 typed :class:`CollisionRecord` naming which object ranges belong to which group.
+
+The boss's lit lasers go through the same call, as the pipeline's ``lasers`` (their pieces
+tested by every tier like any posed polygon; :mod:`broadsword.collision.laserframe`): they
+test the player's *path* (its hit armature swept from its last position to this one, so a
+ship that crosses a laser between two steps is hit; an object of its own, because bullets
+test the hit armature unswept) and the graze shape. What they touched comes back in
+``record.result.lasers``; :attr:`CollisionRecord.lasers` says which game laser each is.
 """
 
 from __future__ import annotations
@@ -22,6 +29,7 @@ class Group(Enum):
     """The groups of objects in the frame, in the order they are laid out."""
 
     PLAYER = "player"  # the hit armature, while vulnerable
+    PLAYER_PATH = "player_path"  # the hit armature swept along the step, while vulnerable and a laser is lit
     GRAZE = "graze"  # the graze shape, while alive, if the scene grazes or an item is out (it collects them)
     BOMB = "bomb"  # the bomb, while it lasts
     SHIPS = "ships"  # wave ships
@@ -29,6 +37,23 @@ class Group(Enum):
     ENEMY_BULLETS = "enemy_bullets"
     PLAYER_BULLETS = "player_bullets"
     ITEMS = "items"
+
+
+@dataclass(frozen=True)
+class LaserTag:
+    """Which game laser a laser of the frame is: ``row`` in the laser pool
+    (:attr:`broadsword.sim.lasers.Lasers.pool`), the boss ``phase`` (0-based) that fired
+    it, ``entry`` its place among that phase's ``[[boss.phase.laser]]`` entries (0-based,
+    in file order), and its ``kind`` (``straight``, ``beam`` or ``curvy``)."""
+
+    row: int
+    phase: int
+    entry: int
+    kind: str
+
+    def name(self) -> str:
+        """E.g. ``curvy laser 2 of phase 1`` (1-based, as a player counts)."""
+        return f"{self.kind} laser {self.entry + 1} of phase {self.phase + 1}"
 
 
 @dataclass(frozen=True)
@@ -42,10 +67,14 @@ class CollisionRecord:
         objects the pipeline was given (``result.objects``).
     spans : dict Group -> slice
         Object indices of each group (empty slices for absent groups).
+    lasers : tuple of LaserTag
+        The game laser of each of the frame's lasers (``result.objects.lasers``, in order;
+        ``result.lasers`` numbers them so). Empty when no laser was lit.
     """
 
     result: FrameResult
     spans: dict
+    lasers: tuple[LaserTag, ...] = ()
 
     @property
     def objects(self) -> FrameObjects:
@@ -92,6 +121,19 @@ class CollisionRecord:
         """(h, 2) hit pairs whose second object belongs to one of ``groups``."""
         return self._hits(1, groups)
 
+    def laser_hits_on(self, *groups: Group) -> np.ndarray:
+        """(h, 3) rows ``(object, laser, piece)`` of ``result.lasers.hits`` whose object
+        belongs to one of ``groups``: each laser that touched it once, with its first
+        touching piece (an index within the laser: segments, then joins)."""
+        lasers = self.result.lasers
+        if lasers is None:
+            return np.empty((0, 3), dtype=np.int64)
+        keep = np.zeros(len(lasers.hits), dtype=bool)
+        for g in groups:
+            s = self.spans[g]
+            keep |= (lasers.hits[:, 0] >= s.start) & (lasers.hits[:, 0] < s.stop)
+        return lasers.hits[keep]
+
     def _hits(self, column: int, groups) -> np.ndarray:
         hits = self.result.hits
         keep = np.zeros(len(hits), dtype=bool)
@@ -109,7 +151,7 @@ class CollisionStep:
         self.ids = LayerIds.of(table)
 
     def run(self, world) -> CollisionRecord:
-        """Collide ``world``'s objects at their current poses (one pipeline call)."""
+        """Collide ``world``'s objects and lit lasers at their current poses (one pipeline call)."""
         ids, kinds, player = self.ids, self.kinds, world.player
         heads = []  # (group, kind, layer, position, last position)
         if player.vulnerable:
@@ -118,6 +160,9 @@ class CollisionStep:
             heads.append((Group.GRAZE, kinds.base["graze"], ids.graze, player.pos, player.prev))
         if world.bomb.active:
             heads.append((Group.BOMB, world.bomb.kind, ids.bomb, player.pos, player.pos))
+        rows = world.lasers.live_rows()
+        if rows and player.vulnerable:  # last of the heads: a frame without lasers lays out as before
+            heads.append((Group.PLAYER_PATH, kinds.base["player"], ids.player_path, player.pos, player.prev))
         groups = [
             (Group.SHIPS, world.ships.pool, ids.enemy_ship),
             (Group.BOSS, world.parts, ids.enemy_ship),
@@ -158,7 +203,14 @@ class CollisionStep:
         # the ground it crossed, so no contact between two frames is missed, not even a
         # sliver at a corner. Ships, items and the player are not swept: they move slowly,
         # and a jump (a respawn) must not touch what lies between the two places.
-        swept = (layer == ids.enemy_bullet) | (layer == ids.player_bullet)
+        # The player's path is swept for the lasers alone (the hit armature, unswept, is what
+        # bullets and ships test).
+        swept = (layer == ids.enemy_bullet) | (layer == ids.player_bullet) | (layer == ids.player_path)
         swept &= (pos[:, 0] != prev[:, 0]) | (pos[:, 1] != prev[:, 1])  # not .any(axis=1): 8x slower on (n, 2)
-        result = self.pipeline.run(FrameObjects(arm, layer, pos, angle, prev, angle, swept))
-        return CollisionRecord(result, spans)
+        lasers, tags = world.lasers.frame_lasers(rows)
+        # With lasers, every tier's pairs are kept: pieces are not objects of the record, so
+        # only the kept pairs can show (the F1 overlay) what each tier did to each piece.
+        self.pipeline.keep_tier_pairs = bool(tags)
+        laser_layer = np.full(len(tags), ids.enemy_laser, dtype=np.int64)
+        objects = FrameObjects(arm, layer, pos, angle, prev, angle, swept, lasers, laser_layer)
+        return CollisionRecord(self.pipeline.run(objects), spans, tags)

@@ -17,12 +17,14 @@ of its own. Each laser in play is a row of :attr:`Lasers.pool`:
   head was ``i`` steps ago). It lives ``on`` s, and goes when its every node has left the field.
 
 A laser's shape is :mod:`broadsword.collision.lasers`' (a bevel-joined thick polyline, width
-``width`` at its origin or head, ``tip`` at the far end, linear between). It hits the player
-exactly: its pieces against the player's hit polygon swept back along this step's move
-(:func:`~broadsword.collision.lasers.swept_polygon`), so a ship crossing a laser between two
-steps is hit. A hit is a miss like a bullet's (the death-bomb window opens; a bomb in it
-saves the ship). A laser inside the graze shape (and not hitting) counts one graze, then
-again every ``GRAZE_EVERY`` steps while it stays there. A bomb cancels every laser on the
+``width`` at its origin or head, ``tip`` at the far end, linear between). The lit lasers go
+through the frame's one pipeline call with everything else (:mod:`.collide`:
+:meth:`frame_lasers` hands them over), tested against the player's hit polygon swept back
+along this step's move, so a ship crossing a laser between two steps is hit, and against
+the graze shape; :meth:`collide` applies what that found. A hit is a miss like a bullet's
+(the death-bomb window opens; a bomb in it saves the ship; the hit log names the laser and
+the piece). A laser inside the graze shape (and not hitting) counts one graze, then again
+every ``GRAZE_EVERY`` steps while it stays there. A bomb cancels every laser on the
 field (each leaves stars along it) and no laser fires while it lasts; a phase's lasers end
 with the phase.
 
@@ -38,11 +40,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..collision import detmath
-from ..collision.lasers import laser_pieces, swept_polygon
-from ..collision.narrow import polygons_collide_padded
+from ..collision.lasers import LaserSet, laser_pieces
 from ..data.difficulty import Difficulty
 from ..data.levels import LASER_NODES, LaserKind, LaserSpec, Level
 from .boss import Boss
+from .collide import CollisionRecord, Group, LaserTag
 from .emitters import on_field
 from .events import Events
 from .field import DT, FIELD
@@ -50,7 +52,6 @@ from .items import ItemKind, Items
 from .pool import Pool
 
 if TYPE_CHECKING:
-    from .kinds import Kinds
     from .player import Player
     from .scoring import Score
 
@@ -144,6 +145,18 @@ class Lasers:
         if not rows:
             return np.empty((4, 0)), np.empty((4, 0)), np.empty(0, dtype=np.int64)
         return laser_pieces(*self.chains(rows))
+
+    def frame_lasers(self, rows: list[int]) -> tuple[LaserSet, tuple[LaserTag, ...]]:
+        """The lasers of ``rows`` (:meth:`live_rows`) for the frame's pipeline call, packed,
+        and which game laser each is (:class:`~.collide.LaserTag`), in the same order."""
+        if not rows:
+            return LaserSet.pack(()), ()
+        p = self.pool
+        tags = []
+        for i in rows:
+            j, phase = int(p.which[i]), int(p.phase[i])
+            tags.append(LaserTag(i, phase, j - self.first[phase], self.specs[j].kind.value))
+        return LaserSet.of(*self.chains(rows)), tuple(tags)
 
     def segments_ahead(self, ahead: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Where the lasers' segments will be ``ahead`` (H,) steps from now, as a player sees
@@ -294,36 +307,25 @@ class Lasers:
             items.drop_many(at[inside], ItemKind.STAR, homing=True)
         p.clear()
 
-    def collide(self, player: Player, kinds: Kinds, t: float, score: Score | None, ev: Events) -> None:
-        """The lit lasers against ``player`` (its hit and graze shapes from ``kinds`` at ``t``
-        seconds): a hit strikes the ship (swept along its move), a graze counts on ``score``
-        (throttled per laser; ``None``: the stage has no graze)."""
+    def collide(self, record: CollisionRecord, player: Player, score: Score | None, ev: Events) -> bool:
+        """Apply what the lit lasers touched in the frame's collision ``record`` (after the
+        bullets' and ships' hits): a laser on the player's path strikes the ship, unless
+        something struck it already this step; a laser in the graze shape counts a graze on
+        ``score`` (throttled per laser; none while the ship is stricken; ``score`` None: the
+        stage has no graze). Returns whether a laser struck the ship."""
         p = self.pool
         if not p.n:
-            return
-        rows = self.live_rows() if player.alive else []
-        if rows:
-            px, py, owner = self.pieces(rows)
-            if player.vulnerable:
-                hit = kinds.shapes.armatures[int(kinds.current(kinds.base["player"], t))].vertices + player.pos
-                swept = swept_polygon(hit, player.pos - player.prev)
-                if touching(px, py, swept).any():
-                    player.strike()
-                    ev.player_struck = True
-            if score is not None and not player.stricken:
-                shape = kinds.shapes.armatures[int(kinds.current(kinds.base["graze"], t))].vertices + player.pos
-                near = np.unique(owner[touching(px, py, shape)])
-                grazed = [rows[k] for k in near.tolist() if p.graze_wait[rows[k]] == 0]
-                if grazed:
-                    p.graze_wait[grazed] = GRAZE_EVERY  # counted down from this step on
-                    ev.grazes += len(grazed)
-                    score.graze(len(grazed))
+            return False
+        struck = False
+        if player.vulnerable and len(record.laser_hits_on(Group.PLAYER_PATH)):
+            player.strike()
+            ev.player_struck = struck = True
+        if score is not None and not player.stricken:
+            near = {record.lasers[k].row for k in record.laser_hits_on(Group.GRAZE)[:, 1].tolist()}
+            grazed = [i for i in sorted(near) if p.graze_wait[i] == 0]
+            if grazed:
+                p.graze_wait[grazed] = GRAZE_EVERY  # counted down from this step on
+                ev.grazes += len(grazed)
+                score.graze(len(grazed))
         p.graze_wait[:] = np.maximum(p.graze_wait - 1, 0)
-
-
-def touching(px: np.ndarray, py: np.ndarray, polygon: np.ndarray) -> np.ndarray:
-    """(P,) bool: which pieces (columns of ``px``, ``py``) touch ``polygon`` (k, 2), exactly."""
-    m = px.shape[1]
-    qx = np.repeat(polygon[:, :1], m, axis=1)
-    qy = np.repeat(polygon[:, 1:], m, axis=1)
-    return polygons_collide_padded(px, py, qx, qy)
+        return struck

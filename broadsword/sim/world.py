@@ -6,11 +6,11 @@ section 1.4). It orders small systems, each in its own module:
 0. the bomb button, and the death-bomb window (:mod:`.bombs`, :mod:`.progress`);
 1. move: the player (:mod:`.player`), wave ships (:mod:`.motion`), the boss (:mod:`.boss`)
    and its lasers (:mod:`.lasers`), every bullet and item (:mod:`.items`);
-2. collide the new poses -- all of them, after all movement -- in one pipeline call
-   (:mod:`.collide`);
+2. collide the new poses -- all of them, and the lit lasers, after all movement -- in one
+   pipeline call (:mod:`.collide`);
 3. apply what collided: damage, deaths, grazes, items, the bomb's work, score
-   (:mod:`.combat`; mark, then compact); then the lasers against the player (:mod:`.lasers`,
-   exact, outside the pipeline: the player is one ship);
+   (:mod:`.combat`; mark, then compact); then what the lasers touched (:mod:`.lasers`: they
+   went through the same pipeline call, against the player's path and graze shape);
 4. spawn: the player's gun (:mod:`.weapons`), the wave timeline and the boss's arrival
    (:mod:`.waves`, :mod:`.boss`), the enemies' BulletML patterns (:mod:`.emitters`); run the boss's
    phase clock and its lasers; cull what left the field; extends and the stage's end (:mod:`.progress`).
@@ -210,8 +210,10 @@ class World:
                 self.progress.missed()
                 self.combat.lose_life(ev)
         self._move(inp)
-        self.combat.apply(self.detect(), ev)
-        self.lasers.collide(self.player, self.kinds, self.time, self.score if self.level.scene.graze else None, ev)
+        record = self.detect()
+        self.combat.apply(record, ev)
+        if self.lasers.collide(record, self.player, self.score if self.level.scene.graze else None, ev):
+            self.hit_log.struck(record, self.kinds, self.frame + 1)  # an observation: changes no state
         self._spawn(inp, ev)
         if self.boss is not None:
             how = self.boss.tick()

@@ -1,5 +1,6 @@
 """The lasers drawn (issue 23, part 2): a lit laser glows along its exact shape with a white
-core; a warning line is thin and blinks; the F1 overlay outlines each laser's pieces."""
+core; a warning line is thin and blinks; the F1 overlay outlines each laser's pieces from
+the collision record, coloured by what the tiers did with them."""
 
 from __future__ import annotations
 
@@ -11,8 +12,11 @@ import pytest
 import shipped
 
 from broadsword.data.levels import BossPhaseSpec, FireSpec, LaserKind, LaserSpec
-from broadsword.game.lasers import BLINK, OVERLAY_SEGMENT, draw_laser_armatures, draw_lasers
+from broadsword.game.lasers import BLINK, OVERLAY_WARNING, draw_laser_armatures, draw_lasers
+from broadsword.game.overlay import Overlay, PanelPlace, frame_colours, panel_lines
+from broadsword.game.palettes import LASER_COLOURS, BulletPalette
 from broadsword.sim import FIELD, World
+from broadsword.sim.collide import Group
 from broadsword.sim.input import IDLE
 
 LASER = LaserSpec(0, LaserKind.STRAIGHT, angle=180.0, length=400.0, width=12.0, tip=12.0, warn=0.5, on=2.0, delay=3.0)
@@ -66,13 +70,56 @@ def test_lit_laser__glow_body_and_white_core(world):
     assert row[x + 20] == 0  # and nothing beyond
 
 
-def test_overlay__outlines_the_pieces(world):
+@pytest.mark.parametrize("palette", list(BulletPalette))
+def test_lit_laser__body_in_the_palettes_colour(world, palette):
     w = world
     while not w.lasers.live_rows():
         w.step(IDLE)
+    x, y = (int(v) for v in w.lasers.pool.nodes[0, 0])
+    surf = blank()
+    draw_lasers(surf, w, 0, palette)
+    assert tuple(pygame.surfarray.array3d(surf)[x - 4, y + 150]) == LASER_COLOURS[palette][LaserKind.STRAIGHT]
+
+
+def test_overlay__outlines_the_pieces_from_the_record_by_tier(world):
+    """The F1 overlay draws the laser's pieces from the frame's collision record: the lit
+    laser went through the pipeline with everything else, touching the (invulnerable)
+    player's graze shape, so its one piece is outlined in the touching colour, and the
+    panel counts its pairs under each tier."""
+    w = world
+    while not w.lasers.live_rows():
+        w.step(IDLE)
+    w.player.pos[:] = w.player.prev[:] = w.lasers.pool.nodes[0, 0] + (0.0, 200.0)  # on the laser
+    w.step(IDLE)
+    record = w.collision.result
+    assert record.lasers is not None and record.lasers.pieces.count == 1
+    assert set(record.lasers.tier_pairs) == set(record.tiers)  # kept while a laser is lit: every tier shows
+    assert w.collision.laser_hits_on(Group.GRAZE).tolist() == [[w.collision.spans[Group.GRAZE].start, 0, 0]]
+    surf = blank()
+    overlay = Overlay()
+    overlay.lens, overlay.place = False, PanelPlace.COLLAPSED
+    overlay.draw(surf, record, 60.0)
+    x, y = (int(v) for v in w.lasers.pool.nodes[0, 0])
+    px = pygame.surfarray.array3d(surf)[:, y + 150]
+    edges = np.flatnonzero((px == frame_colours(record).hit).all(axis=1))
+    assert edges.min() == x - 6 and edges.max() in (x + 5, x + 6)  # the piece's two long sides
+    lines = panel_lines(record, 60.0, False)
+    assert "lasers 1, 1 pieces made of 1" in lines
+    assert [line.split()[:3] for line in lines if line.startswith("  laser")][0] == ["laser", "1", "1"]
+
+
+def test_overlay__warning_axis_and_nodes_from_the_world():
+    """What the record does not hold: a warning line's axis, dashed."""
+    pygame.init()
+    level = shipped.level("3-broadsword")
+    phase = BossPhaseSpec(hp=10**6, time=600, fire=((0, FireSpec()),), lasers=(LASER,))
+    boss = dataclasses.replace(level.boss, at=0.0, sway=0.0, phases=(phase,))
+    w = World(dataclasses.replace(level, waves=(), boss=boss), shipped.armatures(), 1)
+    while not w.lasers.pool.n:
+        w.step(IDLE)
+    assert w.lasers.warning(0) and w.collision.lasers == ()  # a warning line is never collided
     surf = blank()
     draw_laser_armatures(surf, w)
     x, y = (int(v) for v in w.lasers.pool.nodes[0, 0])
-    px = pygame.surfarray.array3d(surf)[:, y + 150]
-    edges = np.flatnonzero((px == OVERLAY_SEGMENT).all(axis=1))
-    assert edges.min() == x - 6 and edges.max() in (x + 5, x + 6)  # the piece's two long sides
+    column = (pygame.surfarray.array3d(surf)[x, y : y + 400] == OVERLAY_WARNING).all(axis=1)
+    assert 0.3 < column.mean() < 0.7  # dashed

@@ -1,5 +1,6 @@
 """Bullet palettes: the safe ones keep every bullet apart, and from every backdrop, under
-simulated colour-blind vision; a palette changes pixels only, never the game's state."""
+simulated colour-blind vision, and the laser kinds likewise; a palette changes pixels only,
+never the game's state."""
 
 from __future__ import annotations
 
@@ -7,11 +8,12 @@ import numpy as np
 import pygame
 import pytest
 
+from broadsword.data.levels import LaserKind
 from broadsword.game.app import App
 from broadsword.game.colour import Vision
 from broadsword.game.options import Options
 from broadsword.game.palette_check import check, stage_backdrops
-from broadsword.game.palettes import BULLETS, GLOWS, MIN_DISTANCE, BulletPalette, Glow, recolour
+from broadsword.game.palettes import BULLETS, GLOWS, LASER_COLOURS, MIN_DISTANCE, BulletPalette, Glow, recolour
 from broadsword.game.scores import HighScores
 from broadsword.game.sprites import SpriteBank
 from broadsword.sim import DT
@@ -34,6 +36,22 @@ def test_safe_palette__keeps_every_bullet_and_backdrop_apart(checked, palette, v
     assert len(c.pairs) == len(BULLETS) * (len(BULLETS) - 1) // 2 and len(c.backdrop) == len(BULLETS) * 15
     assert c.closest_pair()[1] >= MIN_DISTANCE, c.closest_pair()
     assert c.closest_backdrop()[1] >= MIN_DISTANCE, c.closest_backdrop()
+
+
+@pytest.mark.parametrize("palette, vision", [(p, v) for p in SAFE for v in p.safe_for])
+def test_safe_palette__keeps_the_laser_kinds_and_backdrops_apart(checked, palette, vision):
+    c = checked[palette, vision]
+    kinds = len(LaserKind)
+    assert len(c.laser_pairs) == kinds * (kinds - 1) // 2 and len(c.laser_backdrop) == kinds * 15
+    assert len(c.laser_bullets) == kinds * len(BULLETS)
+    assert c.laser_least >= MIN_DISTANCE, (min(c.laser_pairs.items(), key=lambda kv: kv[1]), c.laser_backdrop)
+
+
+def test_standard_lasers__fall_below_the_line_for_every_dichromat(checked):
+    """The laser check can fail: the standard colours do, for each dichromacy."""
+    for vision in (Vision.PROTAN, Vision.DEUTAN, Vision.TRITAN):
+        assert checked[BulletPalette.STANDARD, vision].laser_least < MIN_DISTANCE
+    assert set(LASER_COLOURS) == set(BulletPalette) and all(set(c) == set(LaserKind) for c in LASER_COLOURS.values())
 
 
 def test_standard_palette__is_the_one_that_needs_them(checked):

@@ -27,8 +27,11 @@ def test_layer_table__bullets_never_test_bullets_and_graze_is_optional():
         (ids.graze, ids.item),
         (ids.bomb, ids.enemy_bullet),
         (ids.bomb, ids.enemy_ship),
+        (ids.player_path, ids.enemy_laser),
+        (ids.graze, ids.enemy_laser),
     }
     assert (ids.graze, ids.enemy_bullet) not in game_layer_table(graze=False).entries
+    assert (ids.graze, ids.enemy_laser) not in game_layer_table(graze=False).entries
     assert (ids.graze, ids.item) in game_layer_table(graze=False).entries  # items are collected all the same
 
 

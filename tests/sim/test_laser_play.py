@@ -1,5 +1,6 @@
 """Lasers in the game (issue 23, part 2): they move deterministically, hit the player exactly
-(swept along its move) as a miss a bomb can save, count grazes throttled per laser, are
+(swept along its move, through the frame's one pipeline call) as a miss a bomb can save,
+and the hit log names the laser and its piece; they count grazes throttled per laser, are
 cancelled by a bomb, survive a snapshot exactly, and are read from level files with clear
 errors."""
 
@@ -11,14 +12,17 @@ import numpy as np
 import pytest
 import shipped
 
-from broadsword.collision import detmath
-from broadsword.collision.lasers import Laser, laser_touches
+from broadsword.collision import Verdict, detmath, explain, posed_polygon
+from broadsword.collision.lasers import Laser, laser_pieces, laser_touches
 from broadsword.data import DataError, load_level
 from broadsword.data.levels import BossPhaseSpec, FireSpec, LaserKind, LaserSpec
+from broadsword.runner.hits import LoggedHit, hit_json
 from broadsword.sim import Events, Input, World
 from broadsword.sim.bombs import DEATHBOMB_FRAMES
+from broadsword.sim.collide import Group
 from broadsword.sim.field import DT
 from broadsword.sim.hashing import Part, differing_part, part_digests
+from broadsword.sim.hitlog import HitSource, Outcome, hit_record
 from broadsword.sim.input import IDLE
 from broadsword.sim.lasers import GRAZE_EVERY, frames
 from broadsword.sim.snapshot import Snapshots
@@ -171,7 +175,10 @@ def test_hit__swept_along_the_players_move():
     hit = w.kinds.shapes.armatures[w.kinds.base["player"]].vertices
     laser = Laser.of(w.lasers.pool.nodes[0, :2], 1.0)
     assert not laser_touches(laser, hit + w.player.pos) and not laser_touches(laser, hit + w.player.prev)
-    w.lasers.collide(w.player, w.kinds, w.time, w.score, Events())
+    record = w.detect()  # the lasers go through the frame's one pipeline call
+    assert record.laser_hits_on(Group.PLAYER_PATH)[:, 1].tolist() == [0]  # the swept path touches
+    assert record.result.hits.shape == (0, 2)  # and nothing else does
+    assert w.lasers.collide(record, w.player, w.score, Events())
     assert w.player.stricken
 
 
@@ -383,3 +390,45 @@ def test_snapshot__format_2_is_still_read_with_no_laser_in_play():
     step_until(b, lambda w, ev: w.lasers.pool.n)
     snaps.restore(b, old)
     assert b.lasers.pool.n == 0 and snaps.save(b) == data
+
+
+# ------------------------------------------------------------------------- the hit log
+def test_hit_log__a_laser_death_names_the_laser_and_its_piece():
+    w = laser_world(straight(), straight(angle=120.0))  # the second points away from the player
+    step_until(w, lambda w, ev: ev.player_struck)
+    record, pending = w.collision, w.hit_log.pending
+    assert pending is not None and pending.frame == w.frame and len(pending.hitters) == 1
+    h = pending.hitters[0]
+    assert h.source is HitSource.LASER and h.kind == "straight laser 1 of phase 1"
+    assert h.laser is not None and h.laser.laser.row == 0 and (h.laser.piece, h.laser.join) == (0, False)
+    x, y, _ = laser_pieces(w.lasers.pool.nodes[0, :2], w.lasers.widths(0))
+    np.testing.assert_array_equal(h.polygon, np.stack([x[:, 0], y[:, 0]], axis=1))  # the piece itself
+    path = record.spans[Group.PLAYER_PATH].start
+    np.testing.assert_array_equal(h.laser.path, posed_polygon(record.result.posed, path))
+    assert h.explanation.touching and h.explanation == explain(h.laser.path, h.polygon)
+    assert [t.tier for t in h.tiers] == ["layers", *record.result.tiers]
+    assert all(t.verdict is Verdict.PASSED for t in h.tiers)
+    hit = step_until(w, lambda w, ev: ev.hit is not None).hit
+    assert hit.outcome is Outcome.MISS and hit.hitters[0].laser.laser.kind == "straight"
+    doc = hit_json(LoggedHit(hit, 0, "3-broadsword", w.frame))
+    assert doc["hit_by"][0]["what"] == "laser"
+    assert doc["hit_by"][0]["laser"] | {"path": None} == {
+        "kind": "straight",
+        "phase": 1,
+        "entry": 1,
+        "piece": 0,
+        "join": False,
+        "path": None,
+    }
+
+
+def test_hit_log__a_laser_crossed_between_steps_touches_the_path_not_the_pose():
+    w = laser_world(straight(width=1.0, tip=1.0))
+    w.player.pos[:] = w.player.prev[:] = (228.0, 570.0)
+    step_until(w, lambda w, ev: lit(w))
+    w.player.prev[:], w.player.pos[:] = (228.0, 570.0), (252.0, 570.0)
+    hit = hit_record(w.detect(), w.kinds, w.frame)
+    assert hit is not None and [h.source for h in hit.hitters] == [HitSource.LASER]
+    h = hit.hitters[0]
+    assert h.explanation.touching and not explain(hit.player, h.polygon).touching
+    assert len(h.laser.path) > len(hit.player)  # the hull swept: both ends' vertices
