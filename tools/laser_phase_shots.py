@@ -59,7 +59,7 @@ def shoot(level: str, phase: int, look: int, out: Path, cache: PracticeCache) ->
     while stage.world.frame < at:
         app.frame(DT)
     pygame.image.save(pygame.display.get_surface(), str(out / f"laser-{level}.png"))
-    app.overlay.visible = True
+    app.ctx.overlay.visible = True
     app.frame(DT)
     pygame.image.save(pygame.display.get_surface(), str(out / f"laser-overlay-{level}.png"))
     rec = stage.world.collision
