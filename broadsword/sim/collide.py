@@ -17,12 +17,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from typing import Protocol
 
 import numpy as np
 
-from ..collision import FrameObjects, FrameResult, LayerTable, Pipeline
+from ..collision import FrameObjects, FrameResult, LaserSet, LayerTable, Pipeline
+from .bombs import Bomb
+from .bullets import EnemyBullets
+from .items import Items
 from .kinds import Kinds
 from .layers import LayerIds
+from .player import Player
+from .pool import Pool
+from .waves import WaveShips
 
 
 class Group(Enum):
@@ -143,6 +150,37 @@ class CollisionRecord:
         return hits[keep]
 
 
+class LitLasers(Protocol):
+    """What the collision step asks of the world's lasers (:class:`~.lasers.Lasers`)."""
+
+    def live_rows(self) -> list[int]:
+        """The rows that collide now."""
+
+    def frame_lasers(self, rows: list[int]) -> tuple[LaserSet, tuple[LaserTag, ...]]:
+        """Those rows packed for the pipeline, and which game laser each is."""
+
+
+class CollisionScene(Protocol):
+    """What the collision step reads of a world: its objects (a typed, narrow contract:
+    the world is not imported, and mypy sees what colliding depends on)."""
+
+    player: Player
+    items: Items
+    bomb: Bomb
+    ships: WaveShips
+    parts: Pool
+    enemy_bullets: EnemyBullets
+    player_bullets: Pool
+
+    @property
+    def lasers(self) -> LitLasers:
+        """The lasers in play."""
+
+    @property
+    def time(self) -> float:
+        """Seconds of play (the animation clock)."""
+
+
 class CollisionStep:
     """Owns the level's pipeline and lays the frame's objects out for it."""
 
@@ -150,7 +188,7 @@ class CollisionStep:
         self.pipeline, self.kinds, self.graze = pipeline, kinds, graze
         self.ids = LayerIds.of(table)
 
-    def run(self, world) -> CollisionRecord:
+    def run(self, world: CollisionScene) -> CollisionRecord:
         """Collide ``world``'s objects and lit lasers at their current poses (one pipeline call)."""
         ids, kinds, player = self.ids, self.kinds, world.player
         heads = []  # (group, kind, layer, position, last position)
