@@ -53,7 +53,7 @@ QUICK = (
 #: first. Seconds of wall per module in a parallel run on a 2-core machine under load
 #: (``--durations=0``); a module with a test of more than ~5 s belongs here.
 FIRST = (
-    "test_determinism_machines.py",  # ~100, one test (in two processes of its own)
+    "test_determinism_machines.py",  # ~100, one fixture of 70 runs (in two processes of its own)
     "test_soak.py",  # ~50, the short soak alone 15-25
     "data/test_fuzz_loaders.py",  # ~25, two fuzzers of 10-25 each
     "test_bench.py",  # ~13, one test
