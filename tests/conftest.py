@@ -50,19 +50,29 @@ QUICK = (
 )
 
 #: Test modules (paths under tests/) with the longest single tests, longest first: they start
-#: first. Seconds of wall per module in a parallel run on a 2-core machine under load
-#: (``--durations=0``); a module with a test of more than ~5 s belongs here.
+#: first. The figure is each module's longest test (its setup included), in seconds of wall
+#: in a parallel run (``-n 2 --durations=0``) on a 2-core machine under a load of ~13, which
+#: stretched every test some 5-7 times: read them as relative. A module with a test of more
+#: than ~30 s there (~5 s on an idle machine) belongs here.
 FIRST = (
-    "test_determinism_machines.py",  # ~100, one test (in two processes of its own)
-    "test_soak.py",  # ~50, the short soak alone 15-25
-    "data/test_fuzz_loaders.py",  # ~25, two fuzzers of 10-25 each
-    "test_bench.py",  # ~13, one test
-    "test_balance.py",  # one test of ~6
-    "runner/test_runner.py",  # a few recordings played back, each shared by several tests
-    "test_recordings.py",  # ~17, two of 8
-    "collision/test_reference_tiers.py",  # one test of ~8
-    "test_determinism.py",  # ~43, fifteen tests of 1-5
-    "sim/test_tunnelling.py",  # ~30, tests of 2-4
+    "test_determinism_machines.py",  # 480, one fixture of 70 runs shared by two tests (two processes of its own)
+    "test_bench.py",  # 365, one test
+    "test_soak.py",  # 175, the short soak in a fresh process
+    "data/test_fuzz_loaders.py",  # 104, fuzzers of 20-100
+    "test_recordings.py",  # 98, one recording of 1,210 frames shared by two tests
+    "game/test_scores_processes.py",  # 73, processes killed at random moments
+    "test_balance.py",  # 57, one test
+    "runner/test_seek.py",  # 54
+    "game/test_theatre.py",  # 53
+    "game/test_real_window.py",  # 52 (skips without Xvfb)
+    "game/test_theatre_playback.py",  # 48
+    "game/test_palettes.py",  # 40
+    "runner/test_start_snapshots.py",  # 33
+    "game/test_app.py",  # 33
+    "sim/test_combat.py",  # 32
+    "test_determinism.py",  # 28, ten tests of 23-28 (each with a process of its own)
+    "collision/test_reference_tiers.py",  # 27, one test
+    "runner/test_runner.py",  # 19, a few recordings played back, each shared by several tests
 )
 
 _HERE = os.path.dirname(os.path.abspath(__file__))

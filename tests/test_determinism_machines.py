@@ -28,8 +28,8 @@ import pytest
 from support.gamerun import autopilot_digests, scenarios
 from support.perturb import MATH_TRANSCENDENTALS, NUMPY_TRANSCENDENTALS, perturbed_transcendentals
 
-from broadsword.collision import ROTATION_MODES
-from broadsword.collision._kernel import ENV_VAR, numba_available
+from broadsword.collision import ROTATION_MODES, Kernel, check_kernel
+from broadsword.collision._kernel import numba_available
 from broadsword.data import list_levels, load_level, resolve_level
 
 #: Frames per scenario: the busiest wave arrives at frame 180 and the bullet count passes
@@ -40,23 +40,44 @@ DIRECTIONS = (0, -1, 1)
 PACKAGE = Path(__file__).resolve().parents[1] / "broadsword"
 
 
-def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off():
-    jobs = [
-        (name, scenario, rotation, d)
+#: A run: (level, scenario, rotation, direction of the perturbation, kernel: None for the
+#: environment's choice, or "numpy" / "numba" forced).
+Job = tuple[str, str, str, int, str | None]
+
+
+@pytest.fixture(scope="module")
+def runs() -> dict[Job, list]:
+    """The autopilot digests of every run the two tests below compare, each played once, in
+    one pool of two spawned workers (nothing of this process, pytest or pygame, is shared;
+    the perturbation covers each run from loading the level on; imports happen once per
+    worker, which is safe because nothing on the path to state calls a transcendental at
+    all: test below). With numba installed the kernel comparison adds each level's peak
+    with the numpy kernel, and with the compiled one where the environment's choice is not
+    already numba (its unperturbed peak runs are those)."""
+    jobs: list[Job] = [
+        (name, scenario, rotation, d, None)
         for name in reversed(list_levels())  # the denser later ones first
         for scenario in scenarios(load_level(resolve_level(name)))
         for rotation in ROTATION_MODES
         for d in DIRECTIONS
     ]
-    # Spawned workers: nothing of this process (pytest, pygame) is shared; the perturbation
-    # covers each run from loading the level on. Imports happen once per worker, which is
-    # safe because nothing on the path to state calls a transcendental at all (test below).
+    if numba_available():
+        kernels = ("numpy",) if check_kernel(None) is Kernel.NUMBA else ("numpy", "numba")
+        jobs += [
+            (name, "peak", rotation, 0, k) for k in kernels for name in list_levels() for rotation in ROTATION_MODES
+        ]
     with ProcessPoolExecutor(max_workers=2, mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {job: pool.submit(autopilot_digests, *job[:3], SEED, FRAMES, job[3]) for job in jobs}
-        runs = {job: f.result() for job, f in futures.items()}
-    differ = []
-    for (name, scenario, rotation, d), other in sorted(runs.items()):
-        base = runs[(name, scenario, rotation, 0)]
+        futures = {job: pool.submit(autopilot_digests, *job[:3], SEED, FRAMES, job[3], kernel=job[4]) for job in jobs}
+        return {job: f.result() for job, f in futures.items()}
+
+
+def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off(runs):
+    differ, played = [], 0
+    for (name, scenario, rotation, d, kernel), other in sorted(runs.items(), key=str):
+        if kernel is not None:
+            continue
+        played += 1
+        base = runs[(name, scenario, rotation, 0, None)]
         assert len(base) >= 2
         if d and other != base:
             bits = next((a[0] for a, b in zip(base, other) if a[2] != b[2]), None)
@@ -65,32 +86,20 @@ def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off():
                 f"{name} {scenario} {rotation} direction {d:+d}: bits differ from frame {bits}, "
                 f"state_hash from frame {hashes} ({len(base)} vs {len(other)} checkpoints)"
             )
+    assert played >= len(list_levels()) * len(ROTATION_MODES) * len(DIRECTIONS)
     assert not differ, "\n".join(differ)
 
 
-def _kernel_digests(kernel: str, jobs: list) -> dict:
-    """The autopilot digests of ``jobs`` in spawned workers whose pipelines use ``kernel``."""
-    ctx = multiprocessing.get_context("spawn")
-    init = (ENV_VAR, kernel)
-    with ProcessPoolExecutor(max_workers=2, mp_context=ctx, initializer=_setenv, initargs=init) as pool:
-        futures = {job: pool.submit(autopilot_digests, *job, SEED, FRAMES) for job in jobs}
-        return {job: f.result() for job, f in futures.items()}
-
-
-def _setenv(name: str, value: str) -> None:
-    import os
-
-    os.environ[name] = value
-
-
 @pytest.mark.skipif(not numba_available(), reason="numba not installed (extra 'fast')")
-def test_every_level_plays_the_same_game_with_or_without_the_compiled_kernels():
+def test_every_level_plays_the_same_game_with_or_without_the_compiled_kernels(runs):
     """numba is optional: a replay must play the same on a machine without it. Every
     shipped level's busiest stretch, both rotation modes: the same state_hash and the same
     bits at every checkpoint with the numpy pipeline and with the compiled one (which gives
     the same pairs in the same order)."""
     jobs = [(name, "peak", rotation) for name in list_levels() for rotation in ROTATION_MODES]
-    numpy_runs, numba_runs = _kernel_digests("numpy", jobs), _kernel_digests("numba", jobs)
+    default_is_numba = check_kernel(None) is Kernel.NUMBA
+    numba_runs = {job: runs[(*job, 0, None if default_is_numba else "numba")] for job in jobs}
+    numpy_runs = {job: runs[(*job, 0, "numpy")] for job in jobs}
     differ = [job for job in jobs if numpy_runs[job] != numba_runs[job]]
     assert all(len(numpy_runs[job]) >= 2 for job in jobs)
     assert not differ, differ

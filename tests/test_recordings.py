@@ -2,8 +2,13 @@
 the same game (another format, another game version, a changed level, a drift)."""
 
 import base64
+import contextlib
+import io
 import json
 import shutil
+from pathlib import Path
+
+import pytest
 
 from broadsword import __version__
 from broadsword.cli import main
@@ -39,8 +44,35 @@ def record(tmp_path, capsys, level="3-broadsword", frames=CHECKPOINT_EVERY * 2 +
     return rec, summary
 
 
-def test_a_recording_carries_everything(tmp_path, capsys):
-    rec, summary = record(tmp_path, capsys, "3-broadsword", CHECKPOINT_EVERY * 2 + 10, "--rotation", "exact")
+@pytest.fixture(scope="module")
+def long_recording(tmp_path_factory) -> tuple[Path, dict]:
+    """3-broadsword, seed 3, the autopilot for two checkpoints and 10 frames, rotation exact:
+    recorded once (the bullet-hell level's 1,210 frames are the module's longest work) for
+    the tests that read it; a test that changes it changes a copy."""
+    folder = tmp_path_factory.mktemp("recording")
+    with contextlib.redirect_stdout(io.StringIO()) as out, contextlib.redirect_stderr(io.StringIO()):
+        code = main(
+            [
+                "--headless",
+                "--level",
+                "3-broadsword",
+                "--frames",
+                str(CHECKPOINT_EVERY * 2 + 10),
+                "--seed",
+                "3",
+                "--autopilot",
+                "--record",
+                str(folder / "run.json"),
+                "--rotation",
+                "exact",
+            ]
+        )
+    assert code == 0
+    return folder / "run.json", json.loads(out.getvalue().strip().splitlines()[-1])
+
+
+def test_a_recording_carries_everything(long_recording, capsys):
+    rec, summary = long_recording
     top = json.loads(rec.read_text())
     assert top["version"] == FORMAT_VERSION and top["game_version"] == __version__
     assert top["parts"] == ["player", "bullets", "enemies", "boss", "items", "score", "modes", "rng"]
@@ -65,8 +97,8 @@ def test_a_recording_carries_everything(tmp_path, capsys):
     assert replayed["rotation"] == "exact" and replayed["state_hash"] == summary["state_hash"]
 
 
-def test_a_drift_is_reported_at_the_first_checkpoint_that_differs(tmp_path, capsys):
-    rec, _ = record(tmp_path, capsys)
+def test_a_drift_is_reported_at_the_first_checkpoint_that_differs(long_recording, tmp_path, capsys):
+    rec = Path(shutil.copy(long_recording[0], tmp_path / "run.json"))
     doc = json.loads(rec.read_text())
     doc["stages"][0]["checkpoints"][1][1] = "0" * 64  # the second checkpoint no longer matches
     rec.write_text(json.dumps(doc))

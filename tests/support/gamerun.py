@@ -7,6 +7,8 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import hashlib
+import os
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -57,17 +59,51 @@ def scenarios(level) -> dict:
     return out
 
 
+@contextlib.contextmanager
+def _kernel_chosen(kernel: str | None) -> Iterator[None]:
+    """Within: pipelines use ``kernel`` ("numpy" or "numba"; None: the environment's choice),
+    through the environment variable they read, restored after (a pool's worker runs
+    several jobs)."""
+    from broadsword.collision._kernel import ENV_VAR
+
+    old = os.environ.get(ENV_VAR)
+    if kernel is not None:
+        os.environ[ENV_VAR] = kernel
+    try:
+        yield
+    finally:
+        if old is None:
+            os.environ.pop(ENV_VAR, None)
+        else:
+            os.environ[ENV_VAR] = old
+
+
 def autopilot_digests(
-    level_name: str, scenario: str, rotation: str, seed: int, frames: int, direction: int = 0, every: int = 60
+    level_name: str,
+    scenario: str,
+    rotation: str,
+    seed: int,
+    frames: int,
+    direction: int = 0,
+    every: int = 60,
+    kernel: str | None = None,
 ) -> list[tuple[int, str, str]]:
     """``[(frame, state_hash, exact_digest), ...]`` every ``every`` frames and at the end of
     an autopilot run of ``frames`` frames (or until the game ends) of ``scenario`` (a key
     of :func:`scenarios`) of a shipped level, with every transcendental function moved one
-    ulp towards ``direction * inf`` (0: untouched) for the whole run, loading included.
+    ulp towards ``direction * inf`` (0: untouched) for the whole run, loading included, and
+    the collision kernel ``kernel`` ("numpy", "numba"; None: the environment's choice).
 
     The optional numba kernel is loaded first when the pipeline will use it: importing
     numba inspects numpy's ufuncs, which the perturbation replaces by Python functions
     (the kernel itself calls no transcendental)."""
+    with _kernel_chosen(kernel):
+        return _digests(level_name, scenario, rotation, seed, frames, direction, every)
+
+
+def _digests(
+    level_name: str, scenario: str, rotation: str, seed: int, frames: int, direction: int, every: int
+) -> list[tuple[int, str, str]]:
     from broadsword.collision import Kernel, check_kernel, warm_kernel
 
     if check_kernel(None) is Kernel.NUMBA:
