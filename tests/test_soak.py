@@ -3,7 +3,7 @@ the soak's own logic -- restarts through game over and level complete, the memor
 figures, the failure paths.
 
 The full run (216,000 frames) is recorded in docs/RELIABILITY.md; here a one-minute run
-(3,600 frames, half of it warm-up) goes through the real command in a fresh process, as
+(5,400 frames, the first 3,600 of them warm-up) goes through the real command in a fresh process, as
 CI runs it. Its memory check is a coarse one: the warm-up spans the first game's climb to
 its peak of bullets, so what follows measures the allocator settling plus any leak larger
 than about a kilobyte a frame (5 % of ~45 MiB over 1,800 frames); a slower leak needs the
