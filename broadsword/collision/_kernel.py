@@ -1,9 +1,9 @@
 """Choosing and loading the optional compiled kernels (numba; ``pip install broadsword[fast]``).
 
-Four parts of the pipeline have a compiled twin: posing and boxing
-(:mod:`._pose_kernel`), the bin grid's query (:mod:`._grid_kernel`), the
-``aabb`` tier's box test (:mod:`._bounds_kernel`) and the exact narrow phase's float
-filter (:mod:`._narrow_kernel`). Each gives the same answers, in the same order, as the
+Five parts of the pipeline have a compiled twin: the exact rotation's sine and cosine
+(:mod:`._trig_kernel`), posing and boxing (:mod:`._pose_kernel`), the bin grid's query
+(:mod:`._grid_kernel`), the ``aabb`` tier's box test (:mod:`._bounds_kernel`) and the
+exact narrow phase's float filter (:mod:`._narrow_kernel`). Each gives the same answers, in the same order, as the
 numpy code, which stays the reference the tests compare it with. :class:`Kernel` names
 the choice; :func:`check_kernel` resolves the name (argument, ``BROADSWORD_KERNEL``, then
 numba when installed) for :func:`.backend.backend_for`, which turns it into the backend

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._kernel import jit
-from .posing import ArmatureSet, Posed, Sweeps, circles_of, turning_sweeps
+from .posing import ArmatureSet, Posed, SinCos, Sweeps, circles_of, turning_sweeps
 from .workspace import Workspace
 
 __all__ = ["load", "pose", "pose_and_box"]
@@ -250,13 +250,14 @@ def pose(
     prev_angles: np.ndarray | None,
     swept: np.ndarray | None,
     ws: Workspace,
+    sincos: SinCos,
 ) -> tuple[Posed, np.ndarray] | None:
-    """:func:`pose_and_box` of checked arguments, as :func:`posing.pose_checked` takes them;
-    None where the frame needs numpy's special paths (a turning sweep, a path past the
-    doubles)."""
-    cos, sin = shapes.rotations(angles, rotation)
+    """:func:`pose_and_box` of checked arguments, as :func:`posing.pose_checked` takes them
+    (``sincos``: the exact mode's sine and cosine, the compiled backend's); None where the
+    frame needs numpy's special paths (a turning sweep, a path past the doubles)."""
+    cos, sin = shapes.rotations(angles, rotation, sincos)
     if swept is not None:
         assert prev_angles is not None  # arguments.frame saw to it
-        if turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin) is not None:
+        if turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin, sincos) is not None:
             return None
     return pose_and_box(shapes, armature, positions, cos, sin, prev_positions, swept, ws)

@@ -1,12 +1,13 @@
 """One backend object for the stages of a frame that have a compiled twin.
 
-Four stages of the pipeline run either as numpy code (the reference) or as numba kernels
-(``pip install 'broadsword[fast]'``), with the same answers in the same order:
+The stages of the pipeline below run either as numpy code (the reference) or as numba
+kernels (``pip install 'broadsword[fast]'``), with the same answers in the same order:
 
 ===================  ==========================================  ===========================================
 stage (``Backend``)  numpy reference                             compiled twin (numba)
 ===================  ==========================================  ===========================================
-``pose_and_box``     ``posing.pose_checked`` + ``bounds.aabbs``  ``_pose_kernel``
+``sincos_deg``       ``detmath.sincos_deg`` (``"exact"`` poses)  ``_trig_kernel``: the same operations, bits
+``pose_and_box``     ``posing.pose_checked`` + ``bounds.aabbs``  ``_pose_kernel`` (rotating by ``sincos_deg``)
 ``grid_pairs``       ``BinGrid.reference_query``                 ``BinGrid.compiled_query`` (``_grid_kernel``)
 ``boxes_overlap``    ``bounds.boxes_overlap`` (``aabb`` tier)    ``_bounds_kernel``
 ``collide_columns``  ``narrow.polygons_collide_reference``       ``_narrow_kernel``: a float filter; what it
@@ -37,12 +38,12 @@ from typing import Protocol, TypeVar
 
 import numpy as np
 
-from . import _bounds_kernel, _narrow_kernel, _pose_kernel, bounds
+from . import _bounds_kernel, _narrow_kernel, _pose_kernel, _trig_kernel, bounds, detmath
 from ._kernel import Kernel, check_kernel
 from ._warm import warm_kernel
 from .arguments import ArgumentTypeError
 from .layers import LayerTable
-from .posing import ArmatureSet, Posed, pose_checked
+from .posing import ArmatureSet, Posed, SinCos, pose_checked
 from .workspace import Workspace
 
 __all__ = ["Backend", "GridQuery", "NumbaBackend", "NumpyBackend", "PaddedNarrow", "backend_for"]
@@ -86,6 +87,12 @@ class Backend(Protocol):
         frame waits for it."""
         ...
 
+    def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(sin, cos)`` of ``angles`` (n,) float64 degrees: two (n,) float64 arrays with
+        :func:`detmath.sincos_deg`'s bits (signed zeros, nan for nan and +-inf included).
+        What ``pose_and_box`` rotates by in the ``"exact"`` mode."""
+        ...
+
     def pose_and_box(
         self,
         shapes: ArmatureSet,
@@ -100,7 +107,8 @@ class Backend(Protocol):
     ) -> tuple[Posed, np.ndarray]:
         """``(posed, boxes (n, 4))``: every object posed with its vertices (swept from its
         previous pose where ``swept`` (n,) bool says so) and its tight axis-aligned box, as
-        ``pose_checked(..., vertices=True)`` and ``bounds.aabbs`` give them. Arguments are
+        ``pose_checked(..., vertices=True)`` and ``bounds.aabbs`` give them, rotated by
+        this backend's :meth:`sincos_deg` in the ``"exact"`` mode. Arguments are
         the checked ones of :func:`posing.pose_checked`; arrays come from ``workspace``
         (valid until its next use)."""
         ...
@@ -153,6 +161,9 @@ class NumpyBackend:
     def warm(self) -> None:
         """Nothing to load."""
 
+    def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return detmath.sincos_deg(np.asarray(angles, dtype=np.float64))
+
     def pose_and_box(
         self,
         shapes: ArmatureSet,
@@ -165,10 +176,18 @@ class NumpyBackend:
         swept: np.ndarray | None,
         workspace: Workspace,
     ) -> tuple[Posed, np.ndarray]:
-        posed = pose_checked(
-            shapes, armature, positions, angles, rotation, prev_positions, prev_angles, swept, workspace=workspace
+        return pose_and_box_reference(
+            shapes,
+            armature,
+            positions,
+            angles,
+            rotation,
+            prev_positions,
+            prev_angles,
+            swept,
+            workspace,
+            self.sincos_deg,
         )
-        return posed, bounds.aabbs(posed)
 
     def grid_pairs(
         self, grid: GridQuery[Stats], boxes: np.ndarray, layers: np.ndarray, table: LayerTable
@@ -211,6 +230,9 @@ class NumbaBackend:
         """Import numba and load every kernel (:func:`._warm.warm_kernel`)."""
         warm_kernel()
 
+    def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return _trig_kernel.sincos_deg(angles)
+
     def pose_and_box(
         self,
         shapes: ArmatureSet,
@@ -223,9 +245,9 @@ class NumbaBackend:
         swept: np.ndarray | None,
         workspace: Workspace,
     ) -> tuple[Posed, np.ndarray]:
-        args = (shapes, armature, positions, angles, rotation, prev_positions, prev_angles, swept)
-        compiled = _pose_kernel.pose(*args, workspace)  # None: a frame for numpy's special paths
-        return compiled if compiled is not None else NUMPY.pose_and_box(*args, workspace)
+        args = (shapes, armature, positions, angles, rotation, prev_positions, prev_angles, swept, workspace)
+        compiled = _pose_kernel.pose(*args, self.sincos_deg)  # None: a frame for numpy's special paths
+        return compiled if compiled is not None else pose_and_box_reference(*args, self.sincos_deg)
 
     def grid_pairs(
         self, grid: GridQuery[Stats], boxes: np.ndarray, layers: np.ndarray, table: LayerTable
@@ -279,6 +301,35 @@ class NumbaBackend:
         if rest.size:
             out[rest] = reference(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], workspace)
         return out
+
+
+def pose_and_box_reference(
+    shapes: ArmatureSet,
+    armature: np.ndarray,
+    positions: np.ndarray,
+    angles: np.ndarray,
+    rotation: str,
+    prev_positions: np.ndarray | None,
+    prev_angles: np.ndarray | None,
+    swept: np.ndarray | None,
+    workspace: Workspace,
+    sincos: SinCos,
+) -> tuple[Posed, np.ndarray]:
+    """The numpy ``pose_and_box`` (:meth:`Backend.pose_and_box`), rotating by ``sincos`` in
+    the ``"exact"`` mode (the calling backend's own stage)."""
+    posed = pose_checked(
+        shapes,
+        armature,
+        positions,
+        angles,
+        rotation,
+        prev_positions,
+        prev_angles,
+        swept,
+        workspace=workspace,
+        sincos=sincos,
+    )
+    return posed, bounds.aabbs(posed)
 
 
 #: The two backends (stateless: one of each serves every pipeline).

@@ -255,7 +255,7 @@ class Pipeline:
             # more than the skipped posing costs (docs/PERFORMANCE.md).
             posed, boxes = self.backend.pose_and_box(*args, self.workspace)
         else:  # a scene without polygon tiers poses no vertices
-            posed = pose_checked(*args, vertices=False, workspace=self.workspace)
+            posed = pose_checked(*args, vertices=False, workspace=self.workspace, sincos=self.backend.sincos_deg)
             boxes = bounds.circle_boxes(posed)
         # The pieces of the lasers near an object they test join the frame as objects
         # n .. n + p - 1 (laserframe.py).

@@ -15,7 +15,8 @@ Rotation
 ``angles`` are in degrees; a pose maps local ``(x, y)`` to
 ``(px + x cos a - y sin a, py + x sin a + y cos a)`` (the paper's Figure 6). Two modes:
 
-* ``"exact"``: ``cos``/``sin`` of the angle (:mod:`.detmath`: the same bits on every machine).
+* ``"exact"``: ``cos``/``sin`` of the angle (:mod:`.detmath`: the same bits on every machine;
+  a backend passes its own, compiled or not, as ``sincos``: the same bits again).
 * ``"lut"``: the paper's Figure 7 table of 360 integer-degree values (built by :mod:`.detmath`); the angle is
   rounded to the nearest degree (halves round up). The largest vertex displacement this
   causes at distance ``r`` from the centre is ``2 r sin(0.25 deg) ~= 0.00873 r``
@@ -55,9 +56,13 @@ from .armature import Armature
 from .tolerance import BOUND_SLACK
 from .workspace import Workspace
 
-__all__ = ["ArmatureSet", "Posed", "pose", "pose_checked", "rotation_table", "ROTATION_MODES"]
+__all__ = ["ArmatureSet", "Posed", "SinCos", "pose", "pose_checked", "rotation_table", "ROTATION_MODES"]
 
 ROTATION_MODES = ("exact", "lut")
+
+#: The exact mode's sine and cosine: ``angles`` (n,) float64 degrees -> ``(sin, cos)``, two
+#: (n,) float64 with :func:`detmath.sincos_deg`'s bits (a backend's ``sincos_deg`` stage).
+SinCos = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 #: The largest finite double.
 _MAX = float(np.finfo(np.float64).max)
@@ -147,8 +152,12 @@ class ArmatureSet:
     def __len__(self) -> int:
         return len(self.armatures)
 
-    def rotations(self, angles: np.ndarray, mode: str) -> tuple[np.ndarray, np.ndarray]:
-        """``(cos, sin)`` of ``angles`` (degrees, shape (n,)) under rotation ``mode``."""
+    def rotations(
+        self, angles: np.ndarray, mode: str, sincos: SinCos = detmath.sincos_deg
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """``(cos, sin)`` of ``angles`` (degrees, shape (n,) float64) under rotation ``mode``;
+        ``"exact"`` takes them from ``sincos`` (the reference's by default; a backend passes
+        its own stage, which gives the same bits)."""
         if mode == "lut":
             # Nearest degree (halves up), reduced to 0..359. For |deg| < 2**44 the float
             # reduction deg - 360 floor(deg / 360) is exact -- the quotient's rounding
@@ -169,7 +178,7 @@ class ArmatureSet:
             idx = deg.astype(np.intp)
             return np.take(self._cos, idx), np.take(self._sin, idx)
         if mode == "exact":
-            s, c = detmath.sincos_deg(angles)
+            s, c = sincos(angles)
             return c, s
         raise ValueError(f"rotation mode must be one of {ROTATION_MODES}, got {mode!r}")
 
@@ -529,13 +538,15 @@ def pose_checked(
     swept: np.ndarray | None,
     vertices: bool = True,
     workspace: Workspace | None = None,
+    sincos: SinCos = detmath.sincos_deg,
 ) -> Posed:
     """:func:`pose` of arguments already checked (what :meth:`Pipeline.run` calls: its
     :class:`FrameObjects` checked them once): int64 ids in range, float64 ``(n, 2)`` and
-    ``(n,)`` finite arrays, ``swept`` a bool array with a True entry, or ``None``."""
+    ``(n,)`` finite arrays, ``swept`` a bool array with a True entry, or ``None``.
+    ``sincos``: the exact mode's sine and cosine (:meth:`ArmatureSet.rotations`)."""
     n = len(armature)
     ws = workspace or Workspace()
-    cos, sin = shapes.rotations(angles, rotation)
+    cos, sin = shapes.rotations(angles, rotation, sincos)
     px, py = positions[:, 0], positions[:, 1]
     klass = np.take(shapes.size_class, armature)
     if swept is None:
@@ -543,7 +554,7 @@ def pose_checked(
         turning = None
     else:
         assert prev_positions is not None and prev_angles is not None  # arguments.frame saw to it
-        turning = turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin)
+        turning = turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin, sincos)
         klass = np.where(swept, np.take(shapes.swept_class, armature), klass)
         if turning is not None:
             klass[turning] = shapes.rotating_swept_class
@@ -601,13 +612,23 @@ def pose_checked(
     return Posed(n, klass, slot, xs, ys, members, circles, swept, cos, sin, frozenset(reordered), sweeps)
 
 
-def turning_sweeps(shapes, angles, prev_angles, swept, rotation, cos, sin) -> np.ndarray | None:
+def turning_sweeps(
+    shapes: ArmatureSet,
+    angles: np.ndarray,
+    prev_angles: np.ndarray,
+    swept: np.ndarray,
+    rotation: str,
+    cos: np.ndarray,
+    sin: np.ndarray,
+    sincos: SinCos = detmath.sincos_deg,
+) -> np.ndarray | None:
     """(n,) bool: the swept objects whose rotation changed since the previous pose (posed
-    with ``cos``, ``sin``), or None when none did. ``prev_angles is angles`` says nothing
-    turned (the game's bullets) without comparing."""
+    with ``cos``, ``sin``; ``prev_angles`` rotated with ``sincos`` in the exact mode), or
+    None when none did. ``prev_angles is angles`` says nothing turned (the game's bullets)
+    without comparing."""
     if prev_angles is angles:
         return None
-    pcos, psin = shapes.rotations(prev_angles, rotation)
+    pcos, psin = shapes.rotations(prev_angles, rotation, sincos)
     turning = swept & ((pcos != cos) | (psin != sin))
     return turning if turning.any() else None
 

@@ -150,3 +150,33 @@ half_polygons = st.lists(st.tuples(st.floats(-4, 4, width=16), st.floats(-4, 4, 
 #: Scales and offsets that move a polygon pair to the extremes of the doubles.
 PAIR_SCALES = [1.0, 0.5, 3.0, 1e-300, 2.0**-1060, 1e300, 1e307, 2.0**1020]
 PAIR_OFFSETS = [0.0, 1.0, -0.1, 1e15, -1e300, 2.0**-1070]
+
+_MAX = float(np.finfo(np.float64).max)
+_TINY = 5e-324  # the smallest subnormal
+_MIN_NORMAL = float(np.finfo(np.float64).tiny)
+
+
+def extreme_angles() -> np.ndarray:
+    """Angles (degrees, float64) at the edges of the exact sine and cosine: signed zeros,
+    subnormals and the smallest normals, every multiple of 45 from -1440 to 1440 and each one
+    ulp either side (the quadrant boundaries, where the nearest quadrant changes), multiples
+    of 45 and 90 up to the largest double, the largest doubles and their neighbours, the
+    infinities and nan."""
+    eights = 45.0 * np.arange(-32, 33)
+    powers = np.concatenate([45.0 * 2.0 ** np.arange(0, 1018), 90.0 * 2.0 ** np.arange(0, 1017)])
+    huge = np.array([_MAX, np.nextafter(_MAX, 0.0), 1.7e308, 1e308, 2.0**1023, 360.0 * 2.0**1015])
+    small = np.array([0.0, _TINY, 2 * _TINY, _MIN_NORMAL, np.nextafter(_MIN_NORMAL, 0.0), 1e-300, 2.0**-1000])
+    near = np.concatenate([np.nextafter(eights, np.inf), np.nextafter(eights, -np.inf)])
+    finite = np.concatenate([eights, near, powers, huge, small])
+    return np.concatenate([finite, -finite, [np.inf, -np.inf, np.nan]])
+
+
+#: One angle for the exact sine and cosine: any double at all (nan, infinities,
+#: subnormals, signed zeros), one of :func:`extreme_angles`, an integer multiple of 45
+#: (exact quadrant boundaries, as large as 2**60 times 45), or a playfield angle.
+angle_values = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True, allow_subnormal=True),
+    st.sampled_from(extreme_angles().tolist()),
+    st.integers(-(2**60), 2**60).map(lambda k: 45.0 * k),
+    st.floats(-720.0, 720.0),
+)
