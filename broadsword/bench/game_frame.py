@@ -106,11 +106,12 @@ def run_game_frames(
     settle()  # as the game does when a stage starts (game/heap.py)
     clock = time.perf_counter
     rows, counts, own, beams = [], [], [], []
-    pilots = []
+    pilots, cpus = [], []
     for _ in range(frames):
         tp = clock()
         action = pilot(world)  # the bench's stand-in for the player's hands: timed apart
         t0 = clock()
+        c0 = time.process_time()  # this process's CPU time: what a quiet host would give
         pilots.append((t0 - tp) * 1e3)
         ev = runner.step(action)  # the play scene's own step (Play.step): world, recording, digests
         renderer.on_events(ev, world)
@@ -119,6 +120,7 @@ def run_game_frames(
         t2 = clock()
         _present(screen)
         t3 = clock()
+        cpus.append((time.process_time() - c0) * 1e3)
         collide = world.collision.result.ms if world.collision is not None else 0.0
         rows.append(((t1 - t0) * 1e3 - collide, collide, (t2 - t1) * 1e3, (t3 - t2) * 1e3))
         counts.append(world.enemy_bullets.n)
@@ -136,6 +138,8 @@ def run_game_frames(
         "render_ms": float(med[2]),
         "present_ms": float(med[3]),
         "pilot_ms": float(np.median(pilots)),
+        "cpu_ms": float(np.median(cpus)),  # the median frame's process CPU time (step to present)
+        "max_cpu_ms": float(max(cpus)),
         "max_ms": float(total.max()),
         "level": Path(str(level)).stem,
         "frames": frames,

@@ -33,20 +33,12 @@ BLINK = 4
 OVERLAY_WARNING, OVERLAY_NODE = (255, 80, 220), (255, 255, 255)
 
 
-#: A chain's outline is filled in runs of this many segments (a fill's cost grows with its
-#: rows times its edges: short runs are cheaper than one long outline).
-CHUNK = 8
-
-
-def _outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list[list[tuple[float, float]]]:
-    """Each chain's outline as one pygame polygon: its nodes offset by half their width
-    along the mitred normal (the two segments' normals' mean, stretched by the secant of
-    half the bend, at most twice the half width), out along the left and back along the
-    right, in runs of :data:`CHUNK` segments. A chain of two nodes is exactly its one piece; at a bend the mitre meets the
-    pieces' inner edges where they cross and reaches past the bevel by ``h (sec(a/2) - 1)``
-    (a bend of ``a``: under 0.01 px for the curvy lasers' few degrees a node). A few polygons
-    a chain, not one a piece: 200 curvy lasers of 64 nodes are 4,800 fills a frame, not
-    75,000 (docs/PERFORMANCE.md). Drawing only: never on the path to state."""
+def _mitres(nodes: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """(N, 2): each node's mitre of the chains (nodes (N, 2), chains starting at ``starts``
+    (L,)): the two segments' unit normals' mean, stretched by the secant of half the bend
+    (length ``2 / |a|`` for the normals' sum ``a``, at most 2); a chain's end node has its
+    one segment's normal. Offsetting a node by half its width times its mitre gives its
+    outline's corners (:func:`_outlines`); the glow, body and core share it. Drawing only."""
     n = len(nodes)
     d = nodes[1:] - nodes[:-1]
     length = np.hypot(d[:, 0], d[:, 1])
@@ -56,15 +48,31 @@ def _outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list
     before, after = np.vstack([u[:1], u]), np.vstack([u, u[-1:]])  # the segments each side of a node
     before[starts], after[ends] = after[starts], before[ends]  # a chain's ends: its own segment only
     a = before + after
-    m = a * (2.0 / np.maximum((a * a).sum(axis=1), 1.0))[:, None]  # the mitre: length 2 / |a|, at most 2
-    h = (0.5 * widths)[:, None] * m
-    left, right = (nodes + h).tolist(), (nodes - h).tolist()
-    out = []
-    for i, j in zip(starts.tolist(), ends.tolist()):
-        for k in range(i, j, CHUNK):  # runs of CHUNK segments sharing their end nodes' offsets: no seam
-            e = min(k + CHUNK, j) + 1
-            out.append(left[k:e] + right[k:e][::-1])
-    return out
+    return a * (2.0 / np.maximum((a * a).sum(axis=1), 1.0))[:, None]
+
+
+def _outlines(nodes: np.ndarray, mitres: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list[list[list[float]]]:
+    """Each chain's outline (nodes (N, 2), their :func:`_mitres` (N, 2), widths (N,), chains
+    starting at ``starts`` (L,)) as one pygame polygon: its nodes offset by half their width
+    along the mitre, out along the left and back along the right. A chain of two nodes is
+    exactly its one piece; at a bend the mitre meets the pieces' inner edges where they
+    cross and reaches past the bevel by ``h (sec(a/2) - 1)`` (a bend of ``a``: under 0.01 px
+    for the curvy lasers' few degrees a node). Every corner of every outline is computed at
+    once and listed once: one fill a laser and no Python a node (200 curvy lasers of 64
+    nodes: 200 fills a pass, not 1,600 runs of 8 segments nor 12,600 pieces;
+    docs/PERFORMANCE.md). Drawing only: never on the path to state."""
+    n = len(nodes)
+    ends = np.append(starts[1:], n) - 1
+    h = (0.5 * widths)[:, None] * mitres
+    # Chain [i, j] is outline rows [2i, 2j + 2): the left of node k at i + k (out), its
+    # right at i + 2j + 1 - k (back); every chain's at once.
+    sizes = ends - starts + 1
+    first, last, k = np.repeat(starts, sizes), np.repeat(ends, sizes), np.arange(n)
+    flat = np.empty((2 * n, 2))
+    flat[first + k] = nodes + h
+    flat[first + 2 * last + 1 - k] = nodes - h
+    pts = flat.tolist()
+    return [pts[2 * i : 2 * j + 2] for i, j in zip(starts.tolist(), ends.tolist(), strict=True)]
 
 
 def _by_kind(lasers: Lasers, rows: list[int]) -> dict[LaserKind, list[int]]:
@@ -106,16 +114,17 @@ def draw_chains(surf: pygame.Surface, chains: list[tuple[tuple[np.ndarray, np.nd
     wide) over them. What :func:`draw_lasers` and the palette check
     (:mod:`.palette_check`) draw."""
     glow = pygame.Surface(surf.get_size())
-    for (nodes, widths, starts), colour in chains:
+    mitres = [_mitres(nodes, starts) for (nodes, _, starts), _ in chains]  # shared by the three passes
+    for ((nodes, widths, starts), colour), m in zip(chains, mitres, strict=True):
         dim = tuple(int(c * GLOW_DIM) for c in colour)
-        for poly in _outlines(nodes, widths * GLOW, starts):
+        for poly in _outlines(nodes, m, widths * GLOW, starts):
             pygame.draw.polygon(glow, dim, poly)
-        for poly in _outlines(nodes, widths, starts):
+        for poly in _outlines(nodes, m, widths, starts):
             pygame.draw.polygon(glow, colour, poly)
     surf.blit(glow, (0, 0), special_flags=pygame.BLEND_RGB_ADD)
-    for (nodes, widths, starts), colour in chains:
+    for ((nodes, widths, starts), colour), m in zip(chains, mitres, strict=True):
         core = tuple(min(255, 200 + c // 4) for c in colour)
-        for poly in _outlines(nodes, np.maximum(widths * CORE, 1.0), starts):
+        for poly in _outlines(nodes, m, np.maximum(widths * CORE, 1.0), starts):
             pygame.draw.polygon(surf, core, poly)
 
 

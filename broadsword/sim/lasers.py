@@ -91,6 +91,44 @@ def laser_pool(capacity: int = 8) -> Pool:
     )
 
 
+class SpecTable:
+    """The level's laser specs as parallel arrays (each (S,), indexed by a row's ``which``),
+    so the step reads every row's spec at once: ``curvy`` (bool), ``part``, ``warn`` and
+    ``on`` (whole steps, :func:`frames`), ``nodes`` and ``spacing`` (int64); ``turn``,
+    ``wave``, ``period``, ``step`` (``speed * DT``: a curvy head's move a step), ``width``
+    and ``tip`` (float64). Each value is computed as the per-row code did, so it is the
+    same double."""
+
+    def __init__(self, specs: tuple[LaserSpec, ...]):
+        def ints(values: list[int]) -> np.ndarray:
+            return np.array(values, dtype=np.int64)
+
+        def floats(values: list[float]) -> np.ndarray:
+            return np.array(values, dtype=np.float64)
+
+        self.curvy = np.array([s.kind is LaserKind.CURVY for s in specs], dtype=bool)
+        self.part = ints([s.part for s in specs])
+        self.warn = ints([frames(s.warn) for s in specs])
+        self.on = ints([frames(s.on) for s in specs])
+        self.nodes = ints([s.nodes for s in specs])
+        self.spacing = ints([s.spacing for s in specs])
+        self.turn = floats([s.turn for s in specs])
+        self.wave = floats([s.wave for s in specs])
+        self.period = floats([s.period for s in specs])
+        self.step = floats([s.speed * DT for s in specs])
+        self.width = floats([s.width for s in specs])
+        self.tip = floats([s.tip for s in specs])
+
+
+def part_rows(parts: Pool, part: np.ndarray) -> np.ndarray:
+    """(K,) int64: the row of each boss part in ``part`` (K,) in ``parts`` (kept in part
+    order), -1 where it is gone."""
+    i = np.searchsorted(parts.part, part)
+    at = np.minimum(i, max(parts.n - 1, 0))
+    found = (i < parts.n) & (parts.part[at] == part) if parts.n else np.zeros(len(part), dtype=bool)
+    return np.where(found, i, -1)
+
+
 def part_row(parts: Pool, part: int) -> int | None:
     """The row of boss part ``part`` in ``parts`` (kept in part order), or None if it is gone."""
     i = int(np.searchsorted(parts.part, part))
@@ -106,6 +144,7 @@ class Lasers:
         self.specs: tuple[LaserSpec, ...] = tuple(s for ph in phases for s in ph.lasers)
         self.first = np.cumsum([0] + [len(ph.lasers) for ph in phases]).tolist()
         self.difficulty = difficulty
+        self.table = SpecTable(self.specs)
         self.pool = laser_pool()
 
     # ------------------------------------------------------------------ what each is now
@@ -120,7 +159,9 @@ class Lasers:
     def live_rows(self) -> list[int]:
         """The rows that collide now: on (past their warning), with at least two nodes."""
         p = self.pool
-        return [i for i in range(p.n) if int(p.count[i]) >= 2 and not self.warning(i)]
+        t, j = self.table, p.which
+        warning = ~t.curvy[j] & (p.age < t.warn[j])
+        return np.flatnonzero((p.count >= 2) & ~warning).tolist()
 
     def widths(self, row: int) -> np.ndarray:
         """(count,) float64: the full width at each node of row ``row``, ``width`` at the
@@ -133,11 +174,18 @@ class Lasers:
     def chains(self, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(nodes (N, 2), widths (N,), starts (L,))`` of ``rows``, for
         :func:`~broadsword.collision.lasers.laser_pieces`."""
-        p = self.pool
-        counts = [int(p.count[i]) for i in rows]
-        nodes = np.concatenate([p.nodes[i, :c] for i, c in zip(rows, counts, strict=True)])
-        widths = np.concatenate([self.widths(i) for i in rows])
-        starts = np.cumsum([0] + counts[:-1]).astype(np.int64)
+        p, t = self.pool, self.table
+        at = np.asarray(rows, dtype=np.int64)
+        counts = p.count[at]
+        most = int(counts.max()) if len(at) else 0
+        used = np.arange(most)[None, :] < counts[:, None]  # (L, most): each row's nodes in use
+        nodes = p.nodes[at, :most][used]  # row after row, node after node
+        # As widths(): width, or width + (tip - width) (k / (count - 1)), the same operations a node.
+        w, tip = t.width[p.which[at]][:, None], t.tip[p.which[at]][:, None]
+        k = np.arange(most, dtype=np.float64)[None, :]
+        tapered = w + (tip - w) * (k / np.maximum(counts - 1, 1)[:, None])
+        widths = np.where(tip == w, w, tapered)[used]
+        starts = np.concatenate([[0], np.cumsum(counts[:-1])]).astype(np.int64)
         return nodes, widths, starts
 
     def pieces(self, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -198,21 +246,19 @@ class Lasers:
         if boss is None or not boss.fighting:
             p.clear()
             return
-        parts = boss.parts
-        keep = np.ones(p.n, dtype=bool)
-        for i in range(p.n):
-            s = self.spec_of(i)
-            p.age[i] += 1
-            age = int(p.age[i])
-            row = part_row(parts, s.part)
-            if int(p.phase[i]) != boss.phase or row is None:
-                keep[i] = False
-            elif s.kind is LaserKind.CURVY:
-                keep[i] = age < frames(s.on) and self._curve(i, s, age)
-            else:
-                keep[i] = age < frames(s.warn) + frames(s.on)
-                if keep[i]:
-                    self._straight(i, s, age, parts.pos[row])
+        parts, t, j = boss.parts, self.table, p.which
+        p.age[:] += 1  # (in place: the pool's columns are views of its live rows)
+        age = p.age
+        row = part_rows(parts, t.part[j])
+        keep = (p.phase == boss.phase) & (row >= 0)
+        curvy = t.curvy[j]
+        straight = keep & ~curvy
+        keep &= np.where(curvy, age < t.on[j], age < t.warn[j] + t.on[j])
+        for i in np.flatnonzero(keep & straight).tolist():  # a few a phase: one at a time
+            self._straight(i, self.spec_of(i), int(age[i]), parts.pos[row[i]])
+        moving = np.flatnonzero(keep & curvy)
+        if len(moving):
+            keep[moving] = self._curve(moving)
         if not keep.all():
             p.keep(keep)
 
@@ -228,26 +274,35 @@ class Lasers:
         p.nodes[i, 1, 0], p.nodes[i, 1, 1] = origin[0] + vx, origin[1] + vy
         p.count[i] = 2
 
-    def _curve(self, i: int, s: LaserSpec, age: int) -> bool:
-        """Move row ``i``'s head and trail its nodes; False once every node is off the field."""
-        p = self.pool
-        t = age * DT
-        heading = float(p.heading[i]) + s.turn * t
-        if s.wave:
-            heading += s.wave * detmath.sin_deg(360.0 * (t / s.period))
-        vx, vy = detmath.velocity_deg(heading, s.speed * DT)
-        p.head[i, 0] += vx
-        p.head[i, 1] += vy
-        n = int(p.count[i])
-        if age % s.spacing == 0 or n == 1:  # the trail takes a new node; the head moves on from it
-            n = min(n + 1, s.nodes)
-            p.nodes[i, 1:n] = p.nodes[i, : n - 1].copy()
-            p.count[i] = n
-        p.nodes[i, 0] = p.head[i]
-        at = p.nodes[i, :n]
+    def _curve(self, rows: np.ndarray) -> np.ndarray:
+        """Move the heads of curvy rows ``rows`` (K,) and trail their nodes, all at once
+        (each row the same operations, in the same order, as one at a time). Returns (K,)
+        bool: False where a row's every node is off the field."""
+        p, t = self.pool, self.table
+        j = p.which[rows]
+        tt = p.age[rows] * DT
+        heading = p.heading[rows] + t.turn[j] * tt
+        wave = t.wave[j]
+        w = wave != 0  # a row with no wave adds nothing (not even a signed zero)
+        if w.any():
+            heading[w] += wave[w] * detmath.sin_deg(360.0 * (tt[w] / t.period[j][w]))
+        vx, vy = detmath.velocity_deg(heading, t.step[j])
+        p.head[rows, 0] += vx
+        p.head[rows, 1] += vy
+        n = p.count[rows]
+        take = (p.age[rows] % t.spacing[j] == 0) | (n == 1)  # the trail takes a new node
+        n = np.where(take, np.minimum(n + 1, t.nodes[j]), n)
+        most = int(n.max())
+        chain = p.nodes[rows, :most]  # (K, most, 2), a copy
+        shift = take[:, None] & (np.arange(1, most)[None, :] < n[:, None])  # node k takes node k - 1's place
+        chain[:, 1:] = np.where(shift[:, :, None], chain[:, :-1], chain[:, 1:])
+        chain[:, 0] = p.head[rows]  # the head moves on from the new node
+        p.nodes[rows, :most] = chain
+        p.count[rows] = n
         m = CULL_MARGIN
-        inside = (at[:, 0] > -m) & (at[:, 0] < FIELD[0] + m) & (at[:, 1] > -m) & (at[:, 1] < FIELD[1] + m)
-        return bool(inside.any())
+        x, y = chain[:, :, 0], chain[:, :, 1]
+        inside = (x > -m) & (x < FIELD[0] + m) & (y > -m) & (y < FIELD[1] + m)
+        return (inside & (np.arange(most)[None, :] < n[:, None])).any(axis=1)
 
     def fire(self, boss: Boss | None, player: np.ndarray, player_alive: bool, bomb_active: bool) -> int:
         """Fire the current phase's lasers that are due this step (by the boss's phase clock)
