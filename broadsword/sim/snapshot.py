@@ -399,9 +399,9 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
         frozenset({"rank", "max_steps", "_new", "_bullet_part"}),
     ),
     "CollisionStep": (frozenset({"pipeline"}), frozenset({"kinds", "graze", "ids"})),
-    "Pipeline": (  # the kernel is not state: numpy and numba give the same bits
+    "Pipeline": (  # the backend is not state: numpy and numba give the same bits
         frozenset({"rotation"}),
-        frozenset({"armatures", "broad_phase", "keep_tier_pairs", "kernel", "layers", "masks", "needs_vertices"})
+        frozenset({"armatures", "broad_phase", "keep_tier_pairs", "backend", "layers", "masks", "needs_vertices"})
         | frozenset({"tiers", "workspace", "laser_table"}),
     ),
 }
