@@ -22,7 +22,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
@@ -299,7 +298,8 @@ def laser_hits(piece_hits: np.ndarray, pieces: LaserPieces) -> np.ndarray:
     return np.column_stack([obj[first], laser[first], piece[first]]).astype(np.int64, copy=False)
 
 
-class Joined(NamedTuple):
+@dataclass(frozen=True)
+class Joined:
     """A frame's objects with its lasers' pieces after them (:func:`join`)."""
 
     posed: Posed  #: objects then pieces
