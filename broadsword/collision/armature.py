@@ -161,8 +161,8 @@ class Armature:
 
 
 def _is_convex(v: np.ndarray) -> bool:
-    n = len(v)
-    return all(orient(*v[i], *v[(i + 1) % n], *v[(i + 2) % n]) >= 0 for i in range(n))
+    n, p = len(v), v.tolist()  # Python floats: a product past the doubles is inf, silently, as orient expects
+    return all(orient(*p[i], *p[(i + 1) % n], *p[(i + 2) % n]) >= 0 for i in range(n))
 
 
 def _check_simple(v: np.ndarray, label: str) -> None:
