@@ -3,8 +3,9 @@
 Five parts of the pipeline have a compiled twin: the exact rotation's sine and cosine
 (:mod:`._trig_kernel`), posing and boxing (:mod:`._pose_kernel`), the bin grid's query
 (:mod:`._grid_kernel`), the ``aabb`` tier's box test (:mod:`._bounds_kernel`) and the
-exact narrow phase's float filter (:mod:`._narrow_kernel`). Each gives the same answers, in the same order, as the
-numpy code, which stays the reference the tests compare it with. :class:`Kernel` names
+exact narrow phase's float filter (:mod:`._narrow_kernel`); and so do the polygon fill and
+chain outlines the game draws its lasers with (:mod:`._raster_kernel`). Each gives the same
+answers, in the same order, as the numpy code, which stays the reference the tests compare it with. :class:`Kernel` names
 the choice; :func:`check_kernel` resolves the name (argument, ``BROADSWORD_KERNEL``, then
 numba when installed) for :func:`.backend.backend_for`, which turns it into the backend
 object the pipeline calls; :func:`jit` compiles a kernel (the kernel modules import it;

@@ -1,7 +1,7 @@
 """Loading every compiled kernel at once, before the first frame (numba; optional).
 
 The kernel modules (:mod:`._pose_kernel`, :mod:`._grid_kernel`, :mod:`._bounds_kernel`,
-:mod:`._narrow_kernel`, :mod:`._trig_kernel`) import :func:`._kernel.jit`; this module
+:mod:`._narrow_kernel`, :mod:`._trig_kernel`, :mod:`._raster_kernel`) import :func:`._kernel.jit`; this module
 imports them. It lives apart from :mod:`._kernel` so that the imports point one way
 (``_warm`` -> kernels -> ``_kernel``): no import loop inside ``collision``.
 """
@@ -21,15 +21,16 @@ _KERNEL_FUNCTIONS = {
     "_narrow_kernel": "_filter_py",
     "_grid_kernel": "_grid_pairs_py",
     "_pose_kernel": "_pose_py",
+    "_raster_kernel": "_fill_py",
     "_trig_kernel": "_sincos_py",
 }
 
 
 def _kernel_modules() -> list[Any]:
     """The modules holding the compiled kernels, each with ``load()`` and its Python twin."""
-    from . import _bounds_kernel, _grid_kernel, _narrow_kernel, _pose_kernel, _trig_kernel
+    from . import _bounds_kernel, _grid_kernel, _narrow_kernel, _pose_kernel, _raster_kernel, _trig_kernel
 
-    return [_bounds_kernel, _narrow_kernel, _grid_kernel, _pose_kernel, _trig_kernel]
+    return [_bounds_kernel, _narrow_kernel, _grid_kernel, _pose_kernel, _trig_kernel, _raster_kernel]
 
 
 def kernels_cached() -> bool:

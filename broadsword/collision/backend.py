@@ -12,7 +12,15 @@ stage (``Backend``)  numpy reference                             compiled twin (
 ``boxes_overlap``    ``bounds.boxes_overlap`` (``aabb`` tier)    ``_bounds_kernel``
 ``collide_columns``  ``narrow.polygons_collide_reference``       ``_narrow_kernel``: a float filter; what it
 ``collide_padded``   (the exact narrow phase)                    cannot certify goes to the reference
+``chain_outlines``   ``raster.chain_outlines``                   ``_raster_kernel``: the same operations, bits
+``fill_polygons``    ``raster.fill_polygons``                    ``_raster_kernel``: the same rule, pixels
 ===================  ==========================================  ===========================================
+
+The last two are not pipeline stages: they outline chains of nodes and fill polygons into a
+pixel buffer (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
+them through the world's pipeline's backend (200 curvy lasers of 64 nodes are 22,000
+outline edges a pass: the compiled twins take a millisecond or so where pygame's polygon
+fill and the numpy outlines took tens; docs/PERFORMANCE.md).
 
 :func:`backend_for` is the one place a backend is chosen, with the one default: an explicit
 choice (a backend, a :class:`~._kernel.Kernel` or its name), else the ``BROADSWORD_KERNEL``
@@ -38,7 +46,7 @@ from typing import Protocol, TypeVar
 
 import numpy as np
 
-from . import _bounds_kernel, _narrow_kernel, _pose_kernel, _trig_kernel, bounds, detmath
+from . import _bounds_kernel, _narrow_kernel, _pose_kernel, _raster_kernel, _trig_kernel, bounds, detmath, raster
 from ._kernel import Kernel, check_kernel
 from ._warm import warm_kernel
 from .arguments import ArgumentTypeError
@@ -152,6 +160,21 @@ class Backend(Protocol):
         (K2, P) (writeable float64), pair by column. ``reference`` as above."""
         ...
 
+    def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
+        """(2n, 2) float64: the chains of ``nodes`` (n, 2) float64, ``widths`` (n,) float64 wide,
+        chain ``j`` from ``starts[j]`` (k,) int64, each outlined as one polygon for
+        :meth:`fill_polygons` (from row ``2 * starts[j]``; :func:`.raster.chain_outlines`).
+        Raises ``ValueError`` naming the argument that is not as stated
+        (:func:`.raster.check_chains`)."""
+        ...
+
+    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+        """Set to ``value`` the pixels of ``buf`` (h, w) uint32 inside the polygons ``points``
+        (n, 2) float64, polygon ``j`` from ``starts[j]`` (k,) int64 (:mod:`.raster`'s rule:
+        pixel centres, nonzero winding, clipped to ``buf``). Raises ``ValueError`` naming the
+        argument that is not as stated (:func:`.raster.check_fill`)."""
+        ...
+
 
 class NumpyBackend:
     """The reference: every stage is the numpy code."""
@@ -219,6 +242,14 @@ class NumpyBackend:
         reference: PaddedNarrow,
     ) -> np.ndarray:
         return reference(px, py, qx, qy, workspace)
+
+    def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
+        raster.check_chains(nodes, widths, starts)
+        return raster.chain_outlines(nodes, widths, starts)
+
+    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+        raster.check_fill(buf, points, starts)
+        raster.fill_polygons(buf, points, starts, value)
 
 
 class NumbaBackend:
@@ -301,6 +332,14 @@ class NumbaBackend:
         if rest.size:
             out[rest] = reference(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], workspace)
         return out
+
+    def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
+        raster.check_chains(nodes, widths, starts)
+        return _raster_kernel.chain_outlines(nodes, widths, starts)
+
+    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+        raster.check_fill(buf, points, starts)
+        _raster_kernel.fill_polygons(buf, points, starts, value)
 
 
 def pose_and_box_reference(

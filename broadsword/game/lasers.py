@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from ..data.levels import LaserKind
+from ..collision import Backend
 from ..sim import World
-from ..sim.lasers import Lasers, frames
+from ..sim.lasers import frames
 from .palettes import LASER_COLOURS, RGB, BulletPalette
 
 #: Each kind's colour (the body) in the standard palette; the glow is it dimmed, the core
@@ -33,55 +33,6 @@ BLINK = 4
 OVERLAY_WARNING, OVERLAY_NODE = (255, 80, 220), (255, 255, 255)
 
 
-def _mitres(nodes: np.ndarray, starts: np.ndarray) -> np.ndarray:
-    """(N, 2): each node's mitre of the chains (nodes (N, 2), chains starting at ``starts``
-    (L,)): the two segments' unit normals' mean, stretched by the secant of half the bend
-    (length ``2 / |a|`` for the normals' sum ``a``, at most 2); a chain's end node has its
-    one segment's normal. Offsetting a node by half its width times its mitre gives its
-    outline's corners (:func:`_outlines`); the glow, body and core share it. Drawing only."""
-    n = len(nodes)
-    d = nodes[1:] - nodes[:-1]
-    length = np.hypot(d[:, 0], d[:, 1])
-    length[length == 0] = 1.0
-    u = np.column_stack([-d[:, 1], d[:, 0]]) / length[:, None]  # each segment's unit normal
-    ends = np.append(starts[1:], n) - 1
-    before, after = np.vstack([u[:1], u]), np.vstack([u, u[-1:]])  # the segments each side of a node
-    before[starts], after[ends] = after[starts], before[ends]  # a chain's ends: its own segment only
-    a = before + after
-    return a * (2.0 / np.maximum((a * a).sum(axis=1), 1.0))[:, None]
-
-
-def _outlines(nodes: np.ndarray, mitres: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> list[list[list[float]]]:
-    """Each chain's outline (nodes (N, 2), their :func:`_mitres` (N, 2), widths (N,), chains
-    starting at ``starts`` (L,)) as one pygame polygon: its nodes offset by half their width
-    along the mitre, out along the left and back along the right. A chain of two nodes is
-    exactly its one piece; at a bend the mitre meets the pieces' inner edges where they
-    cross and reaches past the bevel by ``h (sec(a/2) - 1)`` (a bend of ``a``: under 0.01 px
-    for the curvy lasers' few degrees a node). Every corner of every outline is computed at
-    once and listed once: one fill a laser and no Python a node (200 curvy lasers of 64
-    nodes: 200 fills a pass, not 1,600 runs of 8 segments nor 12,600 pieces;
-    docs/PERFORMANCE.md). Drawing only: never on the path to state."""
-    n = len(nodes)
-    ends = np.append(starts[1:], n) - 1
-    h = (0.5 * widths)[:, None] * mitres
-    # Chain [i, j] is outline rows [2i, 2j + 2): the left of node k at i + k (out), its
-    # right at i + 2j + 1 - k (back); every chain's at once.
-    sizes = ends - starts + 1
-    first, last, k = np.repeat(starts, sizes), np.repeat(ends, sizes), np.arange(n)
-    flat = np.empty((2 * n, 2))
-    flat[first + k] = nodes + h
-    flat[first + 2 * last + 1 - k] = nodes - h
-    pts = flat.tolist()
-    return [pts[2 * i : 2 * j + 2] for i, j in zip(starts.tolist(), ends.tolist(), strict=True)]
-
-
-def _by_kind(lasers: Lasers, rows: list[int]) -> dict[LaserKind, list[int]]:
-    out: dict[LaserKind, list[int]] = {}
-    for i in rows:
-        out.setdefault(lasers.spec_of(i).kind, []).append(i)
-    return out
-
-
 def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPalette = BulletPalette.STANDARD) -> None:
     """``world``'s lasers over ``surf``, in ``palette``'s colours: warning lines (thin,
     blinking, brighter as the laser nears turning on), then the lit lasers' glow, body and
@@ -91,7 +42,7 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPa
     if not p.n:
         return
     colours = LASER_COLOURS[palette]
-    warn = [i for i in range(p.n) if lasers.warning(i)]
+    warn = lasers.warning_rows()
     if warn and (tick // BLINK) % 2 == 0:
         layer = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
         for i in warn:
@@ -103,29 +54,60 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPa
     live = lasers.live_rows()
     if not live:
         return
-    chains = [(lasers.chains(rows), colours[kind]) for kind, rows in _by_kind(lasers, live).items()]
-    draw_chains(surf, chains)
+    chains = [(lasers.chains(rows), colours[kind]) for kind, rows in lasers.by_kind(live).items()]
+    draw_chains(surf, chains, world.pipeline.backend)
 
 
-def draw_chains(surf: pygame.Surface, chains: list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]]) -> None:
+#: One fill of a layer: the outlines (2N, 2), their starts (L,) and the colour.
+Fill = tuple[np.ndarray, np.ndarray, RGB]
+
+
+def draw_chains(
+    surf: pygame.Surface, chains: list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]], backend: Backend
+) -> None:
     """Lit lasers over ``surf``: each ``((nodes (N, 2), widths (N,), starts (L,)), colour)``
     of ``chains`` as its glow (``GLOW`` times wider, dimmed) and body (its hit shape: one
-    outline a laser, :func:`_outlines`) added over the field (``BLEND_RGB_ADD``), then its near-white core (``CORE`` times as
-    wide) over them. What :func:`draw_lasers` and the palette check
-    (:mod:`.palette_check`) draw."""
-    glow = pygame.Surface(surf.get_size())
-    mitres = [_mitres(nodes, starts) for (nodes, _, starts), _ in chains]  # shared by the three passes
-    for ((nodes, widths, starts), colour), m in zip(chains, mitres, strict=True):
-        dim = tuple(int(c * GLOW_DIM) for c in colour)
-        for poly in _outlines(nodes, m, widths * GLOW, starts):
-            pygame.draw.polygon(glow, dim, poly)
-        for poly in _outlines(nodes, m, widths, starts):
-            pygame.draw.polygon(glow, colour, poly)
-    surf.blit(glow, (0, 0), special_flags=pygame.BLEND_RGB_ADD)
-    for ((nodes, widths, starts), colour), m in zip(chains, mitres, strict=True):
-        core = tuple(min(255, 200 + c // 4) for c in colour)
-        for poly in _outlines(nodes, m, np.maximum(widths * CORE, 1.0), starts):
-            pygame.draw.polygon(surf, core, poly)
+    mitred outline a laser) added over the field (``BLEND_RGB_ADD``), then its near-white
+    core (``CORE`` times as wide, at least a pixel) over them. Each pass is one outline a
+    laser and one polygon fill of them all into a 32-bit layer, both by ``backend``
+    (:meth:`~broadsword.collision.Backend.chain_outlines`,
+    :meth:`~broadsword.collision.Backend.fill_polygons`: pixel centres, nonzero winding).
+    What :func:`draw_lasers` and the palette check (:mod:`.palette_check`) draw."""
+    added: list[Fill] = []
+    cores: list[Fill] = []
+    for (nodes, widths, starts), colour in chains:
+        corners = 2 * starts
+        added.append((backend.chain_outlines(nodes, widths * GLOW, starts), corners, _dim(colour)))
+        added.append((backend.chain_outlines(nodes, widths, starts), corners, colour))
+        core = backend.chain_outlines(nodes, np.maximum(widths * CORE, 1.0), starts)
+        cores.append((core, corners, _whiten(colour)))
+    surf.blit(_layer(surf.get_size(), added, backend), (0, 0), special_flags=pygame.BLEND_RGB_ADD)
+    over = _layer(surf.get_size(), cores, backend)
+    over.set_colorkey(0)  # the cores are near white: black is what they left alone
+    surf.blit(over, (0, 0))
+
+
+def _dim(colour: RGB) -> RGB:
+    """The glow's colour: ``colour`` times ``GLOW_DIM``."""
+    r, g, b = (int(c * GLOW_DIM) for c in colour)
+    return r, g, b
+
+
+def _whiten(colour: RGB) -> RGB:
+    """The core's colour: near white, tinted by ``colour`` (never black: the core layer's key)."""
+    r, g, b = (min(255, 200 + c // 4) for c in colour)
+    return r, g, b
+
+
+def _layer(size: tuple[int, int], fills: list[Fill], backend: Backend) -> pygame.Surface:
+    """A black 32-bit surface of ``size`` with ``fills`` filled in order (a later one over
+    an earlier one). The pixel view is released on return, so the layer can be blitted."""
+    layer = pygame.Surface(size, 0, 32)
+    pixels = pygame.surfarray.pixels2d(layer)  # (w, h): .T is (h, w), rows of pixels
+    for points, starts, colour in fills:
+        backend.fill_polygons(pixels.T, points, starts, layer.map_rgb(colour))
+    del pixels
+    return layer
 
 
 def draw_laser_armatures(surf: pygame.Surface, world: World) -> None:

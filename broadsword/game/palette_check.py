@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 import pygame
 
+from ..collision import backend_for
 from ..data import list_levels, load_level, resolve_level
 from ..data.levels import Theme
 from ..sim import FIELD
@@ -100,7 +101,7 @@ def laser_colours(palette: BulletPalette) -> dict[str, np.ndarray]:
     for kind, colour in LASER_COLOURS[palette].items():
         surf = pygame.Surface(size)
         chain = (np.array([[0.0, y], [size[0], y]]), np.full(2, LASER_WIDTH), np.zeros(1, dtype=np.int64))
-        draw_chains(surf, [(chain, colour)])
+        draw_chains(surf, [(chain, colour)], backend_for())
         body = pygame.surfarray.array3d(surf)[8:-8, y - half : y + half]  # clear of the ends
         out[f"{kind.value} laser"] = to_linear(body.reshape(-1, 3)).mean(axis=0)
     return out

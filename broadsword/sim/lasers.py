@@ -91,10 +91,15 @@ def laser_pool(capacity: int = 8) -> Pool:
     )
 
 
+#: Every laser kind, in the order :attr:`SpecTable.kind` numbers them.
+KINDS = tuple(LaserKind)
+
+
 class SpecTable:
     """The level's laser specs as parallel arrays (each (S,), indexed by a row's ``which``),
     so the step reads every row's spec at once: ``curvy`` (bool), ``part``, ``warn`` and
-    ``on`` (whole steps, :func:`frames`), ``nodes`` and ``spacing`` (int64); ``turn``,
+    ``on`` (whole steps, :func:`frames`), ``kind`` (each spec's :class:`LaserKind` as its
+    index in ``KINDS``), ``nodes`` and ``spacing`` (int64); ``turn``,
     ``wave``, ``period``, ``step`` (``speed * DT``: a curvy head's move a step), ``width``
     and ``tip`` (float64). Each value is computed as the per-row code did, so it is the
     same double."""
@@ -107,6 +112,7 @@ class SpecTable:
             return np.array(values, dtype=np.float64)
 
         self.curvy = np.array([s.kind is LaserKind.CURVY for s in specs], dtype=bool)
+        self.kind = ints([KINDS.index(s.kind) for s in specs])
         self.part = ints([s.part for s in specs])
         self.warn = ints([frames(s.warn) for s in specs])
         self.on = ints([frames(s.on) for s in specs])
@@ -156,12 +162,25 @@ class Lasers:
         s = self.spec_of(row)
         return s.kind is not LaserKind.CURVY and int(self.pool.age[row]) < frames(s.warn)
 
+    def _warning(self) -> np.ndarray:
+        """(n,) bool: each row is a straight laser or beam still showing its warning line."""
+        p = self.pool
+        t, j = self.table, p.which[: p.n]
+        return ~t.curvy[j] & (p.age[: p.n] < t.warn[j])
+
+    def warning_rows(self) -> list[int]:
+        """The rows showing their warning line (:meth:`warning`), all at once."""
+        return np.flatnonzero(self._warning()).tolist()
+
     def live_rows(self) -> list[int]:
         """The rows that collide now: on (past their warning), with at least two nodes."""
-        p = self.pool
-        t, j = self.table, p.which
-        warning = ~t.curvy[j] & (p.age < t.warn[j])
-        return np.flatnonzero((p.count >= 2) & ~warning).tolist()
+        return np.flatnonzero((self.pool.count[: self.pool.n] >= 2) & ~self._warning()).tolist()
+
+    def by_kind(self, rows: list[int]) -> dict[LaserKind, list[int]]:
+        """``rows`` grouped by their laser's kind (kinds in :data:`KINDS` order, rows in
+        their order within each)."""
+        kind = self.table.kind[self.pool.which[np.asarray(rows, dtype=np.int64)]]
+        return {k: np.asarray(rows)[kind == i].tolist() for i, k in enumerate(KINDS) if (kind == i).any()}
 
     def widths(self, row: int) -> np.ndarray:
         """(count,) float64: the full width at each node of row ``row``, ``width`` at the
@@ -200,11 +219,12 @@ class Lasers:
         if not rows:
             return LaserSet.pack(()), ()
         p = self.pool
-        tags = []
-        for i in rows:
-            j, phase = int(p.which[i]), int(p.phase[i])
-            tags.append(LaserTag(i, phase, j - self.first[phase], self.specs[j].kind.value))
-        return LaserSet.of(*self.chains(rows)), tuple(tags)
+        at = np.asarray(rows, dtype=np.int64)
+        which, phase = p.which[at], p.phase[at]
+        entry = which - np.asarray(self.first, dtype=np.int64)[phase]
+        kind = [KINDS[k].value for k in self.table.kind[which].tolist()]
+        tags = tuple(map(LaserTag, rows, phase.tolist(), entry.tolist(), kind))
+        return LaserSet.of(*self.chains(rows)), tags
 
     def segments_ahead(self, ahead: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Where the lasers' segments will be ``ahead`` (H,) steps from now, as a player sees
@@ -293,12 +313,16 @@ class Lasers:
         take = (p.age[rows] % t.spacing[j] == 0) | (n == 1)  # the trail takes a new node
         n = np.where(take, np.minimum(n + 1, t.nodes[j]), n)
         most = int(n.max())
-        chain = p.nodes[rows, :most]  # (K, most, 2), a copy
-        shift = take[:, None] & (np.arange(1, most)[None, :] < n[:, None])  # node k takes node k - 1's place
-        chain[:, 1:] = np.where(shift[:, :, None], chain[:, :-1], chain[:, 1:])
-        chain[:, 0] = p.head[rows]  # the head moves on from the new node
-        p.nodes[rows, :most] = chain
+        trail = rows[take]  # only the rows taking a node shift (every ``spacing`` steps each)
+        if len(trail):
+            nt = n[take]
+            chain = p.nodes[trail, :most]  # (T, most, 2), a copy
+            shift = np.arange(1, most)[None, :] < nt[:, None]  # node k takes node k - 1's place
+            chain[:, 1:] = np.where(shift[:, :, None], chain[:, :-1], chain[:, 1:])
+            p.nodes[trail, :most] = chain
+        p.nodes[rows, 0] = p.head[rows]  # the head moves on from the new node
         p.count[rows] = n
+        chain = p.nodes[rows, :most]
         m = CULL_MARGIN
         x, y = chain[:, :, 0], chain[:, :, 1]
         inside = (x > -m) & (x < FIELD[0] + m) & (y > -m) & (y < FIELD[1] + m)

@@ -475,6 +475,108 @@ def test_pipeline__reference_scene_with_and_without_sweeps(backends):
     assert total, "test bug: no hits to compare"
 
 
+# --------------------------------------------------------------------------- the polygon fill
+
+finite_coordinate = st.one_of(
+    st.floats(-40, 80, allow_nan=False),
+    st.integers(-8, 80).map(lambda i: i / 2),  # on pixel centres and edges: the ties
+    st.sampled_from([0.0, -0.0, 1e-300, -1e-300, 2.0**50, -(2.0**50), 2.0**50 + 2**-2, 1e300, -1e300]),
+)
+coordinate = st.one_of(finite_coordinate, st.sampled_from([math.inf, -math.inf, math.nan]))
+
+
+@st.composite
+def polygon_sets(draw) -> tuple[np.ndarray, np.ndarray]:
+    """(points (n, 2), starts (k,)): up to 6 polygons of 1 to 9 points, any doubles."""
+    sizes = draw(st.lists(st.integers(1, 9), min_size=0, max_size=6))
+    pts = [[draw(coordinate), draw(coordinate)] for _ in range(sum(sizes))]
+    starts = np.cumsum([0, *sizes])[:-1].astype(np.int64) if sizes else np.zeros(0, dtype=np.int64)
+    return np.array(pts, dtype=np.float64).reshape(-1, 2), starts
+
+
+def fill_both(backends, points, starts, shape=(48, 40)) -> np.ndarray:
+    """Both backends fill the same pixels, also into a view of a wider buffer; returns them."""
+    out = []
+    for b in backends:
+        buf = np.full(shape, 3, dtype=np.uint32)
+        b.fill_polygons(buf, points, starts, 0xFFFFFFFF)
+        wide = np.zeros((shape[0], shape[1] + 7), dtype=np.uint32)
+        b.fill_polygons(wide[:, 2 : 2 + shape[1]], points, starts, 9)  # strided rows
+        assert np.array_equal(wide[:, 2 : 2 + shape[1]] == 9, buf == 0xFFFFFFFF)
+        assert not wide[:, :2].any() and not wide[:, 2 + shape[1] :].any()
+        out.append(buf)
+    assert np.array_equal(out[0], out[1]), f"{np.sum(out[0] != out[1])} pixels differ"
+    return out[0]
+
+
+@PROPERTY
+@given(polygon_sets())
+def test_fill_polygons__property_any_double(backends, polys):
+    fill_both(backends, *polys)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_fill_polygons__thick_curves_as_the_lasers_draw_them(backends, seed):
+    """Hundreds of long thin outlines (the lasers' shape, bent back on themselves too) set
+    the same pixels, tens of thousands of them, through a buffer's transposed view as well."""
+    rng = np.random.default_rng(seed)
+    chains, starts, at = [], [], 0
+    for _ in range(150):
+        n = int(rng.integers(2, 64))
+        turn = np.cumsum(rng.normal(0, 0.3 if seed < 2 else 2.0, n))
+        centre = np.cumsum(np.column_stack([np.cos(turn), np.sin(turn)]) * 2.5, axis=0) + rng.uniform(-20, 500, 2)
+        normal = np.column_stack([-np.sin(turn), np.cos(turn)]) * rng.uniform(1, 12)
+        chains.append(np.concatenate([centre + normal, (centre - normal)[::-1]]))
+        starts.append(at)
+        at += 2 * n
+    points, first = np.concatenate(chains), np.array(starts, dtype=np.int64)
+    got = fill_both(backends, points, first, shape=(480, 400))
+    assert (got == 0xFFFFFFFF).sum() > 20_000
+    for b in backends:  # pygame's pixels2d view: (w, h) transposed to rows
+        buf = np.zeros((400, 480), dtype=np.uint32).T
+        b.fill_polygons(buf, points, first, 0xFFFFFFFF)
+        assert np.array_equal(buf == 0xFFFFFFFF, got == 0xFFFFFFFF)
+
+
+@st.composite
+def chain_sets(draw) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(nodes (n, 2), widths (n,), starts (k,)): up to 5 chains of 2 to 9 nodes, any finite
+    doubles, repeated nodes (zero-length segments) and sharp bends included."""
+    sizes = draw(st.lists(st.integers(2, 9), min_size=0, max_size=5))
+    value = st.one_of(finite_coordinate, st.just(3.0))
+    nodes = np.array([[draw(value), draw(value)] for _ in range(sum(sizes))], dtype=np.float64).reshape(-1, 2)
+    widths = np.array([draw(st.floats(0, 1e6)) for _ in range(sum(sizes))], dtype=np.float64)
+    starts = np.cumsum([0, *sizes])[:-1].astype(np.int64) if sizes else np.zeros(0, dtype=np.int64)
+    return nodes, widths, starts
+
+
+@PROPERTY
+@given(chain_sets())
+def test_chain_outlines__property_the_same_bits(backends, chains):
+    ref, got = (b.chain_outlines(*chains) for b in backends)
+    assert ref.shape == got.shape == (2 * len(chains[0]), 2)
+    assert bits(ref) == bits(got)
+    fill_both(backends, ref, 2 * chains[2])
+
+
+def test_fill_polygons__bad_arguments_named_alike(backends):
+    buf, pts, starts = np.zeros((4, 4), np.uint32), np.zeros((3, 2)), np.zeros(1, np.int64)
+    frozen = buf.copy()
+    frozen.flags.writeable = False
+    for b in backends:
+        for args, name in [
+            ((frozen, pts, starts), "buf"),
+            ((buf.astype(np.int32), pts, starts), "buf"),
+            ((buf, pts.astype(np.float32), starts), "points"),
+            ((buf, pts.ravel(), starts), "points"),
+            ((buf, pts, starts.astype(np.int32)), "starts"),
+            ((buf, pts, np.array([1], np.int64)), "starts"),
+            ((buf, pts, np.array([0, 3], np.int64)), "starts"),  # an empty last polygon
+        ]:
+            with pytest.raises(ValueError, match=f"^{name} must"):
+                b.fill_polygons(*args, 1)
+
+
 def test_require_numba__fails_and_names_the_test_extra(monkeypatch):
     """Without numba the suite fails (never skips), saying how to install it."""
     import kernels

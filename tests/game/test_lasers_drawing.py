@@ -123,27 +123,3 @@ def test_overlay__warning_axis_and_nodes_from_the_world():
     x, y = (int(v) for v in w.lasers.pool.nodes[0, 0])
     column = (pygame.surfarray.array3d(surf)[x, y : y + 400] == OVERLAY_WARNING).all(axis=1)
     assert 0.3 < column.mean() < 0.7  # dashed
-
-
-def test_outlines__every_chain_left_out_and_right_back_in_one_pass():
-    """The outlines computed for all chains at once are each chain's own: its nodes offset
-    by half their width along their mitres, out along the left and back along the right
-    (a chain of two nodes: exactly its one piece's four corners)."""
-    from broadsword.game.lasers import _mitres, _outlines
-
-    rng = np.random.default_rng(5)
-    sizes = [2, 5, 3, 9]
-    nodes = np.cumsum(rng.uniform(1.0, 4.0, (sum(sizes), 2)), axis=0)
-    widths = rng.uniform(2.0, 14.0, sum(sizes))
-    starts = np.cumsum([0] + sizes[:-1])
-    m = _mitres(nodes, starts)
-    polys = _outlines(nodes, m, widths, starts)
-    assert len(polys) == len(sizes)
-    for poly, i, n in zip(polys, starts.tolist(), sizes, strict=True):
-        h = 0.5 * widths[i : i + n, None] * m[i : i + n]
-        want = np.concatenate([nodes[i : i + n] + h, (nodes[i : i + n] - h)[::-1]])
-        assert np.array_equal(np.array(poly), want)
-    a, b = nodes[0], nodes[1]  # the two-node chain: its piece, a rectangle around a-b
-    u = np.array([-(b - a)[1], (b - a)[0]]) / np.hypot(*(b - a))
-    piece = [a + 0.5 * widths[0] * u, b + 0.5 * widths[1] * u, b - 0.5 * widths[1] * u, a - 0.5 * widths[0] * u]
-    assert np.allclose(np.array(polys[0]), piece, rtol=0, atol=1e-12)

@@ -1,0 +1,157 @@
+"""Filling many polygons into a pixel buffer at once: the scanline rule of the pixel tier
+(:func:`.pixels.rasterise`), for thousands of edges a call (the reference; the compiled
+twin is :mod:`._raster_kernel`, behind :meth:`.backend.Backend.fill_polygons`).
+
+The rule, exactly (both implementations compute the same doubles, in the same order, and
+so set the same pixels; ``tests/collision/test_backend_parity.py`` compares them):
+
+- Pixel ``(r, c)`` of a buffer covers ``[c, c + 1) x [r, r + 1)``; it is set when its
+  centre ``(c + 0.5, r + 0.5)`` lies inside a polygon by the **nonzero** winding rule
+  (a polygon that crosses itself, as a thick line does at a sharp bend, is filled, not
+  holed as even-odd would leave it).
+- An edge from ``(x0, y0)`` to ``(x1, y1)`` crosses row ``r`` when ``y0 <= r + 0.5 < y1``
+  (or the same with the ends swapped), at ``x = x0 + (r + 0.5 - y0) * (x1 - x0) / (y1 - y0)``,
+  winding +1 going down (``y1 > y0``), -1 going up. Horizontal edges cross no row.
+- Along a row, the crossings sorted by ``x``, the columns ``c`` with
+  ``x_i <= c + 0.5 < x_{i+1}`` are set wherever the winding after ``x_i`` is not zero:
+  ``ceil(x_i - 0.5) <= c < ceil(x_{i+1} - 0.5)``. So polygons that share an edge share no
+  pixel, and a polygon's pixels are those of :func:`.pixels.rasterise` (for a simple one).
+- Rows and columns outside the buffer are clipped; an edge with a coordinate beyond
+  ``LIMIT`` (``2**50`` pixels) in size, or not finite, is skipped (it crosses no row), so
+  every crossing is a finite double. Each polygon is filled on its own: two that overlap
+  both set the shared pixels (to the same value).
+
+:func:`chain_outlines` gives the polygons the game fills to draw a laser: each chain of
+nodes (a laser's polyline) as one outline, its nodes offset by half their width along their
+mitres.
+
+Presentation only (the game draws its lasers with both): never on the path to state.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["LIMIT", "chain_outlines", "check_chains", "check_fill", "fill_polygons"]
+
+#: The largest coordinate an edge may have and still be filled (pixels; see the module).
+LIMIT = float(2**50)
+
+
+def check_fill(buf: np.ndarray, points: np.ndarray, starts: np.ndarray) -> None:
+    """Refuse what :func:`fill_polygons` cannot fill: ``ValueError`` naming the argument.
+    ``buf`` a writable 2-D uint32 array; ``points`` (n, 2) float64; ``starts`` (k,) int64,
+    increasing, from 0, each polygon at least one point."""
+    if not isinstance(buf, np.ndarray) or buf.ndim != 2 or buf.dtype != np.uint32 or not buf.flags.writeable:
+        raise ValueError("buf must be a writable 2-D uint32 array")
+    if not isinstance(points, np.ndarray) or points.ndim != 2 or points.shape[1:] != (2,) or points.dtype != np.float64:
+        raise ValueError(f"points must be an (n, 2) float64 array, got {getattr(points, 'shape', type(points))}")
+    if not isinstance(starts, np.ndarray) or starts.ndim != 1 or starts.dtype != np.int64:
+        raise ValueError("starts must be a 1-D int64 array")
+    if len(starts) and (starts[0] != 0 or np.any(np.diff(np.append(starts, len(points))) < 1)):
+        raise ValueError("starts must begin at 0 and increase, each polygon at least one point")
+
+
+def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+    """Set to ``value`` the pixels of ``buf`` (h, w) uint32 inside the polygons (the module's
+    rule): polygon ``j`` is ``points[starts[j]:starts[j + 1]]`` (the last to the end of
+    ``points`` (n, 2) float64, x then y, closed from its last point to its first);
+    ``starts`` (k,) int64 as :func:`check_fill` states (the callers check)."""
+    h, w = buf.shape
+    n = len(points)
+    if n == 0 or len(starts) == 0:
+        return
+    ends = np.append(starts[1:], n)
+    nxt = np.arange(1, n + 1)
+    nxt[ends - 1] = starts  # each polygon's closing edge
+    poly = np.repeat(np.arange(len(starts)), ends - starts)
+    x0, y0 = points[:, 0], points[:, 1]
+    x1, y1 = x0[nxt], y0[nxt]
+    with np.errstate(invalid="ignore"):
+        near = (np.abs(x0) <= LIMIT) & (np.abs(y0) <= LIMIT) & (np.abs(x1) <= LIMIT) & (np.abs(y1) <= LIMIT)
+    lo = np.where(near, np.minimum(y0, y1), 0.0)
+    hi = np.where(near, np.maximum(y0, y1), 0.0)
+    first = np.clip(np.ceil(lo - 0.5), 0, h).astype(np.int64)  # rows with lo <= r + 0.5 < hi
+    count = np.maximum(np.clip(np.ceil(hi - 0.5), 0, h).astype(np.int64) - first, 0)
+    total = int(count.sum())
+    if total == 0:
+        return
+    edge = np.repeat(np.arange(n), count)
+    row = first[edge] + (np.arange(total) - np.repeat(np.cumsum(count) - count, count))
+    ex0, ey0, ex1, ey1 = x0[edge], y0[edge], x1[edge], y1[edge]
+    x = ex0 + (row + 0.5 - ey0) * (ex1 - ex0) / (ey1 - ey0)
+    wind = np.where(ey1 > ey0, 1, -1)
+    owner = poly[edge]
+    order = np.lexsort((x, row, owner))
+    x, row, wind, owner = x[order], row[order], wind[order], owner[order]
+    # The winding after each crossing, counted from its (polygon, row)'s first (a polygon
+    # with a skipped edge need not wind back to 0): crossing i opens a span to i + 1 where
+    # it is not 0 and i + 1 is on the same row of the same polygon.
+    new = np.ones(total, dtype=bool)
+    new[1:] = (row[1:] != row[:-1]) | (owner[1:] != owner[:-1])
+    heads = np.flatnonzero(new)
+    after = np.cumsum(wind)
+    after -= np.repeat(after[heads] - wind[heads], np.diff(np.append(heads, total)))
+    inside = np.flatnonzero((after[:-1] != 0) & ~new[1:])
+    c0 = np.clip(np.ceil(x[inside] - 0.5), 0, w).astype(np.int64)
+    c1 = np.clip(np.ceil(x[inside + 1] - 0.5), 0, w).astype(np.int64)
+    length = np.maximum(c1 - c0, 0)
+    m = int(length.sum())
+    if m == 0:
+        return
+    at = np.repeat(np.cumsum(length) - length, length)
+    buf[np.repeat(row[inside], length), np.repeat(c0, length) + (np.arange(m) - at)] = value
+
+
+def check_chains(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> None:
+    """Refuse what :func:`chain_outlines` cannot outline: ``ValueError`` naming the argument.
+    ``nodes`` (n, 2) float64; ``widths`` (n,) float64; ``starts`` (k,) int64, increasing,
+    from 0, each chain at least two nodes."""
+    if not isinstance(nodes, np.ndarray) or nodes.ndim != 2 or nodes.shape[1:] != (2,) or nodes.dtype != np.float64:
+        raise ValueError(f"nodes must be an (n, 2) float64 array, got {getattr(nodes, 'shape', type(nodes))}")
+    if not isinstance(widths, np.ndarray) or widths.shape != (len(nodes),) or widths.dtype != np.float64:
+        raise ValueError(
+            f"widths must be an (n,) float64 array, one a node, got {getattr(widths, 'shape', type(widths))}"
+        )
+    if not isinstance(starts, np.ndarray) or starts.ndim != 1 or starts.dtype != np.int64:
+        raise ValueError("starts must be a 1-D int64 array")
+    if len(starts) and (starts[0] != 0 or np.any(np.diff(np.append(starts, len(nodes))) < 2)):
+        raise ValueError("starts must begin at 0 and increase, each chain at least two nodes")
+    if not len(starts) and len(nodes):
+        raise ValueError("starts must name the chains of the nodes (none given)")
+
+
+def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """(2n, 2) float64: each chain's outline as one polygon for :func:`fill_polygons` (chain
+    ``j`` from row ``2 * starts[j]``): the nodes (n, 2) offset by half their width (n,)
+    along their mitres, out along the left and back along the right. A node's mitre is the
+    mean of its two segments' unit normals (a segment's normal ``(-dy, dx) / sqrt(dx**2 +
+    dy**2)``, a zero-length one's ``(-dy, dx)``) stretched by the secant of half the bend
+    (``a * 2 / max(|a|**2, 1)`` for their sum ``a``); a chain's end node has its one
+    segment's normal. So a chain of two nodes is exactly its one piece
+    (:mod:`.lasers`), and at a bend of ``t`` the outline reaches past the bevelled join by
+    ``h (sec(t/2) - 1)`` (under 0.01 px for the curvy lasers' few degrees a node).
+    Arguments as :func:`check_chains` states (the callers check)."""
+    n = len(nodes)
+    if n == 0:
+        return np.empty((0, 2))
+    with np.errstate(over="ignore", invalid="ignore"):  # far past the screen: inf and nan, drawn as nothing
+        d = nodes[1:] - nodes[:-1]
+        length = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+        length[length == 0] = 1.0
+        u = np.column_stack([-d[:, 1], d[:, 0]]) / length[:, None]  # each segment's unit normal
+        ends = np.append(starts[1:], n) - 1
+        before, after = np.vstack([u[:1], u]), np.vstack([u, u[-1:]])  # the segments each side of a node
+        before[starts], after[ends] = after[starts], before[ends]  # a chain's ends: its own segment only
+        a = before + after
+        mitre = a * (2.0 / np.maximum(a[:, 0] * a[:, 0] + a[:, 1] * a[:, 1], 1.0))[:, None]
+        h = (0.5 * widths)[:, None] * mitre
+    # Chain [s, e] is outline rows [2s, 2e + 2): node i's left at s + i (out), its right at
+    # s + 2e + 1 - i (back); every chain's at once.
+    sizes = ends - starts + 1
+    first, last, i = np.repeat(starts, sizes), np.repeat(ends, sizes), np.arange(n)
+    out = np.empty((2 * n, 2))
+    with np.errstate(over="ignore", invalid="ignore"):
+        out[first + i] = nodes + h
+        out[first + 2 * last + 1 - i] = nodes - h
+    return out
