@@ -81,26 +81,52 @@ def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value
     ex0, ey0, ex1, ey1 = x0[edge], y0[edge], x1[edge], y1[edge]
     x = ex0 + (row + 0.5 - ey0) * (ex1 - ex0) / (ey1 - ey0)
     wind = np.where(ey1 > ey0, 1, -1)
-    owner = poly[edge]
-    order = np.lexsort((x, row, owner))
-    x, row, wind, owner = x[order], row[order], wind[order], owner[order]
+    group = poly[edge] * (h + 1) + row  # (polygon, row): what a span may not cross
+    order = _by_group_then_x(group, x)
+    x, group, wind = x[order], group[order], wind[order]
     # The winding after each crossing, counted from its (polygon, row)'s first (a polygon
     # with a skipped edge need not wind back to 0): crossing i opens a span to i + 1 where
     # it is not 0 and i + 1 is on the same row of the same polygon.
     new = np.ones(total, dtype=bool)
-    new[1:] = (row[1:] != row[:-1]) | (owner[1:] != owner[:-1])
+    new[1:] = group[1:] != group[:-1]
     heads = np.flatnonzero(new)
     after = np.cumsum(wind)
     after -= np.repeat(after[heads] - wind[heads], np.diff(np.append(heads, total)))
     inside = np.flatnonzero((after[:-1] != 0) & ~new[1:])
     c0 = np.clip(np.ceil(x[inside] - 0.5), 0, w).astype(np.int64)
     c1 = np.clip(np.ceil(x[inside + 1] - 0.5), 0, w).astype(np.int64)
+    r = group[inside] % (h + 1)
     length = np.maximum(c1 - c0, 0)
     m = int(length.sum())
     if m == 0:
         return
-    at = np.repeat(np.cumsum(length) - length, length)
-    buf[np.repeat(row[inside], length), np.repeat(c0, length) + (np.arange(m) - at)] = value
+    step = np.repeat(np.cumsum(length) - length, length)
+    cols = np.repeat(c0, length) + (np.arange(m) - step)
+    if buf.flags.c_contiguous:  # one flat index a pixel: several times quicker than two
+        buf.reshape(-1)[np.repeat(r * w, length) + cols] = value
+    else:
+        buf[np.repeat(r, length), cols] = value
+
+
+def _by_group_then_x(group: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """(m,) int64: the order of crossings by ``group`` (m,) int64, then by ``x`` (m,) within
+    each (ties in either order: they only order empty spans). A stable sort of the groups
+    (near sorted already: an edge's rows are consecutive), then each group of two swapped
+    where needed (a thick line's row crosses two edges), and only larger groups sorted by
+    ``x`` in full: several times quicker than a lexicographic sort of everything."""
+    order = np.argsort(group, kind="stable")
+    g, xs = group[order], x[order]
+    new = np.ones(len(g), dtype=bool)
+    new[1:] = g[1:] != g[:-1]
+    heads = np.flatnonzero(new)
+    sizes = np.diff(np.append(heads, len(g)))
+    pair = heads[sizes == 2]
+    swap = pair[xs[pair] > xs[pair + 1]]
+    order[swap], order[swap + 1] = order[swap + 1], order[swap].copy()
+    big = np.flatnonzero(np.repeat(sizes > 2, sizes))
+    if len(big):
+        order[big] = order[big][np.lexsort((xs[big], g[big]))]
+    return order
 
 
 def check_chains(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> None:

@@ -196,15 +196,16 @@ class Lasers:
         p, t = self.pool, self.table
         at = np.asarray(rows, dtype=np.int64)
         counts = p.count[at]
-        most = int(counts.max()) if len(at) else 0
-        used = np.arange(most)[None, :] < counts[:, None]  # (L, most): each row's nodes in use
-        nodes = p.nodes[at, :most][used]  # row after row, node after node
+        starts = np.zeros(len(at), dtype=np.int64)
+        np.cumsum(counts[:-1], out=starts[1:])
+        # Node k of each row, row after row: the flat index of (row, k) in the pool's nodes.
+        owner = np.repeat(np.arange(len(at)), counts)
+        k = np.arange(len(owner)) - np.repeat(starts, counts)
+        nodes = p.nodes.reshape(-1, 2)[np.repeat(at, counts) * LASER_NODES + k]
         # As widths(): width, or width + (tip - width) (k / (count - 1)), the same operations a node.
-        w, tip = t.width[p.which[at]][:, None], t.tip[p.which[at]][:, None]
-        k = np.arange(most, dtype=np.float64)[None, :]
-        tapered = w + (tip - w) * (k / np.maximum(counts - 1, 1)[:, None])
-        widths = np.where(tip == w, w, tapered)[used]
-        starts = np.concatenate([[0], np.cumsum(counts[:-1])]).astype(np.int64)
+        w, tip = t.width[p.which[at]][owner], t.tip[p.which[at]][owner]
+        tapered = w + (tip - w) * (k / np.maximum(counts - 1, 1)[owner])
+        widths = np.where(tip == w, w, tapered)
         return nodes, widths, starts
 
     def pieces(self, rows: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
