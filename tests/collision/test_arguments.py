@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kernels import KERNELS
+from support.compiled import KERNELS
 
 from broadsword.collision import (
     Armature,
