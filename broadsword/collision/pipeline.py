@@ -134,6 +134,8 @@ class Pipeline:
             BinGrid(bin_size, field, kernel=self.backend) if broad is Tier.BINS else BROAD_PHASES[broad]()
         )
         self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
+        # Each filtering tier's name and filter, looked up once (not every frame).
+        self._filters = tuple((t.value, TIERS[t].keep) for t in self.tiers[1:])
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
         self.laser_table = laser_table(self.layers)  # the table with a shadow layer for laser pieces
@@ -238,7 +240,7 @@ class Pipeline:
         tier_pairs = {}
 
         t0 = clock()
-        swept = objects.swept if objects.swept is not None and objects.swept.any() else None
+        swept = objects.swept if objects.any_swept else None
         args = (
             self.armatures,
             objects.armature,
@@ -279,15 +281,14 @@ class Pipeline:
             tier_pairs[self.tiers[0].value] = pairs
 
         inp = TierInput(objects, all_posed, all_boxes, self.workspace, self.masks, self.backend)
-        for tier in self.tiers[1:]:
+        for name, keep in self._filters:
             t0 = clock()
-            keep = TIERS[tier].keep
             assert keep is not None  # check_tiers: only the first tier is a broad phase
             before = stats[-1]
             pairs = pairs[keep(inp, pairs)]
-            stats.append(self._stats(tier.value, before, pairs, n, clock() - t0, joined is not None))
+            stats.append(self._stats(name, before, pairs, n, clock() - t0, joined is not None))
             if self.keep_tier_pairs:
-                tier_pairs[tier.value] = pairs
+                tier_pairs[name] = pairs
         laser_result = None
         if joined is not None:
             pairs, candidates, tier_pairs, laser_result = laserframe.result(joined, n, pairs, candidates, tier_pairs)
