@@ -341,7 +341,7 @@ def collide_pairs(
     ws = workspace or Workspace()
     groups: list[tuple[slice | np.ndarray, int, int, np.ndarray, np.ndarray]]
     k1, k2 = int(ki[0]), int(kj[0])
-    if (ki == k1).all() and (kj == k2).all():  # one group (small scenes): no selection to make
+    if ((ki == k1) & (kj == k2)).all():  # one group (small scenes): no selection to make
         groups = [(slice(None), k1, k2, i, j)]
     else:
         groups = []

@@ -134,8 +134,6 @@ class Pipeline:
             BinGrid(bin_size, field, kernel=self.backend) if broad is Tier.BINS else BROAD_PHASES[broad]()
         )
         self.needs_vertices = any(TIERS[t].needs_vertices for t in self.tiers)
-        # Each filtering tier's name and filter, looked up once (not every frame).
-        self._filters = tuple((t.value, TIERS[t].keep) for t in self.tiers[1:])
         self.workspace = Workspace()
         self.masks = MaskCache(self.armatures) if Tier.PIXEL in self.tiers else None
         self.laser_table = laser_table(self.layers)  # the table with a shadow layer for laser pieces
@@ -281,14 +279,15 @@ class Pipeline:
             tier_pairs[self.tiers[0].value] = pairs
 
         inp = TierInput(objects, all_posed, all_boxes, self.workspace, self.masks, self.backend)
-        for name, keep in self._filters:
+        for tier in self.tiers[1:]:
             t0 = clock()
+            keep = TIERS[tier].keep
             assert keep is not None  # check_tiers: only the first tier is a broad phase
             before = stats[-1]
             pairs = pairs[keep(inp, pairs)]
-            stats.append(self._stats(name, before, pairs, n, clock() - t0, joined is not None))
+            stats.append(self._stats(tier.value, before, pairs, n, clock() - t0, joined is not None))
             if self.keep_tier_pairs:
-                tier_pairs[name] = pairs
+                tier_pairs[tier.value] = pairs
         laser_result = None
         if joined is not None:
             pairs, candidates, tier_pairs, laser_result = laserframe.result(joined, n, pairs, candidates, tier_pairs)

@@ -92,7 +92,9 @@ class Workspace:
 
     ``get(name, shape, dtype)`` returns a C-contiguous view of ``shape`` into the buffer
     called ``name``; its contents are undefined, and it stays valid until the next
-    ``get`` of the same name. Not thread-safe: one workspace per pipeline.
+    ``get`` of the same name. Asked for the shape of the last ``get`` of that name, it
+    returns the same view again (a dict look-up: the frames of a scene whose object count
+    holds still cost no slicing). Not thread-safe: one workspace per pipeline.
 
     Buffers of :data:`MAPPED_BYTES` or more live on pages of their own, outside the C
     heap: a buffer climbs to the largest frame in steps of a quarter (a dense stage of

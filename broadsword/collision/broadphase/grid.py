@@ -97,9 +97,10 @@ class BinGrid(Driver):
             raise ValueError("boxes must be finite")
         if not len(sel):
             return _EMPTY.copy(), BroadPhaseStats(self.name, 0, 0, None)
-        shape = (int(info[gk.COLS]), int(info[gk.ROWS]))
-        origin = (float(info[gk.OX]), float(info[gk.OY]))
-        layout = GridLayout(origin, float(info[gk.SIZE]), shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
+        got = info.tolist()
+        shape = (int(got[gk.COLS]), int(got[gk.ROWS]))
+        origin = (got[gk.OX], got[gk.OY])
+        layout = GridLayout(origin, got[gk.SIZE], shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
         return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), layout)
 
     def layout_for(self, boxes: np.ndarray, groups: list[np.ndarray], sel: np.ndarray) -> tuple[float, tuple, tuple]:
