@@ -348,8 +348,8 @@ def collide_pairs(
         group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
         for g in np.flatnonzero(np.bincount(group)).tolist():  # a handful (np.unique sorts: slower)
             chosen = np.flatnonzero(group == g)
-            a = i.take(chosen)
-            groups.append((chosen, int(posed.klass[a[0]]), int(kj[chosen[0]]), a, j.take(chosen)))
+            first = chosen[0]
+            groups.append((chosen, int(ki[first]), int(kj[first]), i.take(chosen), j.take(chosen)))
     exact = backend.backend_for(kernel) if narrow is None else None
     for sel, k1, k2, a, b in groups:
         sa, sb = posed.slot.take(a), posed.slot.take(b)
