@@ -13,6 +13,8 @@
   long test while the others wait.
 * Fixtures: ``armatures`` (the sprite bank, loaded once per process; see shipped.py
   for the helpers behind it).
+* The ``numba`` marker (support/compiled.py): a test, module or parameter that needs the
+  compiled backend fails, never skips, where numba cannot be imported.
 * Compiled kernels: with numba installed, the main process loads them (compiling into
   numba's cache on a fresh clone, about 20 s, said on stderr) before any worker starts, so
   no test pays for a compile or sees its message in the stderr it checks.
@@ -29,6 +31,7 @@ os.environ.setdefault("BROADSWORD_CACHE_DIR", tempfile.mkdtemp(prefix="broadswor
 import pytest  # noqa: E402  (the drivers must be set first)
 import shipped  # noqa: E402
 from hypothesis import HealthCheck, settings  # noqa: E402
+from support.compiled import require_numba  # noqa: E402
 
 settings.register_profile("dev", deadline=None)
 settings.register_profile(
@@ -101,6 +104,22 @@ def pytest_sessionstart(session):
 
     if _kernel.numba_available():
         warm_kernel()  # a compile says so on stderr, kernel by kernel
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers",
+        "numba: the test (module, parameter) needs the compiled backend; it FAILS, never skips, "
+        "without numba (support/compiled.py)",
+    )
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    """A test marked ``numba`` fails before its fixtures run where numba cannot be imported
+    (support/compiled.py: the ``test`` extra installs it, so a skip would hide drift)."""
+    if item.get_closest_marker("numba") is not None:
+        require_numba()
 
 
 def pytest_collection_modifyitems(config, items):

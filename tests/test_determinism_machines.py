@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from support.compiled import NEEDS_NUMBA
 from support.gamerun import autopilot_digests, scenarios
 from support.perturb import MATH_TRANSCENDENTALS, NUMPY_TRANSCENDENTALS, perturbed_transcendentals
 
@@ -90,7 +91,7 @@ def test_every_level_plays_the_same_game_with_transcendentals_one_ulp_off(runs):
     assert not differ, "\n".join(differ)
 
 
-@pytest.mark.skipif(not numba_available(), reason="numba not installed (extra 'fast')")
+@NEEDS_NUMBA
 def test_every_level_plays_the_same_game_with_or_without_the_compiled_kernels(runs):
     """numba is optional: a replay must play the same on a machine without it. Every
     shipped level's busiest stretch, both rotation modes: the same state_hash and the same

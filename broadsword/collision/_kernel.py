@@ -121,11 +121,11 @@ def _named(value: Kernel | str, unknown: Callable[[str], str], asked: str) -> Ke
 
 
 class _Compiled:
-    """The compiled kernels of this process, by qualified name (built on first use, not at
+    """The compiled kernels of this process, by Python function (built on first use, not at
     import), whether the compile message was shown, and whether the "compiled in memory"
     one was (once per process, not once per kernel)."""
 
-    fns: dict[str, Any] = {}  # noqa: RUF012 - one registry per process, by design
+    fns: dict[Callable, Any] = {}  # noqa: RUF012 - one registry per process, by design
     told = False
     told_in_memory = False
 
@@ -135,8 +135,7 @@ def jit(fn, signature: str):
     holds the kernel, else compiled, saying so on stderr: once, then one line per kernel
     with the seconds it took). Explicit signatures compile at load time, never in a frame,
     and refuse arguments of another type or layout."""
-    key = f"{fn.__module__}.{fn.__qualname__}"
-    got = _Compiled.fns.get(key)
+    got = _Compiled.fns.get(fn)  # by the function itself: a frame's look-ups build no string
     if got is None:
         import time
 
@@ -154,7 +153,7 @@ def jit(fn, signature: str):
         if compiling:
             where = fn.__module__.rsplit(".", 1)[-1]
             print(f"broadsword:   {where}.{fn.__name__} {time.perf_counter() - t0:.1f} s", file=sys.stderr)
-        _Compiled.fns[key] = got
+        _Compiled.fns[fn] = got
     return got
 
 

@@ -168,6 +168,10 @@ def _pose_py(  # pragma: no cover - compiled by numba
     return 0
 
 
+#: ``swept`` of a frame with no sweep (an empty array holds nothing: one serves every frame).
+_NOT_SWEPT = np.zeros(0, dtype=bool)
+
+
 def load():
     """The compiled posing (numba imported, the kernel loaded or compiled)."""
     return jit(_pose_py, _SIGNATURE)
@@ -190,13 +194,14 @@ def pose_and_box(
     n = len(armature)
     classes = shapes.class_array
     nc = len(classes)
-    kmax = int(classes[-1])
-    sw = swept if swept is not None else np.zeros(0, dtype=bool)
+    kmax = shapes.classes[-1]
+    sw = swept if swept is not None else _NOT_SWEPT
     prev = prev_positions if prev_positions is not None else positions
     klass = np.empty(n, dtype=np.int64)
     slot = np.empty(n, dtype=np.int64)
     order = ws.get("pk_order", n, np.int64)
-    count, split, offset = (np.empty(nc, dtype=np.int64) for _ in range(3))
+    per_class = np.empty((3, nc), dtype=np.int64)
+    count, split, offset = per_class[0], per_class[1], per_class[2]  # rows: each contiguous
     vx, vy = ws.get("pk_vx", kmax * n), ws.get("pk_vy", kmax * n)
     shx, shy = ws.get("pk_hx", (kmax // 2) * n), ws.get("pk_hy", (kmax // 2) * n)
     dx, dy = ws.get("pk_dx", n), ws.get("pk_dy", n)
@@ -212,11 +217,9 @@ def pose_and_box(
     reordered = set()
     at = 0
     h_at = 0
-    for c, k in enumerate(classes.tolist()):
-        m, p = int(count[c]), int(split[c])
+    for k, m, p, base in zip(shapes.classes, *per_class.tolist()):
         if not m:
             continue
-        base = int(offset[c])
         xs[k] = vx[base : base + k * m].reshape(k, m)
         ys[k] = vy[base : base + k * m].reshape(k, m)
         members[k] = order[at : at + m]

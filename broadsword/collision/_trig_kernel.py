@@ -87,6 +87,10 @@ def load():
 def sincos_deg(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``(sin, cos)`` of ``angles`` (degrees; a float64 array of any shape): two float64 arrays
     of its shape, the bits :func:`detmath.sincos_deg` gives."""
+    if type(angles) is np.ndarray and angles.ndim == 1 and angles.dtype == np.float64 and angles.flags.writeable:
+        sin, cos = np.empty(len(angles)), np.empty(len(angles))  # the pipeline's case: checked angles
+        load()(angles, sin, cos)
+        return sin, cos
     a = np.asarray(angles, dtype=np.float64)
     flat = a.ravel()  # a view where it can be: the kernel reads any stride
     sin, cos = np.empty(flat.shape), np.empty(flat.shape)

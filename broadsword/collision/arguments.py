@@ -46,6 +46,7 @@ __all__ = [
     "points",
     "polygon",
     "positive",
+    "ready",
     "real_array",
     "reals",
     "sequence",
@@ -110,7 +111,7 @@ def real_array(value, name: str, shape: tuple[int | None, ...], item: str = "obj
 
     ``item`` names a row in the message for a non-finite value ("object 3", "vertex 2").
     """
-    if _ready(value, np.float64, shape) and np.isfinite(value).all():
+    if ready(value, np.float64, shape) and np.isfinite(value).all():
         return value  # the common case, checked in a few calls: float64 already, shaped, finite
     a = _array(value, name)
     kind = a.dtype.kind
@@ -169,7 +170,7 @@ def ids(value, name: str, n: int | None, limit: int | None = None, what: str = "
 
     Integer arrays or Python ints only: ``0.7`` and ``True`` are refused, not truncated.
     """
-    if _ready(value, np.int64, (n,)):
+    if ready(value, np.int64, (n,)):
         a = value
         if limit is not None:
             in_range(a, name, limit, what)
@@ -190,7 +191,14 @@ def ids(value, name: str, n: int | None, limit: int | None = None, what: str = "
 
 def in_range(a: np.ndarray, name: str, limit: int, what: str) -> None:
     """Every id of the int array ``a`` lies in ``0..limit-1``; ``what`` says why ("the pipeline has 2 armatures")."""
-    if a.size and (a.min() < 0 or a.max() >= limit):
+    if not a.size:
+        return
+    if a.dtype == np.int64:
+        # One reduction for both bounds: read as unsigned, a negative id is above 2**63.
+        outside = np.maximum.reduce(a.view(np.uint64), axis=None) >= limit
+    else:
+        outside = a.min() < 0 or a.max() >= limit
+    if outside:
         bad = a[(a < 0) | (a >= limit)][0]
         raise ValueError(f"{name} ids must lie in 0..{limit - 1} ({what}), got {bad}")
 
@@ -203,7 +211,7 @@ def flags(value, name: str, n: int | None) -> np.ndarray:
     return usable(_shaped(a, name, (n,)).astype(bool, copy=False))
 
 
-def _ready(value, dtype, shape: tuple[int | None, ...]) -> bool:
+def ready(value, dtype, shape: tuple[int | None, ...]) -> bool:
     """``value`` is an array of ``dtype`` and ``shape`` (``None``: any length) that the
     kernels take as it is (writeable, aligned): the fast path of the checks."""
     if type(value) is not np.ndarray or value.dtype != dtype or value.ndim != len(shape):

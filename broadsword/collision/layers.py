@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -73,10 +74,17 @@ class LayerTable:
         except ValueError:
             raise ValueError(f"unknown layer {name!r}; layers are {self.names}") from None
 
+    @cached_property
+    def _entry_array(self) -> np.ndarray:
+        """``entries`` as an (E, 2) int64 array, made once per table (the compiled grid reads
+        it every frame). Writeable, as the compiled kernels take only writeable arrays:
+        the library's own, never written."""
+        return np.array(self.entries, dtype=np.int64).reshape(-1, 2)
+
     def possible_pairs(self, layers: np.ndarray) -> int:
         """How many pairs the table allows among objects with these layer ids."""
-        counts = np.bincount(np.asarray(layers, dtype=np.int64), minlength=len(self.names))
+        counts = np.bincount(np.asarray(layers, dtype=np.int64), minlength=len(self.names)).tolist()
         total = 0
         for a, b in self.entries:
             total += counts[a] * (counts[a] - 1) // 2 if a == b else counts[a] * counts[b]
-        return int(total)
+        return total

@@ -337,19 +337,22 @@ def collide_pairs(
     if not len(pairs):
         return out
     i, j = pairs[:, 0], pairs[:, 1]
-    ki, kj = posed.klass[i], posed.klass[j]
-    group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
+    ki, kj = posed.klass.take(i), posed.klass.take(j)
     ws = workspace or Workspace()
-    groups: list[tuple[slice | np.ndarray, np.ndarray, np.ndarray]] = [(slice(None), i, j)]
-    if not (group == group[0]).all():  # more than one group (one: small scenes, no selection to make)
+    groups: list[tuple[slice | np.ndarray, int, int, np.ndarray, np.ndarray]]
+    k1, k2 = int(ki[0]), int(kj[0])
+    if ((ki == k1) & (kj == k2)).all():  # one group (small scenes): no selection to make
+        groups = [(slice(None), k1, k2, i, j)]
+    else:
         groups = []
+        group = ki * (int(kj.max()) + 1) + kj  # one key per (class, class) pair
         for g in np.flatnonzero(np.bincount(group)).tolist():  # a handful (np.unique sorts: slower)
             chosen = np.flatnonzero(group == g)
-            groups.append((chosen, np.take(i, chosen), np.take(j, chosen)))
+            first = chosen[0]
+            groups.append((chosen, int(ki[first]), int(kj[first]), i.take(chosen), j.take(chosen)))
     exact = backend.backend_for(kernel) if narrow is None else None
-    for sel, a, b in groups:
-        k1, k2 = int(posed.klass[a[0]]), int(posed.klass[b[0]])
-        sa, sb = np.take(posed.slot, a), np.take(posed.slot, b)
+    for sel, k1, k2, a, b in groups:
+        sa, sb = posed.slot.take(a), posed.slot.take(b)
         if exact is not None:
             out[sel] = exact.collide_columns(posed, k1, sa, k2, sb, ws, polygons_collide_reference)
         else:  # sweeps built for these columns only

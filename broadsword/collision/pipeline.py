@@ -238,7 +238,7 @@ class Pipeline:
         tier_pairs = {}
 
         t0 = clock()
-        swept = objects.swept if objects.swept is not None and objects.swept.any() else None
+        swept = objects.swept if objects.any_swept else None
         args = (
             self.armatures,
             objects.armature,

@@ -92,7 +92,9 @@ class Workspace:
 
     ``get(name, shape, dtype)`` returns a C-contiguous view of ``shape`` into the buffer
     called ``name``; its contents are undefined, and it stays valid until the next
-    ``get`` of the same name. Not thread-safe: one workspace per pipeline.
+    ``get`` of the same name. Asked for the shape of the last ``get`` of that name, it
+    returns the same view again (a dict look-up: the frames of a scene whose object count
+    holds still cost no slicing). Not thread-safe: one workspace per pipeline.
 
     Buffers of :data:`MAPPED_BYTES` or more live on pages of their own, outside the C
     heap: a buffer climbs to the largest frame in steps of a quarter (a dense stage of
@@ -104,21 +106,28 @@ class Workspace:
     """
 
     def __init__(self) -> None:
-        self._buffers: dict[tuple[str, np.dtype], np.ndarray] = {}
+        # (name, dtype as given) -> (buffer, the last shape asked for, the view of it): a
+        # frame that asks for the shape of the last one gets the same view back (a dict
+        # look-up: the small frames of a library caller keep their sizes).
+        self._buffers: dict[tuple[str, object], tuple[np.ndarray, object, np.ndarray]] = {}
 
     def get(self, name: str, shape: tuple[int, ...] | int, dtype=np.float64) -> np.ndarray:
-        shape = (shape,) if isinstance(shape, int) else tuple(shape)
+        key = (name, dtype)
+        entry = self._buffers.get(key)
+        if entry is not None and entry[1] == shape:
+            return entry[2]
+        dims = (shape,) if isinstance(shape, int) else tuple(shape)
         size = 1
-        for s in shape:
+        for s in dims:
             size *= s
-        key = (name, np.dtype(dtype))
-        buf = self._buffers.get(key)
+        buf = None if entry is None else entry[0]
         if buf is None or buf.size < size:
-            buf = _buffer(max(size + size // 4, 64), key[1])  # headroom: frames vary
-            self._buffers[key] = buf
-        return buf[:size].reshape(shape)
+            buf = _buffer(max(size + size // 4, 64), np.dtype(dtype))  # headroom: frames vary
+        view = buf[:size].reshape(dims)
+        self._buffers[key] = (buf, shape, view)
+        return view
 
     @property
     def nbytes(self) -> int:
         """Bytes held by all buffers."""
-        return sum(b.nbytes for b in self._buffers.values())
+        return sum(buf.nbytes for buf, _, _ in self._buffers.values())

@@ -1,45 +1,14 @@
-"""The backends a collision test runs under, and the hypothesis strategies the parity suite
-(``test_backend_parity.py``) shares between its stages.
-
-:data:`KERNELS` names both backends whatever the environment: a test parametrized with it
-checks the numpy reference and the compiled kernels. Where numba cannot be imported the
-compiled half FAILS (never skips): the ``test`` extra installs numba, so CI always has it,
-and a parity suite that skips lets drift land silently. :func:`require_numba` says how to
-fix it.
-"""
+"""The hypothesis strategies and tables the parity suite (``test_backend_parity.py``) shares
+between its stages. The backends a test runs under, and the rule that a numba case fails
+(never skips) without numba, are ``support.compiled``'s."""
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from hypothesis import strategies as st
 
 from broadsword.collision import Armature, ArmatureSet, LayerTable
-from broadsword.collision._kernel import numba_problem
-from broadsword.collision.backend import Backend, backend_for
 from broadsword.collision.scenarios import random_armature
-
-KERNELS = ["numpy", "numba"]
-
-
-def require_numba() -> None:
-    """Fail the calling test (not skip it) when numba cannot be imported, saying to install
-    the ``test`` extra."""
-    problem = numba_problem()
-    if problem is not None:
-        pytest.fail(
-            f"the compiled backend cannot be tested: {problem}. Install the test extra, which "
-            "brings numba: pip install -e '.[test]'",
-            pytrace=False,
-        )
-
-
-def backend_named(name: str) -> Backend:
-    """The backend ``name`` ("numpy" or "numba"); fails the test when numba is missing."""
-    if name == "numba":
-        require_numba()
-    return backend_for(name)
-
 
 SHMUP = LayerTable.shmup()
 ONE = LayerTable(["a"], [("a", "a")])

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kernels import KERNELS
+from support.compiled import KERNELS
 
 from broadsword.collision import (
     Armature,
@@ -64,6 +64,9 @@ BAD_STEPS = [
     (dict(armature=[0, 2]), "armature", ValueError),
     (dict(armature=[0, -1]), "armature", ValueError),
     (dict(armature=[0, 1, 1]), "armature", ValueError),
+    (dict(armature=[0, -(2**63)]), "armature", ValueError),  # the ends of int64
+    (dict(armature=[2**63 - 1, 0]), "armature", ValueError),
+    (dict(layer=[P, -1]), "layer", ValueError),
     (dict(layer=[P, 2.5]), "layer", ArgumentTypeError),
     (dict(layer=[P, 99]), "layer", ValueError),
     (dict(layer=[P]), "armature", ValueError),  # the lengths disagree
@@ -89,6 +92,21 @@ def test_pipeline_step__refuses_naming_the_argument(changes, name, error, rotati
     with pytest.raises(error) as info:
         step(rotation, **changes)
     assert str(info.value).startswith(name), str(info.value)
+
+
+@pytest.mark.parametrize(
+    "ids, bad", [([0, -1, 5], -1), ([1, 2, 0], 2), ([-(2**63), 0], -(2**63)), ([0, 2**63 - 1], 2**63 - 1)]
+)
+@pytest.mark.parametrize("dtype", [np.int64, np.int32, np.uint64])
+def test_id_ranges__name_the_first_id_outside(ids, bad, dtype):
+    """Both bounds in one pass for int64 ids (read as unsigned, a negative id is huge): the
+    message still names the first id outside, whatever the integer type given."""
+    if np.iinfo(dtype).min > min(ids) or np.iinfo(dtype).max < max(ids):
+        return  # not representable in this type
+    with pytest.raises(
+        ValueError, match=rf"^armature ids must lie in 0\.\.1 \(the pipeline has 2 armatures\), got {bad}$"
+    ):
+        step(armature=np.array(ids[:2], dtype=dtype), layer=[P, B])
 
 
 @pytest.mark.parametrize("changes, name, error", BAD_STEPS)

@@ -28,15 +28,14 @@ from kernels import (
     PAIR_SCALES,
     SHMUP,
     angle_values,
-    backend_named,
     box_sets,
     extreme_angles,
     frames,
     grid_polygons,
     grid_settings,
     half_polygons,
-    require_numba,
 )
+from support.compiled import backend_named, require_numba
 from test_narrow import BASE, M, R, exact_map, grid_pairs, pad, random_pairs, simple_grid_pairs, touching_pairs
 
 from broadsword.collision import Armature, ArmatureSet, BinGrid, Kernel, LayerTable, Pipeline
@@ -579,9 +578,9 @@ def test_fill_polygons__bad_arguments_named_alike(backends):
 
 def test_require_numba__fails_and_names_the_test_extra(monkeypatch):
     """Without numba the suite fails (never skips), saying how to install it."""
-    import kernels
+    from broadsword.collision import _kernel
 
-    monkeypatch.setattr(kernels, "numba_problem", lambda: "numba is not installed")
+    monkeypatch.setattr(_kernel, "numba_problem", lambda: "numba is not installed")
     with pytest.raises(pytest.fail.Exception, match=r"pip install -e '\.\[test\]'"):
         require_numba()
     with pytest.raises(pytest.fail.Exception, match="numba is not installed"):

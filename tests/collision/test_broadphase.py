@@ -15,6 +15,7 @@ import itertools
 
 import numpy as np
 import pytest
+from support.compiled import NEEDS_NUMBA
 
 from broadsword.collision import (
     AUTO_BIN_FACTOR,
@@ -44,7 +45,8 @@ TABLES = {"shmup": SHMUP, "self": SELF, "mixed": MIXED, "reversed": REVERSED}
 
 def phases():
     """Every phase under test, with a few configurations each (fresh instances); the
-    compiled bin grid too when numba is installed."""
+    compiled bin grid too when numba is installed (without it, the numpy phases are still
+    tested and ``test_phases__include_the_compiled_grid`` fails: numba cases never skip)."""
     return [*_phases(), *_compiled_phases()]
 
 
@@ -476,6 +478,13 @@ def test_find_pairs__bad_input_raises():
             phase.find_pairs(np.array([[0, 0, np.nan, 1], [0, 0, 1, 1]]), np.zeros(2, int), SELF)
         with pytest.raises(ValueError):
             phase.find_pairs(np.array([[0, 0, np.inf, 1], [0, 0, 1, 1]]), np.zeros(2, int), SELF)
+
+
+@NEEDS_NUMBA
+def test_phases__include_the_compiled_grid():
+    """The compiled grid is among the phases every contract test above runs."""
+    compiled = [name for name, phase in phases() if name.endswith(" numba")]
+    assert len(compiled) >= 5 and all(make_phase(name).kernel is Kernel.NUMBA for name in compiled), compiled
 
 
 def test_broad_phases__registry():

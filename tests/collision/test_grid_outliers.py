@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from kernels import KERNELS
+from support.compiled import KERNELS, NEEDS_NUMBA
 
 from broadsword.bench.outliers import BOMB_RADIUS, outlier_scene
 from broadsword.collision import BinGrid, BruteForce, Pipeline, auto_bin_size
@@ -48,9 +48,8 @@ def test_outlier__a_lone_large_object_does_not_choose_the_bin_size(kernel):
     assert len(pairs) < len(coarse) / 3
 
 
+@NEEDS_NUMBA
 def test_outlier__the_compiled_grid_gives_numpys_pairs_in_numpys_order():
-    if "numba" not in KERNELS:
-        pytest.skip("numba is not installed")
     _, table, f, boxes = _frame()
     want, a = BinGrid(kernel="numpy").query(boxes, f["layer"], table)
     got, b = BinGrid(kernel="numba").query(boxes, f["layer"], table)

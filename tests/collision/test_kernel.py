@@ -5,7 +5,7 @@ the filter's verdicts never contradict the reference (a pair it decides is decid
 way) and it decides what it should (generic and swept pairs; touching ones go to the
 reference); the polygons it builds from sweeps are numpy's; the selection rules (argument,
 environment, a numba that does not import); the compile message. The numba tests FAIL,
-never skip, where numba cannot be imported (``kernels.require_numba``).
+never skip, where numba cannot be imported (``support.compiled``).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import random
 
 import numpy as np
 import pytest
-from kernels import require_numba
+from support.compiled import NEEDS_NUMBA
 from test_narrow import pad, random_pairs
 
 from broadsword.collision import (
@@ -28,15 +28,6 @@ from broadsword.collision import (
 )
 
 
-@pytest.fixture
-def numba_needed() -> None:
-    """The test needs numba: it fails (never skips) without it, saying how to install it."""
-    require_numba()
-
-
-needs_numba = pytest.mark.usefixtures("numba_needed")
-
-
 def verdicts(pairs, k1=None, k2=None):
     """The kernel's raw verdicts and the reference answers."""
     px, py = pad([p for p, _ in pairs], k1)
@@ -44,7 +35,7 @@ def verdicts(pairs, k1=None, k2=None):
     return _narrow_kernel.filter_pairs(px, py, qx, qy), polygons_collide_padded(px, py, qx, qy, kernel="numpy")
 
 
-@needs_numba
+@NEEDS_NUMBA
 def test_kernel__decides_generic_pairs_and_defers_touching_ones():
     """Generic pairs are decided by the filter; exactly touching ones are left undecided."""
     v, ref = verdicts(random_pairs(random.Random(5), 300))
@@ -85,7 +76,7 @@ def runs(x, y):
     return [v for i, v in enumerate(pts) if i == 0 or v != pts[i - 1]]
 
 
-@needs_numba
+@NEEDS_NUMBA
 @pytest.mark.parametrize("turning", [False, True], ids=["straight", "turning"])
 def test_kernel__decides_swept_pairs(turning):
     """The filter reads the class arrays by column and builds the candidates' sweeps
@@ -133,7 +124,7 @@ def test_kernel__decides_swept_pairs(turning):
     assert decided_total >= 0.95 * len(pairs) and len(pairs) > 200 and checked > 100
 
 
-@needs_numba
+@NEEDS_NUMBA
 @pytest.mark.parametrize("scale_exp", [-1074, -1040, -1001, -1000, -999, -300, 0, 300, 999, 1000, 1001, 1020])
 def test_kernel__builds_sweeps_as_numpy_at_every_path_magnitude(scale_exp):
     """The sweeps the compiled filter builds, repeats dropped, equal ``posing.Sweeps.build``'s
@@ -180,7 +171,7 @@ def test_check_kernel__a_numba_that_does_not_import_leaves_numpy(monkeypatch):
     assert Pipeline([Armature.box(4, 4)]).kernel is Kernel.NUMPY
 
 
-@needs_numba
+@NEEDS_NUMBA
 def test_jit__a_first_compile_says_so_and_a_cached_load_is_silent(tmp_path):
     """A kernel not in numba's cache (here ``NUMBA_CACHE_DIR``, where numba's own locator
     looks) is announced on stderr with its seconds; the next process loads it silently."""
@@ -197,7 +188,7 @@ def test_jit__a_first_compile_says_so_and_a_cached_load_is_silent(tmp_path):
     assert runs[1].stderr == ""
 
 
-@needs_numba
+@NEEDS_NUMBA
 def test_kernel__seen_marks_only_the_second_sides_refused_sweeps():
     """A refused sweep on side 1 leaves the pair undecided but not side 2's polygon unseen;
     a refused sweep on side 2 is seen as nan."""

@@ -11,10 +11,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from support.compiled import NEEDS_NUMBA
 
-from broadsword.collision import _kernel
-
-pytestmark = pytest.mark.skipif(not _kernel.numba_available(), reason="numba not installed (extra 'fast')")
+pytestmark = NEEDS_NUMBA  # fails, never skips, without numba (support/compiled.py)
 
 #: Loads the box kernel and compares it with the numpy reference on random boxes.
 LOAD = """

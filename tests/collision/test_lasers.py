@@ -7,7 +7,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from kernels import KERNELS
+from support.compiled import KERNELS
 
 from broadsword.collision import Kernel
 from broadsword.collision.lasers import (

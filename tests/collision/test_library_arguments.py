@@ -15,7 +15,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from kernels import KERNELS
+from support.compiled import KERNELS
 
 from broadsword.collision import (
     Armature,

@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 import pytest
-from kernels import KERNELS
+from support.compiled import KERNELS
 
 from broadsword.collision import (
     BROAD_PHASES,

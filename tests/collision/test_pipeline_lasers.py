@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from kernels import KERNELS
 from star_polygons import star
+from support.compiled import KERNEL_NAMES, KERNELS, NEEDS_NUMBA
 from test_lasers import oracle
 
 from broadsword.collision import BROAD_PHASES, Armature, Laser, LaserSet, LayerTable, Pipeline, laser_touches_swept
@@ -148,10 +148,9 @@ def test_sweep__a_ship_crossing_a_laser_between_frames_is_hit(kernel, speed):
     assert not len(beside.lasers.hits)
 
 
+@NEEDS_NUMBA
 @pytest.mark.parametrize("broad", list(BROAD_PHASES))
 def test_kernels__give_the_same_laser_answers_in_the_same_order(broad):
-    if len(KERNELS) < 2:
-        pytest.skip("numba is not installed")
     for seed in range(8):
         arms, objects, lasers, layers = scene(100 + seed, 1.0, 0.0, swept=seed % 2 == 1)
         tiers = (broad, "aabb", "kdop", "armature")
@@ -159,7 +158,7 @@ def test_kernels__give_the_same_laser_answers_in_the_same_order(broad):
             Pipeline(arms, TABLE, tiers=tiers, kernel=k, keep_tier_pairs=True).step(
                 **objects, lasers=lasers, laser_layer=layers
             )
-            for k in KERNELS
+            for k in KERNEL_NAMES
         ]
         a, b = got
         assert a.lasers.piece_hits.tolist() == b.lasers.piece_hits.tolist()
@@ -333,6 +332,7 @@ def test_laser_set_boxes__hold_every_piece_corner_at_every_scale(where):
         assert box[0] <= x.min() and x.max() <= box[2] and box[1] <= y.min() and y.max() <= box[3]
 
 
+@NEEDS_NUMBA
 def test_bench_scene__every_player_laser_pair_is_exact_on_both_kernels():
     """The benchmark's frame (200 curvy lasers of 64 nodes, the reference scene's player,
     ships and bullets): the player's laser hits equal laser_touches laser by laser (the cull
@@ -347,7 +347,7 @@ def test_bench_scene__every_player_laser_pair_is_exact_on_both_kernels():
         pos, ang = scene.advance()
         lasers = weave.advance()
     got = []
-    for kernel in KERNELS:
+    for kernel in KERNEL_NAMES:
         r = Pipeline(scene.shapes, scene.table, kernel=kernel).step(
             scene.armature, scene.layer, pos, ang, lasers=lasers, laser_layer=np.full(200, ENEMY_BULLET)
         )

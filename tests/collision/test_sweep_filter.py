@@ -16,12 +16,10 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from support.compiled import KERNELS
 
 from broadsword.collision import Armature, LayerTable, Pipeline, narrow, polygons_collide
-from broadsword.collision._kernel import numba_available
 from broadsword.collision.predicates import _orient_exact
-
-KERNELS = ["numpy", pytest.param("numba", marks=pytest.mark.skipif(not numba_available(), reason="no numba"))]
 
 #: Magnitudes from subnormal to the largest double, and offsets that make differences overflow.
 SCALES = [2.0**-1070, 2.0**-1060, 1e-300, 1e-9, 1.0, 3.0, 1e9, 1e15, 1e150, 1e300, 1.7e308]

@@ -14,9 +14,10 @@ import pytest
 import shipped
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from support.compiled import NEEDS_NUMBA
 
 from broadsword.collision import ROTATION_MODES
-from broadsword.collision._kernel import Kernel, numba_available
+from broadsword.collision._kernel import Kernel
 from broadsword.data import list_levels, load_level, resolve_level
 from broadsword.data.difficulty import Difficulty
 from broadsword.patterns import bulletml
@@ -83,7 +84,7 @@ def test_restore__steps_like_the_uninterrupted_world(name, rotation):
         _step_and_compare(w, snaps, start, AFTER, run)
 
 
-@pytest.mark.skipif(not numba_available(), reason="numba is not installed")
+@NEEDS_NUMBA
 def test_restore__across_kernels(monkeypatch):
     """Saved with one collision kernel, restored under the other: the same bits."""
     run = _run("3-broadsword", "lut")

@@ -83,19 +83,24 @@ class BinGrid(Driver):
             # The compiled join counts keys in a dense table: grids allowed more bins than
             # DENSE_KEYS (never the default) run the numpy grid, which searches instead.
             return self.reference_query(boxes, layers, table)
-        boxes, layers = self._arrays(boxes, layers, table)
-        entries = np.array(table.entries, dtype=np.int64).reshape(-1, 2)
+        arguments.instance(table, "table", LayerTable, "a LayerTable")
+        if not (arguments.ready(boxes, np.float64, (None, 4)) and arguments.ready(layers, np.int64, (len(boxes),))):
+            boxes, layers = self._arrays(boxes, layers, table)  # converted and checked (finite too)
+        # else (the pipeline's own boxes and checked layers): the kernel checks finiteness
+        entries = table._entry_array
         gk = _grid_kernel
         pairs, ranges, sel, info = gk.grid_query(
             boxes, layers, entries, self.bin_size, self.field, self.max_cells, DIRECT_SIDE, DIRECT_PAIRS
         )
         if info[gk.NOT_FINITE]:
+            self._arrays(boxes, layers, table)  # names the first box that is not finite
             raise ValueError("boxes must be finite")
         if not len(sel):
             return _EMPTY.copy(), BroadPhaseStats(self.name, 0, 0, None)
-        shape = (int(info[gk.COLS]), int(info[gk.ROWS]))
-        origin = (float(info[gk.OX]), float(info[gk.OY]))
-        layout = GridLayout(origin, float(info[gk.SIZE]), shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
+        got = info.tolist()
+        shape = (int(got[gk.COLS]), int(got[gk.ROWS]))
+        origin = (got[gk.OX], got[gk.OY])
+        layout = GridLayout(origin, got[gk.SIZE], shape, (ranges[0], ranges[1], ranges[2], ranges[3]), sel)
         return pairs, BroadPhaseStats(self.name, len(sel), len(pairs), layout)
 
     def layout_for(self, boxes: np.ndarray, groups: list[np.ndarray], sel: np.ndarray) -> tuple[float, tuple, tuple]:
