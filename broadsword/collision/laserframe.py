@@ -153,8 +153,10 @@ def lasers_meeting(
     for a, b in table.entries:
         for objects_in, lasers_in in ((a, b), (b, a)) if a != b else ((a, a),):
             li = np.flatnonzero((laser_layer == lasers_in) & ~keep)
+            if not len(li):  # most entries hold no laser layer: skip the objects' scan
+                continue
             oi = np.flatnonzero(layer == objects_in)
-            if not len(li) or not len(oi):
+            if not len(oi):
                 continue
             if len(li) * len(oi) > CULL_PAIRS:
                 keep[li] = True

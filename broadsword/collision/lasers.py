@@ -129,7 +129,8 @@ class Laser:
 def _widths(width, name: str, n: int) -> np.ndarray:
     """``(n,)`` float64 widths, a fresh array: one real for all, or ``n`` reals; each
     finite and ``>= 0`` (errors name ``name`` and the node)."""
-    if np.asarray(width, dtype=object).ndim == 0:
+    # An array's ndim is its own (an object array of 10,000 floats would cost more than the rest).
+    if (width.ndim if isinstance(width, np.ndarray) else np.asarray(width, dtype=object).ndim) == 0:
         w = np.full(n, arguments.reals([width], name, 1)[0])
     else:
         w = arguments.reals(width, name, n).astype(np.float64, copy=True)
