@@ -414,13 +414,14 @@ def heading_deg(vx, vy):
     return np.where(h == -180.0, 180.0, h)
 
 
-def velocity_deg(heading, speed):
+def velocity_deg(heading, speed, sincos=None):
     """``(vx, vy)`` of ``speed`` along ``heading`` degrees (the inverse of :func:`heading_deg`).
 
     ``vx = speed sin(heading)``, ``vy = -speed cos(heading)``; broadcast together; arrays
-    or, for two scalars, floats.
+    or, for two scalars, floats. ``sincos``: what gives :func:`sincos_deg`'s bits for the
+    ``heading`` array (a backend's compiled ``sincos_deg``); ``None``, :func:`sincos_deg`.
     """
-    s, c = sincos_deg(heading)
+    s, c = (sincos_deg if sincos is None else sincos)(heading)
     sp = float(speed) if _is_scalar(heading, speed) else np.asarray(speed, dtype=np.float64)
     return sp * s, -(sp * c)
 

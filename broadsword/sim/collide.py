@@ -15,9 +15,10 @@ test the hit armature unswept) and the graze shape. What they touched comes back
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from enum import Enum
-from typing import Protocol
+from typing import Protocol, overload
 
 import numpy as np
 
@@ -63,6 +64,40 @@ class LaserTag:
         return f"{self.kind} laser {self.entry + 1} of phase {self.phase + 1}"
 
 
+@dataclass(frozen=True, eq=False)
+class LaserTags(Sequence[LaserTag]):
+    """The frame's lasers' tags, packed (200 lasers a frame, few of them ever asked for):
+    ``rows``, ``phase`` and ``entry`` (L,) int64 and ``kinds`` (L,) str, as
+    :class:`LaserTag` names them; ``tags[k]`` is laser ``k``'s :class:`LaserTag`, made
+    when asked."""
+
+    rows: np.ndarray
+    phase: np.ndarray
+    entry: np.ndarray
+    kinds: tuple[str, ...]
+
+    @classmethod
+    def empty(cls) -> LaserTags:
+        """No laser lit."""
+        none = np.empty(0, dtype=np.int64)
+        return cls(none, none, none, ())
+
+    def __len__(self) -> int:
+        return len(self.kinds)
+
+    @overload
+    def __getitem__(self, k: int) -> LaserTag: ...
+
+    @overload
+    def __getitem__(self, k: slice) -> tuple[LaserTag, ...]: ...
+
+    def __getitem__(self, k):
+        if isinstance(k, slice):
+            return tuple(self[i] for i in range(len(self))[k])
+        k = range(len(self))[k]  # an IndexError past the end, negatives from the end
+        return LaserTag(int(self.rows[k]), int(self.phase[k]), int(self.entry[k]), self.kinds[k])
+
+
 @dataclass(frozen=True)
 class CollisionRecord:
     """One frame's collision: the pipeline's result and where each group's objects lie.
@@ -74,14 +109,14 @@ class CollisionRecord:
         objects the pipeline was given (``result.objects``).
     spans : dict Group -> slice
         Object indices of each group (empty slices for absent groups).
-    lasers : tuple of LaserTag
+    lasers : LaserTags
         The game laser of each of the frame's lasers (``result.objects.lasers``, in order;
         ``result.lasers`` numbers them so). Empty when no laser was lit.
     """
 
     result: FrameResult
     spans: dict
-    lasers: tuple[LaserTag, ...] = ()
+    lasers: LaserTags = field(default_factory=LaserTags.empty)
 
     @property
     def objects(self) -> FrameObjects:
@@ -156,7 +191,7 @@ class LitLasers(Protocol):
     def live_rows(self) -> list[int]:
         """The rows that collide now."""
 
-    def frame_lasers(self, rows: list[int]) -> tuple[LaserSet, tuple[LaserTag, ...]]:
+    def frame_lasers(self, rows: list[int]) -> tuple[LaserSet, LaserTags]:
         """Those rows packed for the pipeline, and which game laser each is."""
 
 

@@ -35,16 +35,17 @@ angles, so lasers replay bit for bit.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from ..collision import detmath
+from ..collision.backend import NumpyBackend
 from ..collision.lasers import LaserSet, laser_pieces
 from ..data.difficulty import Difficulty
 from ..data.levels import LASER_NODES, LaserKind, LaserSpec, Level
 from .boss import Boss
-from .collide import CollisionRecord, Group, LaserTag
+from .collide import CollisionRecord, Group, LaserTags
 from .emitters import on_field
 from .events import Events
 from .field import DT, FIELD
@@ -91,8 +92,17 @@ def laser_pool(capacity: int = 8) -> Pool:
     )
 
 
+class Trig(Protocol):
+    """Where the curvy lasers' sines and cosines come from: a collision backend
+    (:class:`~broadsword.collision.Backend`; the world's pipeline's), whose ``sincos_deg``
+    gives :func:`detmath.sincos_deg`'s bits, compiled or not: the state is the same either way."""
+
+    def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
+
+
 #: Every laser kind, in the order :attr:`SpecTable.kind` numbers them.
 KINDS = tuple(LaserKind)
+_KIND_NAMES = tuple(k.value for k in KINDS)  # as LaserTag names them
 
 
 class SpecTable:
@@ -145,7 +155,8 @@ class Lasers:
     """The level's lasers: the specs of every boss phase (``specs``, flat, phase after phase;
     ``first[p]`` is phase ``p``'s first) and the pool of lasers in play."""
 
-    def __init__(self, level: Level, difficulty: Difficulty):
+    def __init__(self, level: Level, difficulty: Difficulty, trig: Trig | None = None):
+        self.trig: Trig = NumpyBackend() if trig is None else trig
         phases = level.boss.phases if level.boss is not None else ()
         self.specs: tuple[LaserSpec, ...] = tuple(s for ph in phases for s in ph.lasers)
         self.first = np.cumsum([0] + [len(ph.lasers) for ph in phases]).tolist()
@@ -214,17 +225,17 @@ class Lasers:
             return np.empty((4, 0)), np.empty((4, 0)), np.empty(0, dtype=np.int64)
         return laser_pieces(*self.chains(rows))
 
-    def frame_lasers(self, rows: list[int]) -> tuple[LaserSet, tuple[LaserTag, ...]]:
+    def frame_lasers(self, rows: list[int]) -> tuple[LaserSet, LaserTags]:
         """The lasers of ``rows`` (:meth:`live_rows`) for the frame's pipeline call, packed,
-        and which game laser each is (:class:`~.collide.LaserTag`), in the same order."""
+        and which game laser each is (:class:`~.collide.LaserTags`), in the same order."""
         if not rows:
-            return LaserSet.pack(()), ()
+            return LaserSet.pack(()), LaserTags.empty()
         p = self.pool
         at = np.asarray(rows, dtype=np.int64)
         which, phase = p.which[at], p.phase[at]
         entry = which - np.asarray(self.first, dtype=np.int64)[phase]
-        kind = [KINDS[k].value for k in self.table.kind[which].tolist()]
-        tags = tuple(map(LaserTag, rows, phase.tolist(), entry.tolist(), kind))
+        kinds = tuple(_KIND_NAMES[k] for k in self.table.kind[which].tolist())
+        tags = LaserTags(at, phase, entry, kinds)
         return LaserSet.of(*self.chains(rows)), tags
 
     def segments_ahead(self, ahead: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -306,8 +317,8 @@ class Lasers:
         wave = t.wave[j]
         w = wave != 0  # a row with no wave adds nothing (not even a signed zero)
         if w.any():
-            heading[w] += wave[w] * detmath.sin_deg(360.0 * (tt[w] / t.period[j][w]))
-        vx, vy = detmath.velocity_deg(heading, t.step[j])
+            heading[w] += wave[w] * self.trig.sincos_deg(360.0 * (tt[w] / t.period[j][w]))[0]
+        vx, vy = detmath.velocity_deg(heading, t.step[j], self.trig.sincos_deg)
         p.head[rows, 0] += vx
         p.head[rows, 1] += vy
         n = p.count[rows]
@@ -315,12 +326,12 @@ class Lasers:
         n = np.where(take, np.minimum(n + 1, t.nodes[j]), n)
         most = int(n.max())
         trail = rows[take]  # only the rows taking a node shift (every ``spacing`` steps each)
-        if len(trail):
-            nt = n[take]
-            chain = p.nodes[trail, :most]  # (T, most, 2), a copy
-            shift = np.arange(1, most)[None, :] < nt[:, None]  # node k takes node k - 1's place
-            chain[:, 1:] = np.where(shift[:, :, None], chain[:, :-1], chain[:, 1:])
-            p.nodes[trail, :most] = chain
+        if len(trail):  # node k takes node k - 1's place, 1 <= k < the new count
+            moved = n[take] - 1
+            pairs = p.nodes.view(np.complex128).reshape(-1)  # each node's (x, y) as one item
+            assert np.shares_memory(pairs, p.nodes)  # a view (the pool's rows are contiguous)
+            to = np.repeat(trail * LASER_NODES + 1 - (np.cumsum(moved) - moved), moved) + np.arange(int(moved.sum()))
+            pairs[to] = pairs[to - 1]  # one gather, one scatter (the gather copies first)
         p.nodes[rows, 0] = p.head[rows]  # the head moves on from the new node
         p.count[rows] = n
         chain = p.nodes[rows, :most]

@@ -390,7 +390,7 @@ COVERAGE: dict[str, tuple[frozenset[str], frozenset[str]]] = {
     ),
     "Items": (frozenset({"pool"}), frozenset({"arm_of"})),
     "Bomb": (frozenset(f[0] for f in BOMB_FIELDS), frozenset({"base_kind"})),
-    "Lasers": (frozenset({"pool"}), frozenset({"specs", "first", "difficulty", "table"})),
+    "Lasers": (frozenset({"pool"}), frozenset({"specs", "first", "difficulty", "table", "trig"})),  # trig: as backend
     "EnemyGuns": (frozenset({f[0] for f in GUNS_FIELDS} | {"boss_phase", "engine"}), frozenset({"fires"})),
     "Engine": (
         frozenset({f[0] for f in ENGINE_FIELDS} | {"scope", "emitters", "bullets", "_resume"}),

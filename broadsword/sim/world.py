@@ -152,7 +152,7 @@ class World:
         self.enemy_bullets = enemy_bullets(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
         self.guns = EnemyGuns(self.enemy_bullets, self.fires, self.seed)
         self.player_bullets = bullet_pool(PLAYER_BULLETS, PLAYER_BULLETS_LIMIT)
-        self.lasers = Lasers(level, self.settings.difficulty)
+        self.lasers = Lasers(level, self.settings.difficulty, pipeline.backend)
         self.items = Items(self.kinds.base)
         self.bomb = Bomb(self.kinds.base[BOMB])
         self.combat = Combat(self)

@@ -117,7 +117,7 @@ def test_overlay__warning_axis_and_nodes_from_the_world():
     w = World(dataclasses.replace(level, waves=(), boss=boss), shipped.armatures(), 1)
     while not w.lasers.pool.n:
         w.step(IDLE)
-    assert w.lasers.warning(0) and w.collision.lasers == ()  # a warning line is never collided
+    assert w.lasers.warning(0) and len(w.collision.lasers) == 0  # a warning line is never collided
     surf = blank()
     draw_laser_armatures(surf, w)
     x, y = (int(v) for v in w.lasers.pool.nodes[0, 0])

@@ -9,6 +9,7 @@ from sim_bullets import add_bullets
 
 from broadsword.data import load_level, resolve_level
 from broadsword.sim import IDLE, GameLayer, Group, LayerIds, World
+from broadsword.sim.collide import LaserTag, LaserTags
 from broadsword.sim.items import ItemKind
 from broadsword.sim.layers import game_layer_table
 
@@ -96,3 +97,14 @@ def test_record__the_player_takes_part_only_as_it_may(vulnerable, graze, items, 
     assert (r.spans[Group.PLAYER].stop - r.spans[Group.PLAYER].start) == int(vulnerable)
     grazing = graze or items
     assert np.array_equal(r.layer[:heads], [w.layers.player] * int(vulnerable) + [w.layers.graze] * int(grazing))
+
+
+def test_laser_tags__each_lasers_tag_made_when_asked_as_a_sequence():
+    tags = LaserTags(np.array([4, 7, 9]), np.array([0, 1, 1]), np.array([2, 0, 1]), ("curvy", "beam", "straight"))
+    assert len(tags) == 3 and bool(tags) and not LaserTags.empty()
+    assert tags[1] == LaserTag(7, 1, 0, "beam") and tags[1].name() == "beam laser 1 of phase 2"
+    assert tags[-1] == LaserTag(9, 1, 1, "straight") and isinstance(tags[0].row, int)
+    assert tags[1:] == (LaserTag(7, 1, 0, "beam"), LaserTag(9, 1, 1, "straight"))
+    assert [t.row for t in tags] == [4, 7, 9] and LaserTag(4, 0, 2, "curvy") in tags
+    with pytest.raises(IndexError):
+        tags[3]

@@ -119,6 +119,31 @@ def test_curvy__spacing_takes_a_node_every_few_steps_from_the_heads_path():
     np.testing.assert_array_equal(p.nodes[0, :15], np.array(expected))
 
 
+def test_curvy__many_rows_trail_at_once_as_each_would_alone():
+    """Rows of different spacings, node limits and ages, moved in one call: each step a row
+    that takes a node moves its nodes 1 .. count - 1 back one place, and every other slot
+    keeps its bits (the slots past a row's count are state too: they are hashed)."""
+    fast = LaserSpec(0, LaserKind.CURVY, angle=160.0, speed=150.0, nodes=24, wave=20.0, on=9.0, every=0.5, count=2)
+    slow = LaserSpec(0, LaserKind.CURVY, angle=200.0, speed=90.0, nodes=10, spacing=3, on=9.0, every=0.7)
+    w = laser_world(fast, slow)
+    step_until(w, lambda w, ev: w.lasers.pool.n >= 5)
+    p, seen = w.lasers.pool, set()
+    for _ in range(90):
+        before, counts, n = p.nodes.copy(), p.count.copy(), p.n
+        w.step(IDLE)
+        assert p.n >= n  # none ended: rows keep their places
+        for i in range(n):
+            c, was = int(p.count[i]), int(counts[i])
+            took = c > was or not np.array_equal(p.nodes[i, 1:c], before[i, 1:c])
+            want = before[i].copy()
+            if took:
+                want[1:c] = before[i, : c - 1]
+            want[0] = p.head[i]
+            np.testing.assert_array_equal(p.nodes[i], want)
+            seen.add((took, c == was))
+    assert seen >= {(True, True), (True, False), (False, True)}  # full rows, growing rows, rows waiting
+
+
 # ------------------------------------------------------------------------- hits, grazes, bombs
 def test_hit__is_a_miss_like_a_bullets():
     w = laser_world(straight())
