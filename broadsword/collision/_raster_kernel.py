@@ -97,9 +97,11 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
 
 
 def _outline_py(nodes, widths, starts, out):  # pragma: no cover - compiled by numba
-    """:func:`.raster.chain_outlines` into ``out`` (2n, 2): the same operations a node."""
+    """:func:`.raster.chain_outlines` into ``out`` (m, 2n, 2), ``widths`` (m, n): the same
+    operations a node (its mitre made once for all m widths)."""
     n = nodes.shape[0]
     k = starts.shape[0]
+    m = widths.shape[0]
     for j in range(k):
         s = starts[j]
         e = (starts[j + 1] if j + 1 < k else n) - 1
@@ -118,23 +120,26 @@ def _outline_py(nodes, widths, starts, out):  # pragma: no cover - compiled by n
             sx, sy = bx + ax, by + ay
             q = sx * sx + sy * sy
             f = 2.0 / (q if not q <= 1.0 else 1.0)  # as np.maximum(q, 1.0), nan included
-            half = 0.5 * widths[i]
-            hx, hy = half * (sx * f), half * (sy * f)
-            out[s + i, 0], out[s + i, 1] = nodes[i, 0] + hx, nodes[i, 1] + hy
-            out[s + 2 * e + 1 - i, 0], out[s + 2 * e + 1 - i, 1] = nodes[i, 0] - hx, nodes[i, 1] - hy
+            mx, my = sx * f, sy * f
+            for o in range(m):
+                half = 0.5 * widths[o, i]
+                hx, hy = half * mx, half * my
+                out[o, s + i, 0], out[o, s + i, 1] = nodes[i, 0] + hx, nodes[i, 1] + hy
+                out[o, s + 2 * e + 1 - i, 0], out[o, s + 2 * e + 1 - i, 1] = nodes[i, 0] - hx, nodes[i, 1] - hy
             bx, by = ax, ay
 
 
 def load_outlines():
     """The compiled outlines (compiling them, with a message, when numba's cache lacks them)."""
-    return jit(_outline_py, "void(float64[:, :], float64[:], int64[:], float64[:, :])")
+    return jit(_outline_py, "void(float64[:, :], float64[:, :], int64[:], float64[:, :, :])")
 
 
 def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
     """:func:`.raster.chain_outlines`, compiled (arguments as :func:`.raster.check_chains` states)."""
-    out = np.empty((2 * len(nodes), 2))
-    load_outlines()(nodes, widths, starts, out)
-    return out
+    rows = widths if widths.ndim == 2 else widths[None]  # (m, n): one outline a row
+    out = np.empty((len(rows), 2 * len(nodes), 2))
+    load_outlines()(nodes, rows, starts, out)
+    return out if widths.ndim == 2 else out[0]
 
 
 def load():

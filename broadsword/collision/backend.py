@@ -163,7 +163,8 @@ class Backend(Protocol):
     def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
         """(2n, 2) float64: the chains of ``nodes`` (n, 2) float64, ``widths`` (n,) float64 wide,
         chain ``j`` from ``starts[j]`` (k,) int64, each outlined as one polygon for
-        :meth:`fill_polygons` (from row ``2 * starts[j]``; :func:`.raster.chain_outlines`).
+        :meth:`fill_polygons` (from row ``2 * starts[j]``; :func:`.raster.chain_outlines`);
+        (m, 2n, 2) for ``widths`` (m, n), an outline of every chain for each row.
         Raises ``ValueError`` naming the argument that is not as stated
         (:func:`.raster.check_chains`)."""
         ...

@@ -131,13 +131,18 @@ def _by_group_then_x(group: np.ndarray, x: np.ndarray) -> np.ndarray:
 
 def check_chains(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> None:
     """Refuse what :func:`chain_outlines` cannot outline: ``ValueError`` naming the argument.
-    ``nodes`` (n, 2) float64; ``widths`` (n,) float64; ``starts`` (k,) int64, increasing,
-    from 0, each chain at least two nodes."""
+    ``nodes`` (n, 2) float64; ``widths`` (n,) or (m, n) float64 (m outlines of the same
+    chains); ``starts`` (k,) int64, increasing, from 0, each chain at least two nodes."""
     if not isinstance(nodes, np.ndarray) or nodes.ndim != 2 or nodes.shape[1:] != (2,) or nodes.dtype != np.float64:
         raise ValueError(f"nodes must be an (n, 2) float64 array, got {getattr(nodes, 'shape', type(nodes))}")
-    if not isinstance(widths, np.ndarray) or widths.shape != (len(nodes),) or widths.dtype != np.float64:
+    if (
+        not isinstance(widths, np.ndarray)
+        or widths.ndim not in (1, 2)
+        or widths.shape[-1:] != (len(nodes),)
+        or widths.dtype != np.float64
+    ):
         raise ValueError(
-            f"widths must be an (n,) float64 array, one a node, got {getattr(widths, 'shape', type(widths))}"
+            f"widths must be an (n,) or (m, n) float64 array, one a node, got {getattr(widths, 'shape', type(widths))}"
         )
     if not isinstance(starts, np.ndarray) or starts.ndim != 1 or starts.dtype != np.int64:
         raise ValueError("starts must be a 1-D int64 array")
@@ -150,7 +155,8 @@ def check_chains(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> N
 def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
     """(2n, 2) float64: each chain's outline as one polygon for :func:`fill_polygons` (chain
     ``j`` from row ``2 * starts[j]``): the nodes (n, 2) offset by half their width (n,)
-    along their mitres, out along the left and back along the right. A node's mitre is the
+    along their mitres, out along the left and back along the right. With ``widths`` (m, n),
+    (m, 2n, 2): one outline of every chain for each row of widths (the mitres made once). A node's mitre is the
     mean of its two segments' unit normals (a segment's normal ``(-dy, dx) / sqrt(dx**2 +
     dy**2)``, a zero-length one's ``(-dy, dx)``) stretched by the secant of half the bend
     (``a * 2 / max(|a|**2, 1)`` for their sum ``a``); a chain's end node has its one
@@ -160,7 +166,7 @@ def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) ->
     Arguments as :func:`check_chains` states (the callers check)."""
     n = len(nodes)
     if n == 0:
-        return np.empty((0, 2))
+        return np.empty((*widths.shape[:-1], 0, 2))
     with np.errstate(over="ignore", invalid="ignore"):  # far past the screen: inf and nan, drawn as nothing
         d = nodes[1:] - nodes[:-1]
         length = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
@@ -171,13 +177,13 @@ def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) ->
         before[starts], after[ends] = after[starts], before[ends]  # a chain's ends: its own segment only
         a = before + after
         mitre = a * (2.0 / np.maximum(a[:, 0] * a[:, 0] + a[:, 1] * a[:, 1], 1.0))[:, None]
-        h = (0.5 * widths)[:, None] * mitre
+        h = (0.5 * widths)[..., None] * mitre  # (n, 2), or (m, n, 2)
     # Chain [s, e] is outline rows [2s, 2e + 2): node i's left at s + i (out), its right at
     # s + 2e + 1 - i (back); every chain's at once.
     sizes = ends - starts + 1
     first, last, i = np.repeat(starts, sizes), np.repeat(ends, sizes), np.arange(n)
-    out = np.empty((2 * n, 2))
+    out = np.empty((*widths.shape[:-1], 2 * n, 2))
     with np.errstate(over="ignore", invalid="ignore"):
-        out[first + i] = nodes + h
-        out[first + 2 * last + 1 - i] = nodes - h
+        out[..., first + i, :] = nodes + h
+        out[..., first + 2 * last + 1 - i, :] = nodes - h
     return out

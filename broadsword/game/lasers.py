@@ -6,8 +6,8 @@ coloured by what each tier did with them).
 
 The body is the laser's hit shape (one mitred outline a laser: exactly the one piece of a
 straight laser, within a hundredth of a pixel of a curvy laser's pieces at its gentle bends),
-in the laser's colour; the glow (wider, dim) is added over the field on a black layer (``BLEND_RGB_ADD``),
-and the white core (narrower) drawn over it, so what is hit is what reads as the laser.
+in the laser's colour, between a wider dim glow and a narrower near-white core, all three on
+one black layer added over the field (``BLEND_RGB_ADD``), so what is hit is what reads as the laser.
 Presentation only: nothing here changes the world.
 """
 
@@ -58,33 +58,31 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPa
     draw_chains(surf, chains, world.pipeline.backend)
 
 
-#: One fill of a layer: the outlines (2N, 2), their starts (L,) and the colour.
-Fill = tuple[np.ndarray, np.ndarray, RGB]
-
-
 def draw_chains(
     surf: pygame.Surface, chains: list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]], backend: Backend
 ) -> None:
     """Lit lasers over ``surf``: each ``((nodes (N, 2), widths (N,), starts (L,)), colour)``
-    of ``chains`` as its glow (``GLOW`` times wider, dimmed) and body (its hit shape: one
-    mitred outline a laser) added over the field (``BLEND_RGB_ADD``), then its near-white
-    core (``CORE`` times as wide, at least a pixel) over them. Each pass is one outline a
-    laser and one polygon fill of them all into a 32-bit layer, both by ``backend``
-    (:meth:`~broadsword.collision.Backend.chain_outlines`,
-    :meth:`~broadsword.collision.Backend.fill_polygons`: pixel centres, nonzero winding).
-    What :func:`draw_lasers` and the palette check (:mod:`.palette_check`) draw."""
-    added: list[Fill] = []
-    cores: list[Fill] = []
+    of ``chains`` as its glow (``GLOW`` times wider, dimmed), its body (its hit shape: one
+    mitred outline a laser) and its near-white core (``CORE`` times as wide, at least a
+    pixel), filled in that order (every glow, then every body, then every core) into one
+    black 32-bit layer added over the field (``BLEND_RGB_ADD``). The three outlines of a
+    laser are one call of ``backend``'s
+    :meth:`~broadsword.collision.Backend.chain_outlines` (its mitres made once), each
+    pass's one call of :meth:`~broadsword.collision.Backend.fill_polygons` (pixel centres,
+    nonzero winding). What :func:`draw_lasers` and the palette check (:mod:`.palette_check`) draw."""
+    layer = pygame.Surface(surf.get_size(), 0, 32)
+    pixels = pygame.surfarray.pixels2d(layer)  # (w, h): .T is (h, w), rows of pixels
+    passes = []
     for (nodes, widths, starts), colour in chains:
-        corners = 2 * starts
-        added.append((backend.chain_outlines(nodes, widths * GLOW, starts), corners, _dim(colour)))
-        added.append((backend.chain_outlines(nodes, widths, starts), corners, colour))
-        core = backend.chain_outlines(nodes, np.maximum(widths * CORE, 1.0), starts)
-        cores.append((core, corners, _whiten(colour)))
-    surf.blit(_layer(surf.get_size(), added, backend), (0, 0), special_flags=pygame.BLEND_RGB_ADD)
-    over = _layer(surf.get_size(), cores, backend)
-    over.set_colorkey(0)  # the cores are near white: black is what they left alone
-    surf.blit(over, (0, 0))
+        wide = np.stack([widths * GLOW, widths, np.maximum(widths * CORE, 1.0)])
+        outlines = backend.chain_outlines(nodes, wide, starts)  # (3, 2N, 2)
+        colours = (_dim(colour), colour, _whiten(colour))
+        passes.append([(outline, 2 * starts, layer.map_rgb(c)) for outline, c in zip(outlines, colours, strict=True)])
+    for fills in zip(*passes):  # the glows, then the bodies, then the cores
+        for points, corners, value in fills:
+            backend.fill_polygons(pixels.T, points, corners, value)
+    del pixels  # the view locks the layer: released before the blit
+    surf.blit(layer, (0, 0), special_flags=pygame.BLEND_RGB_ADD)
 
 
 def _dim(colour: RGB) -> RGB:
@@ -94,20 +92,9 @@ def _dim(colour: RGB) -> RGB:
 
 
 def _whiten(colour: RGB) -> RGB:
-    """The core's colour: near white, tinted by ``colour`` (never black: the core layer's key)."""
+    """The core's colour: near white, tinted by ``colour``."""
     r, g, b = (min(255, 200 + c // 4) for c in colour)
     return r, g, b
-
-
-def _layer(size: tuple[int, int], fills: list[Fill], backend: Backend) -> pygame.Surface:
-    """A black 32-bit surface of ``size`` with ``fills`` filled in order (a later one over
-    an earlier one). The pixel view is released on return, so the layer can be blitted."""
-    layer = pygame.Surface(size, 0, 32)
-    pixels = pygame.surfarray.pixels2d(layer)  # (w, h): .T is (h, w), rows of pixels
-    for points, starts, colour in fills:
-        backend.fill_polygons(pixels.T, points, starts, layer.map_rgb(colour))
-    del pixels
-    return layer
 
 
 def draw_laser_armatures(surf: pygame.Surface, world: World) -> None:

@@ -558,6 +558,19 @@ def test_chain_outlines__property_the_same_bits(backends, chains):
     fill_both(backends, ref, 2 * chains[2])
 
 
+@PROPERTY
+@given(chain_sets())
+def test_chain_outlines__property_widths_stacked_are_each_rows_own_outline(backends, chains):
+    """(m, n) widths: m outlines whose bits are each row's own (n,) outline's, both backends."""
+    nodes, widths, starts = chains
+    stack = np.stack([widths, 0.25 * widths, np.maximum(widths, 1.0)])
+    for b in backends:
+        got = b.chain_outlines(nodes, stack, starts)
+        assert got.shape == (3, 2 * len(nodes), 2)
+        for row, outline in zip(stack, got, strict=True):
+            assert bits(outline) == bits(backends[0].chain_outlines(nodes, row, starts))
+
+
 def test_fill_polygons__bad_arguments_named_alike(backends):
     buf, pts, starts = np.zeros((4, 4), np.uint32), np.zeros((3, 2)), np.zeros(1, np.int64)
     frozen = buf.copy()

@@ -118,6 +118,8 @@ def test_chain_outlines__bad_arguments_named():
     for args, name in [
         ((nodes.astype(np.float32), widths, np.zeros(1, np.int64)), "nodes"),
         ((nodes, widths[:3], np.zeros(1, np.int64)), "widths"),
+        ((nodes, np.ones((2, 2, 4)), np.zeros(1, np.int64)), "widths"),  # (m, n) at most
+        ((nodes, np.ones((2, 3)), np.zeros(1, np.int64)), "widths"),
         ((nodes, widths, np.zeros(1, np.int32)), "starts"),
         ((nodes, widths, np.array([0, 3], np.int64)), "starts"),  # a chain of one node
         ((nodes, widths, np.zeros(0, np.int64)), "starts"),
