@@ -1,9 +1,9 @@
 """Filling polygons into a pixel buffer, compiled with numba (``pip install broadsword[fast]``):
 :func:`.raster.fill_polygons`' rule and pixels, with no array the size of the crossings.
 
-Each polygon is filled on its own: its edges' row crossings are bucketed by row (a
-counting sort), each row's sorted by ``x`` (insertion: a row of a thick line holds a few),
-and the spans of nonzero winding set. Every crossing's ``x`` is the reference's expression
+Each polygon is filled on its own: its edges' row crossings are counted as its edges are
+read, bucketed by row (a counting sort), each row's sorted by ``x`` (insertion: a row of a
+thick line holds two, or a few at a bend), and the spans of nonzero winding set. Every crossing's ``x`` is the reference's expression
 in the same order (no ``fastmath``: no fused multiply-add), so both set the same pixels;
 ties in ``x`` only order empty spans.
 """
@@ -26,9 +26,11 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
     h, w = buf.shape
     n = points.shape[0]
     k = starts.shape[0]
-    first = np.zeros(n, np.int64)  # each edge's rows [first, stop)
+    first = np.zeros(n, np.int64)
     stop = np.zeros(n, np.int64)
-    begin = np.zeros(h + 1, np.int64)  # begin[r - r_lo]: where row r's crossings start (this polygon)
+    # at_row[r + 1] counts row r's crossings (absolute rows, zero between polygons); summed,
+    # at_row[r] is where they go, and once placed, where row r + 1's begin.
+    at_row = np.zeros(h + 1, np.int64)
     xs = np.empty(0, np.float64)
     ws = np.empty(0, np.int64)
     for j in range(k):
@@ -49,51 +51,62 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
                 total += b - a
                 r_lo = min(r_lo, a)
                 r_hi = max(r_hi, b)
+                for r in range(a, b):
+                    at_row[r + 1] += 1
         if total == 0:
             continue
         if total > xs.shape[0]:
             xs = np.empty(2 * total, np.float64)
             ws = np.empty(2 * total, np.int64)
-        rows = r_hi - r_lo
-        begin[: rows + 1] = 0
-        for i in range(s, e):
-            for r in range(first[i], stop[i]):
-                begin[r - r_lo + 1] += 1
-        for r in range(rows):
-            begin[r + 1] += begin[r]
+        at_row[r_lo] = 0
+        for r in range(r_lo, r_hi):
+            at_row[r + 1] += at_row[r]
         for i in range(s, e):
             if stop[i] > first[i]:
                 i1 = i + 1 if i + 1 < e else s
                 xa, ya, xb, yb = points[i, 0], points[i, 1], points[i1, 0], points[i1, 1]
                 wd = 1 if yb > ya else -1
                 for r in range(first[i], stop[i]):
-                    at = begin[r - r_lo]  # filled in place; begin is shifted back below
+                    at = at_row[r]
                     xs[at] = xa + (r + 0.5 - ya) * (xb - xa) / (yb - ya)
                     ws[at] = wd
-                    begin[r - r_lo] = at + 1
+                    at_row[r] = at + 1
         lo_at = 0
         for r in range(r_lo, r_hi):
-            hi_at = begin[r - r_lo]  # now the end of row r's crossings, the start of the next's
-            for p in range(lo_at + 1, hi_at):  # insertion sort by x
-                x, wd = xs[p], ws[p]
-                q = p - 1
-                while q >= lo_at and xs[q] > x:
-                    xs[q + 1] = xs[q]
-                    ws[q + 1] = ws[q]
-                    q -= 1
-                xs[q + 1] = x
-                ws[q + 1] = wd
-            winding = 0
-            for p in range(lo_at, hi_at - 1):
-                winding += ws[p]
-                if winding != 0:
-                    c0 = np.ceil(xs[p] - 0.5)
-                    c1 = np.ceil(xs[p + 1] - 0.5)
+            hi_at = at_row[r]
+            if hi_at - lo_at == 2:  # most rows of a thick line: one span at most
+                p0, p1 = lo_at, lo_at + 1
+                if xs[p1] < xs[p0]:
+                    p0, p1 = p1, p0
+                if ws[p0] != 0:
+                    c0 = np.ceil(xs[p0] - 0.5)
+                    c1 = np.ceil(xs[p1] - 0.5)
                     a = 0 if c0 <= 0.0 else (w if c0 >= w else int(c0))
                     b = 0 if c1 <= 0.0 else (w if c1 >= w else int(c1))
                     if b > a:
                         buf[r, a:b] = value
+            else:
+                for p in range(lo_at + 1, hi_at):  # insertion sort by x
+                    x, wd = xs[p], ws[p]
+                    q = p - 1
+                    while q >= lo_at and xs[q] > x:
+                        xs[q + 1] = xs[q]
+                        ws[q + 1] = ws[q]
+                        q -= 1
+                    xs[q + 1] = x
+                    ws[q + 1] = wd
+                winding = 0
+                for p in range(lo_at, hi_at - 1):
+                    winding += ws[p]
+                    if winding != 0:
+                        c0 = np.ceil(xs[p] - 0.5)
+                        c1 = np.ceil(xs[p + 1] - 0.5)
+                        a = 0 if c0 <= 0.0 else (w if c0 >= w else int(c0))
+                        b = 0 if c1 <= 0.0 else (w if c1 >= w else int(c1))
+                        if b > a:
+                            buf[r, a:b] = value
             lo_at = hi_at
+        at_row[r_lo : r_hi + 1] = 0
 
 
 def _outline_py(nodes, widths, starts, out):  # pragma: no cover - compiled by numba
@@ -138,7 +151,7 @@ def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) ->
     """:func:`.raster.chain_outlines`, compiled (arguments as :func:`.raster.check_chains` states)."""
     rows = widths if widths.ndim == 2 else widths[None]  # (m, n): one outline a row
     out = np.empty((len(rows), 2 * len(nodes), 2))
-    load_outlines()(nodes, rows, starts, out)
+    load_outlines()(_writable(nodes), _writable(rows), _writable(starts), out)
     return out if widths.ndim == 2 else out[0]
 
 
@@ -151,4 +164,10 @@ def load():
 
 def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
     """:func:`.raster.fill_polygons`, compiled (arguments as :func:`.raster.check_fill` states)."""
-    load()(buf, points, starts, np.uint32(value))
+    load()(buf, _writable(points), _writable(starts), np.uint32(value))
+
+
+def _writable(a: np.ndarray) -> np.ndarray:
+    """``a``, or a copy when it is read-only (a :class:`~.lasers.LaserSet`'s arrays are):
+    the compiled signatures take writable arrays only."""
+    return a if a.flags.writeable else a.copy()

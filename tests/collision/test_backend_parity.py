@@ -571,6 +571,20 @@ def test_chain_outlines__property_widths_stacked_are_each_rows_own_outline(backe
             assert bits(outline) == bits(backends[0].chain_outlines(nodes, row, starts))
 
 
+def test_outlines_and_fill__read_only_arrays_taken_alike(backends):
+    """A LaserSet's arrays are read-only: both backends outline and fill them as copies."""
+    nodes = np.array([[3.0, 4.0], [30.0, 9.0], [41.0, 33.0], [5.0, 20.0], [25.0, 22.0]])
+    widths, starts = np.array([4.0, 6.0, 3.0, 5.0, 5.0]), np.array([0, 3], dtype=np.int64)
+    for a in (nodes, widths, starts):
+        a.flags.writeable = False
+    outlines = [b.chain_outlines(nodes, widths, starts) for b in backends]
+    assert bits(outlines[0]) == bits(outlines[1])
+    outlines[0].flags.writeable = False
+    corners = 2 * starts
+    corners.flags.writeable = False
+    assert (fill_both(backends, outlines[0], corners) == 0xFFFFFFFF).sum() > 100
+
+
 def test_fill_polygons__bad_arguments_named_alike(backends):
     buf, pts, starts = np.zeros((4, 4), np.uint32), np.zeros((3, 2)), np.zeros(1, np.int64)
     frozen = buf.copy()
