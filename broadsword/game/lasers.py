@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from ..collision import Backend
+from ..collision import Backend, LaserSet
 from ..sim import World
 from ..sim.lasers import frames
 from .palettes import LASER_COLOURS, RGB, BulletPalette
@@ -54,8 +54,36 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPa
     live = lasers.live_rows()
     if not live:
         return
-    chains = [(lasers.chains(rows), colours[kind]) for kind, rows in lasers.by_kind(live).items()]
+    tested = _collided(world, live)
+    chains = []
+    for kind, rows in lasers.by_kind(live).items():
+        if tested is None:
+            chains.append((lasers.chains(rows), colours[kind]))
+        else:
+            own = tested if len(rows) == len(live) else tested.subset(np.searchsorted(live, rows))
+            chains.append(((own.nodes, own.widths, own.starts), colours[kind]))
     draw_chains(surf, chains, world.pipeline.backend)
+
+
+def _collided(world: World, live: list[int]) -> LaserSet | None:
+    """The lasers of ``live`` (the lit rows, ascending) as the last collision packed them,
+    when its record holds exactly these rows with their node counts and heads unchanged (as
+    it does after a step: nothing moves a laser after the collision): drawn from it, the
+    frame's nodes are not gathered twice. None otherwise (no record, as after a restore,
+    or one of another state): :meth:`~broadsword.sim.lasers.Lasers.chains` then gathers
+    them (the same arrays, bit for bit)."""
+    record = world.collision
+    if record is None or record.lasers.rows.tolist() != live:
+        return None
+    tested = record.objects.lasers
+    assert isinstance(tested, LaserSet)  # as FrameObjects packs them
+    p = world.lasers.pool
+    at = record.lasers.rows
+    if not np.array_equal(tested.counts, p.count[at]) or not np.array_equal(
+        tested.nodes[tested.starts], p.nodes[at, 0]
+    ):
+        return None
+    return tested
 
 
 def draw_chains(

@@ -123,3 +123,36 @@ def test_overlay__warning_axis_and_nodes_from_the_world():
     x, y = (int(v) for v in w.lasers.pool.nodes[0, 0])
     column = (pygame.surfarray.array3d(surf)[x, y : y + 400] == OVERLAY_WARNING).all(axis=1)
     assert 0.3 < column.mean() < 0.7  # dashed
+
+
+def test_lit_lasers__drawn_from_the_collision_record_as_from_the_pool():
+    """After a step the lit lasers are drawn from the record's packed lasers (not gathered
+    again), pixel for pixel as from the pool; a record the pool no longer matches is not used."""
+    pygame.init()
+    curvy = LaserSpec(0, LaserKind.CURVY, angle=160.0, speed=150.0, nodes=24, wave=20.0, on=9.0, every=0.5, count=2)
+    level = shipped.level("3-broadsword")
+    phase = BossPhaseSpec(hp=10**6, time=600, fire=((0, FireSpec()),), lasers=(LASER, curvy))
+    boss = dataclasses.replace(level.boss, at=0.0, sway=0.0, phases=(phase,))
+    w = World(dataclasses.replace(level, waves=(), boss=boss), shipped.armatures(), 1)
+    w.player.invulnerable = 1e9
+    while len(w.lasers.by_kind(w.lasers.live_rows())) < 2:  # both kinds lit: each drawn from a subset
+        w.step(IDLE)
+    for _ in range(5):
+        w.step(IDLE)
+    record, drawn = w.collision, []
+    for collision in (record, None):
+        w.collision = collision
+        surf = blank()
+        draw_lasers(surf, w, 1)
+        drawn.append(pygame.surfarray.array3d(surf))
+    assert drawn[0].any() and np.array_equal(drawn[0], drawn[1])
+    row = w.lasers.live_rows()[-1]
+    w.lasers.pool.nodes[row, 0] += 40.0  # moved after the collision: the record is stale
+    w.collision = record
+    stale = blank()
+    draw_lasers(stale, w, 1)
+    w.collision = None
+    fresh = blank()
+    draw_lasers(fresh, w, 1)
+    assert np.array_equal(pygame.surfarray.array3d(stale), pygame.surfarray.array3d(fresh))
+    assert not np.array_equal(pygame.surfarray.array3d(fresh), drawn[1])
