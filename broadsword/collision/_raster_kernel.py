@@ -15,7 +15,7 @@ import numpy as np
 from ._kernel import jit
 from .raster import LIMIT
 
-__all__ = ["chain_outlines", "fill_polygons", "load", "load_outlines"]
+__all__ = ["chain_keep", "chain_outlines", "fill_polygons", "load", "load_outlines"]
 
 _SIGNATURE = "void(uint32[:, :], float64[:, :], int64[:], uint32)"
 _LIMIT = LIMIT
@@ -142,6 +142,55 @@ def _outline_py(nodes, widths, starts, out):  # pragma: no cover - compiled by n
             bx, by = ax, ay
 
 
+def _keep_py(nodes, widths, starts, tolerance, widest, keep):  # pragma: no cover - compiled by numba
+    """:func:`.raster.chain_keep` into ``keep`` (n,): the same doubles, node by node."""
+    n = nodes.shape[0]
+    k = starts.shape[0]
+    turn = np.zeros(n)
+    keep[:] = True
+    for j in range(k):
+        s = starts[j]
+        e = (starts[j + 1] if j + 1 < k else n) - 1
+        for i in range(s + 1, e):
+            d1x, d1y = nodes[i, 0] - nodes[i - 1, 0], nodes[i, 1] - nodes[i - 1, 1]
+            d2x, d2y = nodes[i + 1, 0] - nodes[i, 0], nodes[i + 1, 1] - nodes[i, 1]
+            ll = np.sqrt(d1x * d1x + d1y * d1y) * np.sqrt(d2x * d2x + d2y * d2y)
+            sine = 1.0
+            if d1x * d2x + d1y * d2y > 0.0 and ll > 0.0:
+                sine = abs(d1x * d2y - d1y * d2x) / ll
+                if not sine <= 1.0:
+                    sine = 1.0
+            turn[i] = sine
+    g = 0.5 * widest
+    for j in range(k):
+        s = starts[j]
+        e = (starts[j + 1] if j + 1 < k else n) - 1
+        for i in range(s + 1, e, 2):  # odd places, never the end
+            d1x, d1y = nodes[i, 0] - nodes[i - 1, 0], nodes[i, 1] - nodes[i - 1, 1]
+            cx, cy = nodes[i + 1, 0] - nodes[i - 1, 0], nodes[i + 1, 1] - nodes[i - 1, 1]
+            chord = np.sqrt(cx * cx + cy * cy)
+            if not chord > 0.0:
+                continue  # the reference's nan: kept
+            wa, wp, wb = widths[i - 1], widths[i], widths[i + 1]
+            if wa != wa or wp != wp or wb != wb:
+                continue  # the reference's nan: kept
+            off = abs(cx * d1y - cy * d1x) / chord
+            bend = max(turn[i], max(turn[i - 1], turn[i + 1]))  # turns are never nan
+            stray = off + g * max(wp, max(wa, wb)) * bend + g * abs(wp - 0.5 * (wa + wb))
+            if stray <= tolerance:
+                keep[i] = False
+
+
+def chain_keep(
+    nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float
+) -> np.ndarray:
+    """:func:`.raster.chain_keep`, compiled (arguments as :func:`.raster.check_keep` states)."""
+    keep = np.empty(len(nodes), dtype=np.bool_)
+    fn = jit(_keep_py, "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])")
+    fn(_writable(nodes), _writable(widths), _writable(starts), float(tolerance), float(widest), keep)
+    return keep
+
+
 def load_outlines():
     """The compiled outlines (compiling them, with a message, when numba's cache lacks them)."""
     return jit(_outline_py, "void(float64[:, :], float64[:, :], int64[:], float64[:, :, :])")
@@ -159,6 +208,7 @@ def load():
     """The compiled fill and outlines (compiling them, with a message, when numba's cache
     lacks them); returns the fill."""
     load_outlines()
+    jit(_keep_py, "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])")
     return jit(_fill_py, _SIGNATURE)
 
 

@@ -169,6 +169,15 @@ class Backend(Protocol):
         (:func:`.raster.check_chains`)."""
         ...
 
+    def chain_keep(
+        self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float
+    ) -> np.ndarray:
+        """(n,) bool: the nodes of the chains (as :meth:`chain_outlines` takes them, ``widths``
+        (n,)) a drawing keeps so that every outline up to ``widest`` times as wide stays within
+        ``tolerance`` px of the outline through every node (:func:`.raster.chain_keep`).
+        Raises ``ValueError`` naming the argument that is not as stated (:func:`.raster.check_keep`)."""
+        ...
+
     def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
         """Set to ``value`` the pixels of ``buf`` (h, w) uint32 inside the polygons ``points``
         (n, 2) float64, polygon ``j`` from ``starts[j]`` (k,) int64 (:mod:`.raster`'s rule:
@@ -247,6 +256,12 @@ class NumpyBackend:
     def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
         raster.check_chains(nodes, widths, starts)
         return raster.chain_outlines(nodes, widths, starts)
+
+    def chain_keep(
+        self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float
+    ) -> np.ndarray:
+        raster.check_keep(nodes, widths, starts, tolerance, widest)
+        return raster.chain_keep(nodes, widths, starts, tolerance, widest)
 
     def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
         raster.check_fill(buf, points, starts)
@@ -337,6 +352,12 @@ class NumbaBackend:
     def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
         raster.check_chains(nodes, widths, starts)
         return _raster_kernel.chain_outlines(nodes, widths, starts)
+
+    def chain_keep(
+        self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float
+    ) -> np.ndarray:
+        raster.check_keep(nodes, widths, starts, tolerance, widest)
+        return _raster_kernel.chain_keep(nodes, widths, starts, tolerance, widest)
 
     def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
         raster.check_fill(buf, points, starts)

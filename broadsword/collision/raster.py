@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["LIMIT", "chain_outlines", "check_chains", "check_fill", "fill_polygons"]
+__all__ = ["LIMIT", "chain_keep", "chain_outlines", "check_chains", "check_fill", "check_keep", "fill_polygons"]
 
 #: The largest coordinate an edge may have and still be filled (pixels; see the module).
 LIMIT = float(2**50)
@@ -187,3 +187,59 @@ def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) ->
         out[..., first + i, :] = nodes + h
         out[..., first + 2 * last + 1 - i, :] = nodes - h
     return out
+
+
+def check_keep(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float) -> None:
+    """Refuse what :func:`chain_keep` cannot judge: ``ValueError`` naming the argument (the
+    chains as :func:`check_chains` states, ``widths`` (n,); ``tolerance`` and ``widest``
+    finite reals ``>= 0``)."""
+    check_chains(nodes, widths, starts)
+    if widths.ndim != 1:
+        raise ValueError(f"widths must be an (n,) float64 array, one a node, got {widths.shape}")
+    for name, v in (("tolerance", tolerance), ("widest", widest)):
+        if not isinstance(v, (int, float, np.floating)) or isinstance(v, bool) or not 0 <= v < np.inf:
+            raise ValueError(f"{name} must be a finite real >= 0, got {v!r}")
+
+
+def chain_keep(
+    nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float
+) -> np.ndarray:
+    """(n,) bool: the nodes a drawing of the chains keeps, so that each outline up to
+    ``widest`` times ``widths`` wide moves by at most ``tolerance`` (px) from the outline
+    through every node (:func:`chain_outlines` of the kept nodes; fewer edges to fill).
+
+    A node is left out only at an odd place in its chain, never a chain's end (so both its
+    neighbours stay), when its *stray* is at most ``tolerance``: its distance from its
+    neighbours' chord, plus ``widest`` half widths (the largest of the three nodes') times
+    ``s``, the largest ``|sin|`` of the chain's turn at it or a neighbour (how far the
+    neighbours' mitres can swing; a turn past 90 degrees, a zero-length segment or anything
+    not finite counts as 1), plus ``widest / 2`` times its width's distance from its
+    neighbours' mean. Where the chain bends sharply the outline may fold on itself: no node
+    near there goes. The compiled twin computes the same doubles in the same order, so both
+    keep the same nodes. Arguments as :func:`check_keep` states (the callers check)."""
+    n = len(nodes)
+    keep = np.ones(n, dtype=bool)
+    if n < 3:
+        return keep
+    counts = np.diff(np.append(starts, n))
+    place = np.arange(n) - np.repeat(starts, counts)  # each node's index in its chain
+    last = np.repeat(counts, counts) - 1
+    x, y = nodes[:, 0], nodes[:, 1]
+    with np.errstate(all="ignore"):  # far past the screen: inf and nan, kept
+        d1x, d1y = x[1:-1] - x[:-2], y[1:-1] - y[:-2]
+        d2x, d2y = x[2:] - x[1:-1], y[2:] - y[1:-1]
+        ll = np.sqrt(d1x * d1x + d1y * d1y) * np.sqrt(d2x * d2x + d2y * d2y)
+        sine = np.abs(d1x * d2y - d1y * d2x) / ll
+        sine = np.where((d1x * d2x + d1y * d2y > 0.0) & (ll > 0.0) & (sine <= 1.0), sine, 1.0)
+        turn = np.zeros(n)
+        turn[1:-1] = sine
+        turn[(place == 0) | (place == last)] = 0.0  # a chain's ends turn no corner
+        bend = np.maximum(turn[1:-1], np.maximum(turn[:-2], turn[2:]))
+        cx, cy = x[2:] - x[:-2], y[2:] - y[:-2]
+        off = np.abs(cx * d1y - cy * d1x) / np.sqrt(cx * cx + cy * cy)
+        wa, wp, wb = widths[:-2], widths[1:-1], widths[2:]
+        g = 0.5 * widest
+        stray = off + g * np.maximum(wp, np.maximum(wa, wb)) * bend + g * np.abs(wp - 0.5 * (wa + wb))
+    keep[1:-1] = ~(stray <= tolerance)
+    keep |= (place % 2 == 0) | (place == last)
+    return keep

@@ -27,6 +27,11 @@ COLOURS = LASER_COLOURS[BulletPalette.STANDARD]
 #: The glow's width and the core's, as multiples of the laser's (hit) width.
 GLOW, CORE = 2.4, 0.4
 GLOW_DIM = 0.45
+#: How far (px) a drawn outline, the glow's included, may stray from the outline through
+#: every node (:meth:`~broadsword.collision.Backend.chain_keep`): where a curvy laser bends
+#: gently, every other node is left out of its drawing, and the fills, whose cost is in
+#: their edges, have fewer. The hit shape is still every node's.
+DRAW_TOLERANCE = 0.5
 #: The warning line blinks: on for BLINK render frames, off for BLINK.
 BLINK = 4
 #: F1 overlay: a warning line's axis (dashed), and the lit lasers' nodes.
@@ -102,6 +107,10 @@ def draw_chains(
     pixels = pygame.surfarray.pixels2d(layer)  # (w, h): .T is (h, w), rows of pixels
     passes = []
     for (nodes, widths, starts), colour in chains:
+        keep = backend.chain_keep(nodes, widths, starts, DRAW_TOLERANCE, GLOW)
+        if not keep.all():  # the nodes the outlines can do without: fewer edges to fill
+            kept = np.add.reduceat(keep, starts)
+            nodes, widths, starts = nodes[keep], widths[keep], np.concatenate([[0], np.cumsum(kept[:-1])])
         wide = np.stack([widths * GLOW, widths, np.maximum(widths * CORE, 1.0)])
         outlines = backend.chain_outlines(nodes, wide, starts)  # (3, 2N, 2)
         colours = (_dim(colour), colour, _whiten(colour))

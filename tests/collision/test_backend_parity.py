@@ -571,6 +571,33 @@ def test_chain_outlines__property_widths_stacked_are_each_rows_own_outline(backe
             assert bits(outline) == bits(backends[0].chain_outlines(nodes, row, starts))
 
 
+@PROPERTY
+@given(chain_sets(), st.floats(0, 4), st.floats(0, 3))
+def test_chain_keep__property_the_same_nodes(backends, chains, tolerance, widest):
+    """Any doubles (zero-length segments, sharp bends, far nodes): both keep the same nodes,
+    every chain's ends and each node beside a dropped one."""
+    ref, got = (b.chain_keep(*chains, tolerance, widest) for b in backends)
+    assert np.array_equal(ref, got)
+    nodes, _, starts = chains
+    if not len(nodes):
+        return
+    ends = np.append(starts[1:], len(nodes)) - 1
+    assert ref[starts].all() and ref[ends].all()
+    dropped = np.flatnonzero(~ref)
+    assert ref[dropped - 1].all() and ref[dropped + 1].all()
+
+
+def test_chain_keep__gentle_curves_lose_every_other_node_alike(backends):
+    """Chains as the curvy lasers make them (2.5 px apart, a degree or two a node): the
+    compiled twin keeps the reference's nodes, and about half of them."""
+    rng = np.random.default_rng(3)
+    turn = np.cumsum(rng.normal(0, 0.02, 640))
+    nodes = np.cumsum(np.column_stack([np.sin(turn), np.cos(turn)]) * 2.5, axis=0)
+    widths, starts = np.full(640, 10.0), np.arange(0, 640, 64, dtype=np.int64)
+    ref, got = (b.chain_keep(nodes, widths, starts, 0.5, 2.4) for b in backends)
+    assert np.array_equal(ref, got) and 0.55 * 640 < ref.sum() < 0.7 * 640
+
+
 def test_outlines_and_fill__read_only_arrays_taken_alike(backends):
     """A LaserSet's arrays are read-only: both backends outline and fill them as copies."""
     nodes = np.array([[3.0, 4.0], [30.0, 9.0], [41.0, 33.0], [5.0, 20.0], [25.0, 22.0]])

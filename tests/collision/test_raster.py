@@ -126,3 +126,56 @@ def test_chain_outlines__bad_arguments_named():
     ]:
         with pytest.raises(ValueError, match=f"^{name} must"):
             raster.check_chains(*args)
+
+
+def _distances(points: np.ndarray, ring: np.ndarray) -> np.ndarray:
+    """(k,): each point's distance from the closed polygon ``ring`` (m, 2)'s boundary."""
+    a, b = ring, np.roll(ring, -1, axis=0)
+    ab = b - a
+    t = np.clip(((points[:, None] - a) * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-300), 0, 1)
+    return np.linalg.norm(points[:, None] - (a + t[..., None] * ab), axis=-1).min(axis=1)
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_chain_keep__every_outline_within_the_tolerance_of_the_full_one(seed):
+    """Curvy chains as the game makes them (nodes 2.5 px apart, turning a degree or two,
+    tapered) and sharp ones: the gentle ones lose a quarter of their nodes or more, and every
+    outline up to ``widest`` times as wide, of the nodes kept, stays within ``tolerance`` of
+    the outline through every node (both ways: the Hausdorff distance of the boundaries)."""
+    tolerance, widest = 0.5, 2.4
+    rng = np.random.default_rng(seed)
+    chains, widths, starts, at = [], [], [], 0
+    for k in range(12):
+        n = int(rng.integers(2, 65))
+        turn = np.cumsum(rng.normal(0.0, 0.02 if k % 3 else 0.3, n)) + rng.uniform(0, 6.3)
+        chains.append(np.cumsum(np.column_stack([np.sin(turn), np.cos(turn)]) * 2.5, axis=0) + rng.uniform(0, 400, 2))
+        w0, w1 = rng.uniform(4, 12), rng.uniform(1, 12)
+        widths.append(w0 + (w1 - w0) * (np.arange(n) / max(n - 1, 1)))
+        starts.append(at)
+        at += n
+    nodes, width = np.concatenate(chains), np.concatenate(widths)
+    keep = raster.chain_keep(nodes, width, np.array(starts, dtype=np.int64), tolerance, widest)
+    one = np.zeros(1, np.int64)
+    for k, (s, chain) in enumerate(zip(starts, chains, strict=True)):
+        e = s + len(chain)
+        kept = keep[s:e]
+        if k % 3 and len(chain) > 8:
+            assert kept.sum() < 0.75 * len(chain)
+        for f in (widest, 1.0, 0.4):
+            full = raster.chain_outlines(nodes[s:e], width[s:e] * f, one)
+            drawn = raster.chain_outlines(nodes[s:e][kept], width[s:e][kept] * f, one)
+            assert _distances(drawn, full).max() <= tolerance
+            assert _distances(full, drawn).max() <= tolerance
+
+
+def test_chain_keep__bad_arguments_named():
+    nodes, widths, starts = np.zeros((4, 2)), np.ones(4), np.zeros(1, np.int64)
+    for args, name in [
+        ((nodes, np.ones((2, 4)), starts, 0.5, 2.0), "widths"),
+        ((nodes, widths, starts, -1.0, 2.0), "tolerance"),
+        ((nodes, widths, starts, float("nan"), 2.0), "tolerance"),
+        ((nodes, widths, starts, 0.5, float("inf")), "widest"),
+        ((nodes, widths, starts, 0.5, True), "widest"),
+    ]:
+        with pytest.raises(ValueError, match=f"^{name} must"):
+            raster.check_keep(*args)
