@@ -5,7 +5,8 @@ lines' axes and the lit lasers' nodes (the overlay draws their pieces -- the arm
 coloured by what each tier did with them).
 
 The body is the laser's hit shape (one mitred outline a laser: exactly the one piece of a
-straight laser, within a hundredth of a pixel of a curvy laser's pieces at its gentle bends),
+straight laser, within a hundredth of a pixel of a curvy laser's pieces at its gentle bends,
+drawn from fewer nodes where it bends gently, within ``DRAW_TOLERANCE`` of that outline),
 in the laser's colour, between a wider dim glow and a narrower near-white core, all three on
 one black layer added over the field (``BLEND_RGB_ADD``), so what is hit is what reads as the laser.
 Presentation only: nothing here changes the world.
@@ -98,7 +99,9 @@ def draw_chains(
     of ``chains`` as its glow (``GLOW`` times wider, dimmed), its body (its hit shape: one
     mitred outline a laser) and its near-white core (``CORE`` times as wide, at least a
     pixel), filled in that order (every glow, then every body, then every core) into one
-    black 32-bit layer added over the field (``BLEND_RGB_ADD``). The three outlines of a
+    black 32-bit layer added over the field (``BLEND_RGB_ADD``). Each laser is drawn from
+    the nodes ``backend``'s :meth:`~broadsword.collision.Backend.chain_keep` keeps (every
+    outline within ``DRAW_TOLERANCE`` px of the one through every node). The three outlines of a
     laser are one call of ``backend``'s
     :meth:`~broadsword.collision.Backend.chain_outlines` (its mitres made once), each
     pass's one call of :meth:`~broadsword.collision.Backend.fill_polygons` (pixel centres,
