@@ -18,6 +18,7 @@ from .raster import LIMIT
 __all__ = ["chain_keep", "chain_outlines", "fill_polygons", "load", "load_outlines"]
 
 _SIGNATURE = "void(uint32[:, :], float64[:, :], int64[:], uint32)"
+_KEEP_SIGNATURE = "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])"
 _LIMIT = LIMIT
 
 
@@ -26,7 +27,7 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
     h, w = buf.shape
     n = points.shape[0]
     k = starts.shape[0]
-    first = np.zeros(n, np.int64)
+    first = np.zeros(n, np.int64)  # each edge's rows [first, stop)
     stop = np.zeros(n, np.int64)
     # at_row[r + 1] counts row r's crossings (absolute rows, zero between polygons); summed,
     # at_row[r] is where they go, and once placed, where row r + 1's begin.
@@ -74,17 +75,10 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
         lo_at = 0
         for r in range(r_lo, r_hi):
             hi_at = at_row[r]
-            if hi_at - lo_at == 2:  # most rows of a thick line: one span at most
-                p0, p1 = lo_at, lo_at + 1
-                if xs[p1] < xs[p0]:
-                    p0, p1 = p1, p0
-                if ws[p0] != 0:
-                    c0 = np.ceil(xs[p0] - 0.5)
-                    c1 = np.ceil(xs[p1] - 0.5)
-                    a = 0 if c0 <= 0.0 else (w if c0 >= w else int(c0))
-                    b = 0 if c1 <= 0.0 else (w if c1 >= w else int(c1))
-                    if b > a:
-                        buf[r, a:b] = value
+            if hi_at - lo_at == 2:  # most rows of a thick line: the sort is one swap
+                if xs[lo_at + 1] < xs[lo_at]:
+                    xs[lo_at], xs[lo_at + 1] = xs[lo_at + 1], xs[lo_at]
+                    ws[lo_at], ws[lo_at + 1] = ws[lo_at + 1], ws[lo_at]
             else:
                 for p in range(lo_at + 1, hi_at):  # insertion sort by x
                     x, wd = xs[p], ws[p]
@@ -95,16 +89,16 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
                         q -= 1
                     xs[q + 1] = x
                     ws[q + 1] = wd
-                winding = 0
-                for p in range(lo_at, hi_at - 1):
-                    winding += ws[p]
-                    if winding != 0:
-                        c0 = np.ceil(xs[p] - 0.5)
-                        c1 = np.ceil(xs[p + 1] - 0.5)
-                        a = 0 if c0 <= 0.0 else (w if c0 >= w else int(c0))
-                        b = 0 if c1 <= 0.0 else (w if c1 >= w else int(c1))
-                        if b > a:
-                            buf[r, a:b] = value
+            winding = 0
+            for p in range(lo_at, hi_at - 1):
+                winding += ws[p]
+                if winding != 0:
+                    c0 = np.ceil(xs[p] - 0.5)
+                    c1 = np.ceil(xs[p + 1] - 0.5)
+                    a = 0 if c0 <= 0.0 else (w if c0 >= w else int(c0))
+                    b = 0 if c1 <= 0.0 else (w if c1 >= w else int(c1))
+                    if b > a:
+                        buf[r, a:b] = value
             lo_at = hi_at
         at_row[r_lo : r_hi + 1] = 0
 
@@ -186,7 +180,7 @@ def chain_keep(
 ) -> np.ndarray:
     """:func:`.raster.chain_keep`, compiled (arguments as :func:`.raster.check_keep` states)."""
     keep = np.empty(len(nodes), dtype=np.bool_)
-    fn = jit(_keep_py, "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])")
+    fn = jit(_keep_py, _KEEP_SIGNATURE)
     fn(_writable(nodes), _writable(widths), _writable(starts), float(tolerance), float(widest), keep)
     return keep
 
@@ -208,7 +202,7 @@ def load():
     """The compiled fill and outlines (compiling them, with a message, when numba's cache
     lacks them); returns the fill."""
     load_outlines()
-    jit(_keep_py, "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])")
+    jit(_keep_py, _KEEP_SIGNATURE)
     return jit(_fill_py, _SIGNATURE)
 
 
