@@ -142,9 +142,9 @@ class Engine:
             b.refused += 1
             return
         runner = Runner([Thread(pattern, actions, params)]) if actions else None
-        p = data["pos"][row]
-        new[0].append(p[0])
-        new[1].append(p[1])
+        x, y = data["pos"][row].tolist()
+        new[0].append(x)
+        new[1].append(y)
         new[2].append(direction)
         new[3].append(speed)
         new[4].append(runner)

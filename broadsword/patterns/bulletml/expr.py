@@ -80,7 +80,8 @@ class Expr:
         """The expression's value in ``scope`` (finite, clamped; see the module doc)."""
         if self.const is not None:
             return self.const
-        return clamp(self.fn(scope))
+        v = self.fn(scope)
+        return v if -MAX_VALUE <= v <= MAX_VALUE else clamp(v)  # NaN fails both: clamped to 0
 
 
 class _Parser:
@@ -205,6 +206,8 @@ def _chain(first, rest, text: str):
             raise ValueError(f"expression {_short(text)}: division by zero")
     head = (lambda s, c=const: c) if const is not None else fn
     steps = tuple((_BINARY[op], rc, rf) for op, (rc, rf) in rest[i:])
+    if len(steps) == 1:  # ``a op b``, the usual case, as one closure (no loop)
+        return None, _binary(const, head, *steps[0])
 
     def run(s: Scope) -> float:
         value = head(s)
@@ -213,6 +216,17 @@ def _chain(first, rest, text: str):
         return value
 
     return None, run
+
+
+def _binary(const: float | None, head: Fn, f, rc: float | None, rf: Fn | None) -> Fn:
+    """``head op b`` for :func:`_chain`: the same operations as its loop, in one closure
+    (a constant on either side read as it is, not called)."""
+    if const is not None:
+        assert rf is not None  # a constant on both sides was folded
+        return lambda s: f(const, rf(s))
+    if rf is None:
+        return lambda s: f(head(s), rc)
+    return lambda s: f(head(s), rf(s))
 
 
 def _short(text: str) -> str:
