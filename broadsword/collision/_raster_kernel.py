@@ -2,7 +2,7 @@
 :func:`.raster.fill_polygons`' rule and pixels, with no array the size of the crossings.
 
 Each polygon is filled on its own: its edges' row crossings are counted as its edges are
-read, bucketed by row (a counting sort), each row's sorted by ``x`` (insertion: a row of a
+read (a difference array: a write an edge), bucketed by row (a counting sort), each row's sorted by ``x`` (insertion: a row of a
 thick line holds two, or a few at a bend), and the spans of nonzero winding set. Every crossing's ``x`` is the reference's expression
 in the same order (no ``fastmath``: no fused multiply-add), so both set the same pixels;
 ties in ``x`` only order empty spans.
@@ -29,9 +29,11 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
     k = starts.shape[0]
     first = np.zeros(n, np.int64)  # each edge's rows [first, stop)
     stop = np.zeros(n, np.int64)
-    # at_row[r + 1] counts row r's crossings (absolute rows, zero between polygons); summed,
-    # at_row[r] is where they go, and once placed, where row r + 1's begin.
-    at_row = np.zeros(h + 1, np.int64)
+    # at_row[r + 1] first gets +1 where an edge's rows begin and -1 past their end (a
+    # difference array: one write an edge, not one a crossing); summed once, it counts row
+    # r's crossings, summed twice, at_row[r] is where they go, and once placed, where row
+    # r + 1's begin. Absolute rows, zero between polygons.
+    at_row = np.zeros(h + 2, np.int64)
     xs = np.empty(0, np.float64)
     ws = np.empty(0, np.int64)
     for j in range(k):
@@ -52,16 +54,20 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
                 total += b - a
                 r_lo = min(r_lo, a)
                 r_hi = max(r_hi, b)
-                for r in range(a, b):
-                    at_row[r + 1] += 1
+                at_row[a + 1] += 1
+                at_row[b + 1] -= 1
         if total == 0:
             continue
         if total > xs.shape[0]:
             xs = np.empty(2 * total, np.float64)
             ws = np.empty(2 * total, np.int64)
+        count = 0  # row r's crossings
+        at = 0  # where row r + 1's go
         at_row[r_lo] = 0
         for r in range(r_lo, r_hi):
-            at_row[r + 1] += at_row[r]
+            count += at_row[r + 1]
+            at += count
+            at_row[r + 1] = at
         for i in range(s, e):
             if stop[i] > first[i]:
                 i1 = i + 1 if i + 1 < e else s
@@ -100,7 +106,7 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
                     if b > a:
                         buf[r, a:b] = value
             lo_at = hi_at
-        at_row[r_lo : r_hi + 1] = 0
+        at_row[r_lo : r_hi + 2] = 0
 
 
 def _outline_py(nodes, widths, starts, out):  # pragma: no cover - compiled by numba
