@@ -20,6 +20,7 @@ _KERNEL_FUNCTIONS = {
     "_bounds_kernel": "_overlap_py",
     "_narrow_kernel": "_filter_py",
     "_grid_kernel": "_grid_pairs_py",
+    "_laser_kernel": "_pieces_py",
     "_pose_kernel": "_pose_py",
     "_raster_kernel": "_fill_py",
     "_trig_kernel": "_sincos_py",
@@ -28,9 +29,17 @@ _KERNEL_FUNCTIONS = {
 
 def _kernel_modules() -> list[Any]:
     """The modules holding the compiled kernels, each with ``load()`` and its Python twin."""
-    from . import _bounds_kernel, _grid_kernel, _narrow_kernel, _pose_kernel, _raster_kernel, _trig_kernel
+    from . import (
+        _bounds_kernel,
+        _grid_kernel,
+        _laser_kernel,
+        _narrow_kernel,
+        _pose_kernel,
+        _raster_kernel,
+        _trig_kernel,
+    )
 
-    return [_bounds_kernel, _narrow_kernel, _grid_kernel, _pose_kernel, _trig_kernel, _raster_kernel]
+    return [_bounds_kernel, _narrow_kernel, _grid_kernel, _pose_kernel, _trig_kernel, _laser_kernel, _raster_kernel]
 
 
 def kernels_cached() -> bool:

@@ -12,12 +12,15 @@ stage (``Backend``)  numpy reference                             compiled twin (
 ``boxes_overlap``    ``bounds.boxes_overlap`` (``aabb`` tier)    ``_bounds_kernel``
 ``collide_columns``  ``narrow.polygons_collide_reference``       ``_narrow_kernel``: a float filter; what it
 ``collide_padded``   (the exact narrow phase)                    cannot certify goes to the reference
+``laser_pieces``     ``laserpieces.laser_pieces``                ``_laser_kernel``: the same operations, bits
 ``chain_outlines``   ``raster.chain_outlines``                   ``_raster_kernel``: the same operations, bits
+``chain_keep``       ``raster.chain_keep``                       ``_raster_kernel``: the same nodes
 ``fill_polygons``    ``raster.fill_polygons``                    ``_raster_kernel``: the same rule, pixels
 ===================  ==========================================  ===========================================
 
-The last two are not pipeline stages: they outline chains of nodes and fill polygons into a
-pixel buffer (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
+``laser_pieces`` makes the pieces of the lasers the broad phase let through (the pipeline
+passes its backend to :func:`.laserframe.join`). The last three are not pipeline stages:
+they outline chains of nodes, choose the nodes to draw and fill polygons into a pixel buffer (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
 them through the world's pipeline's backend (200 curvy lasers of 64 nodes are 22,000
 outline edges a pass: the compiled twins take a millisecond or so where pygame's polygon
 fill and the numpy outlines took tens; docs/PERFORMANCE.md).
@@ -46,7 +49,18 @@ from typing import Protocol, TypeVar
 
 import numpy as np
 
-from . import _bounds_kernel, _narrow_kernel, _pose_kernel, _raster_kernel, _trig_kernel, bounds, detmath, raster
+from . import (
+    _bounds_kernel,
+    _laser_kernel,
+    _narrow_kernel,
+    _pose_kernel,
+    _raster_kernel,
+    _trig_kernel,
+    bounds,
+    detmath,
+    laserpieces,
+    raster,
+)
 from ._kernel import Kernel, check_kernel
 from ._warm import warm_kernel
 from .arguments import ArgumentTypeError
@@ -160,6 +174,13 @@ class Backend(Protocol):
         (K2, P) (writeable float64), pair by column. ``reference`` as above."""
         ...
 
+    def laser_pieces(
+        self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(x, y, owner)``: the pieces of the lasers ``nodes`` (N, 2), ``widths`` (N,),
+        ``starts`` (L,) (:func:`.laserpieces.laser_pieces`: x, y (4, 2N - 3L), owner (2N - 3L,))."""
+        ...
+
     def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
         """(2n, 2) float64: the chains of ``nodes`` (n, 2) float64, ``widths`` (n,) float64 wide,
         chain ``j`` from ``starts[j]`` (k,) int64, each outlined as one polygon for
@@ -252,6 +273,11 @@ class NumpyBackend:
         reference: PaddedNarrow,
     ) -> np.ndarray:
         return reference(px, py, qx, qy, workspace)
+
+    def laser_pieces(
+        self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return laserpieces.laser_pieces(nodes, widths, starts)
 
     def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
         raster.check_chains(nodes, widths, starts)
@@ -348,6 +374,11 @@ class NumbaBackend:
         if rest.size:
             out[rest] = reference(px[:, rest], py[:, rest], qx[:, rest], qy[:, rest], workspace)
         return out
+
+    def laser_pieces(
+        self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return _laser_kernel.laser_pieces(nodes, widths, starts)
 
     def chain_outlines(self, nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) -> np.ndarray:
         raster.check_chains(nodes, widths, starts)

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import detmath
+from .backend import Backend
 from .lasers import LaserSet
 from .layers import LayerTable
 from .posing import Posed
@@ -65,13 +66,16 @@ class LaserPieces:
     boxes: np.ndarray
 
     @classmethod
-    def of(cls, lasers: LaserSet, layer: np.ndarray, chosen: np.ndarray | None = None) -> LaserPieces:
+    def of(
+        cls, lasers: LaserSet, layer: np.ndarray, chosen: np.ndarray | None = None, backend: Backend | None = None
+    ) -> LaserPieces:
         """The pieces of ``lasers`` (checked), each in its laser's ``layer`` ((L,) int64),
-        in one vectorised call; only those of the lasers ``chosen`` ((k,) ascending) when
-        given (``laser`` still numbers them among all)."""
+        in one call of ``backend``'s :meth:`~.backend.Backend.laser_pieces` (None: the
+        numpy reference); only those of the lasers ``chosen`` ((k,) ascending) when given
+        (``laser`` still numbers them among all)."""
         if chosen is not None:
             lasers, layer = lasers.subset(chosen), np.take(layer, chosen)
-        x, y, owner = lasers.pieces()
+        x, y, owner = lasers.pieces(backend)
         starts = lasers.starts
         first = 2 * starts - 3 * np.arange(len(lasers))  # each laser's first piece
         piece = np.arange(len(owner)) - np.take(first, owner)
@@ -320,14 +324,16 @@ def join(
     table: LayerTable,
     workspace: Workspace,
     aligned: bool,
+    backend: Backend | None = None,
 ) -> Joined:
     """The frame's ``n`` objects (``posed``, their ``boxes`` (n, 4) and ``layer`` ids) with
     the pieces of the ``lasers`` that meet an object they test (:func:`lasers_meeting`)
     appended as objects ``n ..``, in the shadow layers of :func:`laser_table` (``table`` is
-    the scene's own); ``aligned``: the pieces' oriented-box axes are needed."""
+    the scene's own); ``aligned``: the pieces' oriented-box axes are needed; ``backend``
+    makes the pieces (None: the numpy reference)."""
     n = len(layer)
     tested = lasers_meeting(lasers, laser_layer, boxes, layer, table)
-    pieces = LaserPieces.of(lasers, laser_layer, np.flatnonzero(tested))
+    pieces = LaserPieces.of(lasers, laser_layer, np.flatnonzero(tested), backend)
     p = pieces.count
     all_boxes = workspace.get("laser_boxes", (n + p, 4))
     all_boxes[:n], all_boxes[n:] = boxes, pieces.boxes

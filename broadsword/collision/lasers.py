@@ -53,6 +53,8 @@ from . import arguments
 from ._kernel import Kernel
 from .armature import convex_hull
 from .backend import Backend
+from .laserpieces import MAX_DOUBLE as _MAX
+from .laserpieces import laser_pieces
 from .narrow import polygons_collide_padded
 from .posing import _box_unbounded as _box_unbounded_rows
 from .posing import _sweep
@@ -70,15 +72,6 @@ __all__ = [
 
 #: The most nodes a laser may have (a curvy laser of 256 nodes is well inside it).
 LASER_NODES_MAX = 4096
-
-_MAX = float(np.finfo(np.float64).max)
-
-#: Segments whose larger direction component lies in [LO, HI] (or is 0) get the same normal
-#: bits unscaled: scaling by a power of two commutes with correctly rounded operations while
-#: nothing leaves the normal range, and here only the smaller component's square can (to a
-#: subnormal or zero), below 2**-62 of the larger's square: rounded away in the sum, scaled
-#: or not. So the frexp/ldexp scaling runs only where a coordinate is extreme.
-_SCALE_FREE_LO, _SCALE_FREE_HI = 2.0**-480, 2.0**480
 
 
 @dataclass(frozen=True, eq=False)
@@ -243,135 +236,16 @@ class LaserSet:
             )
         return np.clip(out, -_MAX, _MAX, out=out)
 
-    def pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Every laser's pieces, ``(x, y, owner)``, as :func:`laser_pieces` gives them."""
+    def pieces(self, backend: Backend | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every laser's pieces, ``(x, y, owner)``, as :func:`laser_pieces` gives them (by
+        ``backend``'s :meth:`~.backend.Backend.laser_pieces`, the same bits; None: the
+        reference)."""
         if not len(self):
             e = np.empty((4, 0))
             return e, e.copy(), np.empty(0, dtype=np.int64)
-        return laser_pieces(self.nodes, self.widths, self.starts)
-
-
-def _normals(x: np.ndarray, y: np.ndarray, seg_chain: np.ndarray, seg_first: np.ndarray, seg_last: np.ndarray):
-    """Unit normals ``(ux, uy)``, ``(s,)`` each, of ``s`` segments from ``(x[0], y[0])`` to
-    ``(x[1], y[1])`` (``x``, ``y``: (2, s)), by the module docstring's rules. A zero-length
-    segment takes its normal from its own laser: ``seg_chain`` (s,) is each segment's laser,
-    ``seg_first`` and ``seg_last`` (lasers,) each laser's first and last segment."""
-    with np.errstate(over="ignore", invalid="ignore"):
-        dx, dy = x[1] - x[0], y[1] - y[0]
-        far = ~(np.isfinite(dx) & np.isfinite(dy))
-        if far.any():  # ends of opposite sign near the largest double: halve first
-            dx[far] = 0.5 * x[1][far] - 0.5 * x[0][far]
-            dy[far] = 0.5 * y[1][far] - 0.5 * y[0][far]
-    big = np.maximum(np.abs(dx), np.abs(dy))
-    if ((big >= _SCALE_FREE_LO) & (big <= _SCALE_FREE_HI) | (big == 0)).all():
-        sx, sy = dx, dy  # the scaling would change no bit (see _SCALE_FREE_LO); frexp is slow
-    else:
-        _, e = np.frexp(big)
-        sx, sy = np.ldexp(dx, -e), np.ldexp(dy, -e)  # exact; the larger magnitude in [0.5, 1)
-    length = np.sqrt(sx * sx + sy * sy)
-    has = length > 0
-    ux, uy = np.zeros_like(dx), np.ones_like(dy)  # (0, 1): a chain with no length at all
-    ux[has], uy[has] = -sy[has] / length[has], sx[has] / length[has]
-    if has.all():
-        return ux, uy
-    s = np.arange(len(has))
-    before = np.maximum.accumulate(np.where(has, s, -1))  # nearest segment with a length, at or before
-    after = np.minimum.accumulate(np.where(has, s, len(has))[::-1])[::-1]  # at or after
-    first, last = seg_first[seg_chain], seg_last[seg_chain]
-    ok_before = before >= first
-    ok_after = after <= last
-    src = np.where(ok_before, before, np.where(ok_after, after, s))
-    fill = ~has & (ok_before | ok_after)
-    ux[fill], uy[fill] = ux[src[fill]], uy[src[fill]]
-    return ux, uy
-
-
-def _box_unbounded(x: np.ndarray, y: np.ndarray) -> None:
-    """Replace, in place, every piece (column of ``x``, ``y``, ``(4, m)``) with a corner past
-    the doubles by its bounding box clamped to the doubles, corners counter-clockwise."""
-    bad = np.flatnonzero(~(np.isfinite(x).all(axis=0) & np.isfinite(y).all(axis=0)))
-    if not bad.size:
-        return
-    x0, x1 = (np.clip(v, -_MAX, _MAX) for v in (x[:, bad].min(axis=0), x[:, bad].max(axis=0)))
-    y0, y1 = (np.clip(v, -_MAX, _MAX) for v in (y[:, bad].min(axis=0), y[:, bad].max(axis=0)))
-    x[:, bad] = np.stack([x0, x1, x1, x0])
-    y[:, bad] = np.stack([y0, y0, y1, y1])
-
-
-def laser_pieces(
-    nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray | None = None
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The pieces of many lasers at once.
-
-    Parameters
-    ----------
-    nodes : (N, 2) float64
-        Every laser's nodes, one laser after another (finite).
-    widths : (N,) float64
-        The full width at each node (finite, ``>= 0``).
-    starts : (L,) int, optional
-        Where each laser's nodes begin in ``nodes`` (increasing, the first 0, each laser at
-        least 2 nodes); ``None``: one laser.
-
-    Returns
-    -------
-    x, y : (4, P) float64
-        Column ``j`` is piece ``j``'s corners: for each laser in turn, its ``n - 1`` segment
-        pieces, then its ``n - 2`` joins (``P`` is ``2 N - 3 L``).
-    owner : (P,) int64
-        The laser each piece belongs to.
-
-    Arguments are not checked here (:meth:`Laser.of` checks one laser's); the bits of a
-    laser's pieces do not depend on the lasers around it.
-    """
-    n_all = len(nodes)
-    starts = np.zeros(1, dtype=np.int64) if starts is None else np.asarray(starts, dtype=np.int64)
-    lasers = len(starts)
-    counts = np.empty_like(starts)  # nodes per laser
-    counts[:-1] = np.diff(starts)
-    counts[-1] = n_all - starts[-1]
-    x, y = nodes[:, 0], nodes[:, 1]
-    h = 0.5 * widths  # exact (half of a double is a double, barring subnormals: rounded once)
-    # Segments: laser l's nodes are starts[l] .., its segments starts[l] - l ..
-    seg_first = starts - np.arange(lasers)
-    seg_last = seg_first + counts - 2
-    seg_chain = np.repeat(np.arange(lasers), counts - 1)
-    seg_start = np.arange(n_all - lasers) + np.take(starts - seg_first, seg_chain)  # first node of each
-    ux, uy = _normals(
-        np.stack([np.take(x, seg_start), np.take(x, seg_start + 1)]),
-        np.stack([np.take(y, seg_start), np.take(y, seg_start + 1)]),
-        seg_chain,
-        seg_first,
-        seg_last,
-    )
-    # Every piece in output order (laser by laser, segments then joins) as two nodes and two
-    # segments: corners n0 + h u(s0), n1 + h u(s1), n1 - h u(s0), n0 - h u(s1). A segment
-    # piece s: nodes s's ends, both normals its own; a join at node i: n0 = n1 = i, s0 and s1
-    # the segments before and after it.
-    owner = np.repeat(np.arange(lasers), 2 * counts - 3)
-    t = np.arange(len(owner)) - np.take(2 * starts - 3 * np.arange(lasers), owner)  # index within the laser
-    j = t - np.take(counts - 1, owner)  # join index (>= 0 for joins)
-    join = j >= 0
-    local = np.where(join, j, t)
-    s0 = np.take(seg_first, owner) + local
-    s1 = s0 + join
-    n0 = np.take(starts, owner) + local + join
-    n1 = n0 + ~join
-    x0, y0, h0 = np.take(x, n0), np.take(y, n0), np.take(h, n0)
-    x1, y1, h1 = np.take(x, n1), np.take(y, n1), np.take(h, n1)
-    ux0, uy0, ux1, uy1 = np.take(ux, s0), np.take(uy, s0), np.take(ux, s1), np.take(uy, s1)
-    px, py = np.empty((4, len(owner))), np.empty((4, len(owner)))
-    with np.errstate(over="ignore", invalid="ignore"):
-        np.add(x0, h0 * ux0, out=px[0])
-        np.add(y0, h0 * uy0, out=py[0])
-        np.add(x1, h1 * ux1, out=px[1])
-        np.add(y1, h1 * uy1, out=py[1])
-        np.subtract(x1, h1 * ux0, out=px[2])
-        np.subtract(y1, h1 * uy0, out=py[2])
-        np.subtract(x0, h0 * ux1, out=px[3])
-        np.subtract(y0, h0 * uy1, out=py[3])
-    _box_unbounded(px, py)
-    return px, py, owner
+        if backend is None:
+            return laser_pieces(self.nodes, self.widths, self.starts)
+        return backend.laser_pieces(self.nodes, self.widths, self.starts)
 
 
 def pieces_touching(laser: Laser, polygon, kernel: Backend | Kernel | str | None = None) -> np.ndarray:

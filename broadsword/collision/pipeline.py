@@ -263,7 +263,9 @@ class Pipeline:
         all_posed, all_boxes, all_layer, p = posed, boxes, layer, 0
         if lasers is not None:
             aligned = Tier.OBB in self.tiers
-            joined = laserframe.join(posed, boxes, layer, lasers, laser_layer, self.layers, self.workspace, aligned)
+            joined = laserframe.join(
+                posed, boxes, layer, lasers, laser_layer, self.layers, self.workspace, aligned, self.backend
+            )
             all_posed, all_boxes, all_layer, p = joined.posed, joined.boxes, joined.layer, joined.pieces.count
         if self.needs_vertices:
             stats.append(TierStats("pose", n + p_all, n + p, (clock() - t0) * 1e3, p_all, p))

@@ -660,3 +660,41 @@ def test_backend_for__one_place_one_default(monkeypatch):
         backend_for(5)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="^kernel must be one of"):
         backend_for("cuda")
+
+
+@PROPERTY
+@given(chain_sets(), st.floats(0, 1.7e308) | st.just(0.0) | st.floats(1e-320, 1e-300))
+def test_laser_pieces__property_the_same_bits(backends, chains, scale):
+    """Any doubles: nodes anywhere (repeated ones: zero-length segments, whose normal comes
+    from a neighbour; ends of opposite sign near the largest double: the direction halved),
+    widths up to past the doubles (a corner past them: the piece's clamped box). Both
+    backends give the same corners, bit for bit, and the same owners."""
+    nodes, widths, starts = chains
+    if not len(starts):
+        return
+    widths = np.minimum(widths / 1e6 * scale, 1.7e308)
+    ref, got = (b.laser_pieces(nodes, widths, starts) for b in backends)
+    assert ref[0].shape == (4, 2 * len(nodes) - 3 * len(starts))
+    for r, g in zip(ref, got, strict=True):
+        assert bits(r) == bits(g)
+
+
+def test_laser_pieces__curvy_lasers_far_ones_and_chains_with_no_length(backends):
+    """The lasers as the game makes them (64 nodes 2.5 px apart, tapered), the same far from
+    the origin, a chain of one repeated node, and one whose first segments have no length."""
+    rng = np.random.default_rng(5)
+    turn = np.cumsum(rng.normal(0, 0.05, 640))
+    nodes = np.cumsum(np.column_stack([np.sin(turn), np.cos(turn)]) * 2.5, axis=0)
+    widths = np.tile(np.linspace(12.0, 3.0, 64), 10)
+    starts = np.arange(0, 640, 64, dtype=np.int64)
+    nodes[64:128] = 7.0  # no length at all: normal (0, 1)
+    nodes[128:131] = nodes[131]  # the first three segments take the fourth's normal
+    nodes[192:256] += 1.6e308
+    widths[192:256] = 1e308  # the corners past the doubles: boxed
+    nodes[256:320] *= 1e-300
+    nodes[340:343] = nodes[339]  # segments with no length after one with: its normal
+    nodes[384:448:2, 0], nodes[385:448:2, 0] = -1.5e308, 1.5e308  # x steps past the doubles: halved
+    ref, got = (b.laser_pieces(nodes, widths, starts) for b in backends)
+    for r, g in zip(ref, got, strict=True):
+        assert bits(r) == bits(g)
+    assert np.isfinite(ref[0]).all() and np.isfinite(ref[1]).all()
