@@ -25,6 +25,8 @@ from collections.abc import Callable
 from enum import Enum
 from typing import Any
 
+import numpy as np
+
 __all__ = [
     "Kernel",
     "check_kernel",
@@ -33,6 +35,7 @@ __all__ = [
     "numba_available",
     "numba_problem",
     "NUMBA_MISSING",
+    "writable",
 ]
 
 #: Environment variable forcing the narrow-phase kernel (values of :class:`Kernel`).
@@ -155,6 +158,12 @@ def jit(fn, signature: str):
             print(f"broadsword:   {where}.{fn.__name__} {time.perf_counter() - t0:.1f} s", file=sys.stderr)
         _Compiled.fns[fn] = got
     return got
+
+
+def writable(a: np.ndarray) -> np.ndarray:
+    """``a``, or a copy when it is read-only (a :class:`~.lasers.LaserSet`'s arrays are):
+    the compiled signatures take writable arrays only."""
+    return a if a.flags.writeable else a.copy()
 
 
 def _compile(numba: Any, fn, signature: str):

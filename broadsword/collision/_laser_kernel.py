@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ._kernel import jit
+from ._kernel import jit, writable
 from .laserpieces import _SCALE_FREE_HI, _SCALE_FREE_LO, MAX_DOUBLE
 
 __all__ = ["laser_pieces", "load"]
@@ -111,11 +111,5 @@ def laser_pieces(
     p = 2 * len(nodes) - 3 * len(starts)
     px, py = np.empty((4, p)), np.empty((4, p))
     owner = np.empty(p, dtype=np.int64)
-    load()(_ready(nodes), _ready(widths), _ready(starts), px, py, owner)
+    load()(writable(nodes), writable(widths), writable(starts), px, py, owner)
     return px, py, owner
-
-
-def _ready(a: np.ndarray) -> np.ndarray:
-    """``a`` as the signature takes it: float64 or int64 as given, C-ordered and writable (a
-    :class:`~.lasers.LaserSet`'s arrays are read-only)."""
-    return a if a.flags.writeable and a.flags.c_contiguous else np.array(a, order="C")

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._kernel import jit
+from ._kernel import jit, writable
 from .raster import LIMIT
 
 __all__ = ["chain_keep", "chain_outlines", "fill_polygons", "load", "load_outlines"]
@@ -187,7 +187,7 @@ def chain_keep(
     """:func:`.raster.chain_keep`, compiled (arguments as :func:`.raster.check_keep` states)."""
     keep = np.empty(len(nodes), dtype=np.bool_)
     fn = jit(_keep_py, _KEEP_SIGNATURE)
-    fn(_writable(nodes), _writable(widths), _writable(starts), float(tolerance), float(widest), keep)
+    fn(writable(nodes), writable(widths), writable(starts), float(tolerance), float(widest), keep)
     return keep
 
 
@@ -200,7 +200,7 @@ def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) ->
     """:func:`.raster.chain_outlines`, compiled (arguments as :func:`.raster.check_chains` states)."""
     rows = widths if widths.ndim == 2 else widths[None]  # (m, n): one outline a row
     out = np.empty((len(rows), 2 * len(nodes), 2))
-    load_outlines()(_writable(nodes), _writable(rows), _writable(starts), out)
+    load_outlines()(writable(nodes), writable(rows), writable(starts), out)
     return out if widths.ndim == 2 else out[0]
 
 
@@ -214,10 +214,4 @@ def load():
 
 def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
     """:func:`.raster.fill_polygons`, compiled (arguments as :func:`.raster.check_fill` states)."""
-    load()(buf, _writable(points), _writable(starts), np.uint32(value))
-
-
-def _writable(a: np.ndarray) -> np.ndarray:
-    """``a``, or a copy when it is read-only (a :class:`~.lasers.LaserSet`'s arrays are):
-    the compiled signatures take writable arrays only."""
-    return a if a.flags.writeable else a.copy()
+    load()(buf, writable(points), writable(starts), np.uint32(value))
