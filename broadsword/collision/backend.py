@@ -20,7 +20,8 @@ stage (``Backend``)  numpy reference                             compiled twin (
 
 ``laser_pieces`` makes the pieces of the lasers the broad phase let through (the pipeline
 passes its backend to :func:`.laserframe.join`). The last three are not pipeline stages:
-they outline chains of nodes, choose the nodes to draw and fill polygons into a pixel buffer (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
+they outline chains of nodes, choose the nodes to draw and fill polygons into a pixel
+buffer (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
 them through the world's pipeline's backend (200 curvy lasers of 64 nodes are 22,000
 outline edges a pass: the compiled twins take a millisecond or so where pygame's polygon
 fill and the numpy outlines took tens; docs/PERFORMANCE.md).
