@@ -17,13 +17,14 @@ from .raster import LIMIT
 
 __all__ = ["chain_keep", "chain_outlines", "fill_polygons", "load", "load_outlines"]
 
-_SIGNATURE = "void(uint32[:, :], float64[:, :], int64[:], uint32)"
+_SIGNATURE = "void(uint32[:, :], float64[:, :], int64[:], uint32[:])"
 _KEEP_SIGNATURE = "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])"
 _LIMIT = LIMIT
 
 
-def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numba
-    """:func:`.raster.fill_polygons`: set ``buf`` (h, w) to ``value`` inside each polygon."""
+def _fill_py(buf, points, starts, values):  # pragma: no cover - compiled by numba
+    """:func:`.raster.fill_polygons`: set ``buf`` (h, w) to ``values[j]`` inside polygon ``j``,
+    polygon after polygon."""
     h, w = buf.shape
     n = points.shape[0]
     k = starts.shape[0]
@@ -39,6 +40,7 @@ def _fill_py(buf, points, starts, value):  # pragma: no cover - compiled by numb
     for j in range(k):
         s = starts[j]
         e = starts[j + 1] if j + 1 < k else n
+        value = values[j]
         r_lo, r_hi, total = h, 0, 0
         for i in range(s, e):
             i1 = i + 1 if i + 1 < e else s
@@ -212,6 +214,9 @@ def load():
     return jit(_fill_py, _SIGNATURE)
 
 
-def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
-    """:func:`.raster.fill_polygons`, compiled (arguments as :func:`.raster.check_fill` states)."""
-    load()(buf, writable(points), writable(starts), np.uint32(value))
+def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, values: np.ndarray) -> None:
+    """:func:`.raster.fill_polygons`, compiled (arguments as :func:`.raster.check_fill` states,
+    ``values`` (k,) uint32 as :func:`.raster.check_values` gives them). One call, with the
+    GIL released throughout (the kernels compile ``nogil``): a renderer may run it on a
+    second thread while it draws the rest of the frame."""
+    load()(buf, writable(points), writable(starts), values)

@@ -15,7 +15,8 @@ stage (``Backend``)  numpy reference                             compiled twin (
 ``laser_pieces``     ``laserpieces.laser_pieces``                ``_laser_kernel``: the same operations, bits
 ``chain_outlines``   ``raster.chain_outlines``                   ``_raster_kernel``: the same operations, bits
 ``chain_keep``       ``raster.chain_keep``                       ``_raster_kernel``: the same nodes
-``fill_polygons``    ``raster.fill_polygons``                    ``_raster_kernel``: the same rule, pixels
+``fill_polygons``    ``raster.fill_polygons``                    ``_raster_kernel``: the same rule, pixels,
+                                                                 with the GIL released
 ===================  ==========================================  ===========================================
 
 ``laser_pieces`` makes the pieces of the lasers the broad phase let through (the pipeline
@@ -200,11 +201,13 @@ class Backend(Protocol):
         Raises ``ValueError`` naming the argument that is not as stated (:func:`.raster.check_keep`)."""
         ...
 
-    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
-        """Set to ``value`` the pixels of ``buf`` (h, w) uint32 inside the polygons ``points``
-        (n, 2) float64, polygon ``j`` from ``starts[j]`` (k,) int64 (:mod:`.raster`'s rule:
-        pixel centres, nonzero winding, clipped to ``buf``). Raises ``ValueError`` naming the
-        argument that is not as stated (:func:`.raster.check_fill`)."""
+    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int | np.ndarray) -> None:
+        """Set the pixels of ``buf`` (h, w) uint32 inside the polygons ``points`` (n, 2)
+        float64, polygon ``j`` from ``starts[j]`` (k,) int64, to ``value`` (an int) or to
+        ``value[j]`` ((k,) integers), polygon after polygon (:mod:`.raster`'s rule: pixel
+        centres, nonzero winding, clipped to ``buf``; where two overlap, the later one's
+        value stays). Raises ``ValueError`` naming the argument that is not as stated
+        (:func:`.raster.check_fill`, :func:`.raster.check_values`)."""
         ...
 
 
@@ -290,9 +293,9 @@ class NumpyBackend:
         raster.check_keep(nodes, widths, starts, tolerance, widest)
         return raster.chain_keep(nodes, widths, starts, tolerance, widest)
 
-    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int | np.ndarray) -> None:
         raster.check_fill(buf, points, starts)
-        raster.fill_polygons(buf, points, starts, value)
+        raster.fill_polygons(buf, points, starts, raster.check_values(value, len(starts)))
 
 
 class NumbaBackend:
@@ -391,9 +394,9 @@ class NumbaBackend:
         raster.check_keep(nodes, widths, starts, tolerance, widest)
         return _raster_kernel.chain_keep(nodes, widths, starts, tolerance, widest)
 
-    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+    def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int | np.ndarray) -> None:
         raster.check_fill(buf, points, starts)
-        _raster_kernel.fill_polygons(buf, points, starts, value)
+        _raster_kernel.fill_polygons(buf, points, starts, raster.check_values(value, len(starts)))
 
 
 def pose_and_box_reference(

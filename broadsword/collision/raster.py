@@ -18,8 +18,8 @@ so set the same pixels; ``tests/collision/test_backend_parity.py`` compares them
   pixel, and a polygon's pixels are those of :func:`.pixels.rasterise` (for a simple one).
 - Rows and columns outside the buffer are clipped; an edge with a coordinate beyond
   ``LIMIT`` (``2**50`` pixels) in size, or not finite, is skipped (it crosses no row), so
-  every crossing is a finite double. Each polygon is filled on its own: two that overlap
-  both set the shared pixels (to the same value).
+  every crossing is a finite double. Each polygon is filled on its own, in order, with its
+  own value (or one for all): where two overlap, the later one's value stays.
 
 :func:`chain_outlines` gives the polygons the game fills to draw a laser: each chain of
 nodes (a laser's polyline) as one outline, its nodes offset by half their width along their
@@ -32,7 +32,16 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["LIMIT", "chain_keep", "chain_outlines", "check_chains", "check_fill", "check_keep", "fill_polygons"]
+__all__ = [
+    "LIMIT",
+    "chain_keep",
+    "chain_outlines",
+    "check_chains",
+    "check_fill",
+    "check_keep",
+    "check_values",
+    "fill_polygons",
+]
 
 #: The largest coordinate an edge may have and still be filled (pixels; see the module).
 LIMIT = float(2**50)
@@ -52,11 +61,46 @@ def check_fill(buf: np.ndarray, points: np.ndarray, starts: np.ndarray) -> None:
         raise ValueError("starts must begin at 0 and increase, each polygon at least one point")
 
 
-def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
-    """Set to ``value`` the pixels of ``buf`` (h, w) uint32 inside the polygons (the module's
-    rule): polygon ``j`` is ``points[starts[j]:starts[j + 1]]`` (the last to the end of
-    ``points`` (n, 2) float64, x then y, closed from its last point to its first);
-    ``starts`` (k,) int64 as :func:`check_fill` states (the callers check)."""
+def check_values(value: int | np.ndarray, k: int) -> np.ndarray:
+    """``value`` as (k,) uint32, each polygon's: an int in [0, 2**32) is every polygon's, a
+    (k,) unsigned or signed integer array gives each its own (each in [0, 2**32)).
+    ``ValueError`` naming ``value`` otherwise."""
+    if isinstance(value, np.ndarray):
+        if value.shape != (k,) or value.dtype.kind not in "iu":
+            raise ValueError(f"value must be an int or a ({k},) integer array, got {value.dtype} {value.shape}")
+        if k and (int(value.min()) < 0 or int(value.max()) > 0xFFFFFFFF):
+            raise ValueError("value must be in [0, 2**32) for every polygon")
+        return value.astype(np.uint32)
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= int(value) <= 0xFFFFFFFF:
+        raise ValueError(f"value must be an int in [0, 2**32) or a ({k},) integer array, got {value!r}")
+    return np.full(k, int(value), dtype=np.uint32)
+
+
+def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int | np.ndarray) -> None:
+    """Set the pixels of ``buf`` (h, w) uint32 inside the polygons (the module's rule) to
+    their polygon's value: polygon ``j`` is ``points[starts[j]:starts[j + 1]]`` (the last
+    to the end of ``points`` (n, 2) float64, x then y, closed from its last point to its
+    first), its value ``value`` (an int, every polygon's) or ``value[j]`` ((k,) integers).
+    Polygons are filled in order: where two overlap, the later one's value stays.
+    ``starts`` (k,) int64 and ``value`` as :func:`check_fill` and :func:`check_values`
+    state (the callers check)."""
+    if not isinstance(value, np.ndarray):
+        _fill_same(buf, points, starts, value)
+        return
+    k = len(starts)
+    if k == 0:
+        return
+    change = np.flatnonzero(value[1:] != value[:-1]) + 1  # runs of one value: one fill each
+    bounds = np.concatenate([[0], change, [k]]).tolist()
+    ends = np.append(starts, len(points))
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        lo = int(starts[a])
+        _fill_same(buf, points[lo : int(ends[b])], starts[a:b] - lo, int(value[a]))
+
+
+def _fill_same(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int) -> None:
+    """:func:`fill_polygons` with one value for every polygon: the pixels set by two
+    polygons get the same value, so the order of the writes does not matter."""
     h, w = buf.shape
     n = len(points)
     if n == 0 or len(starts) == 0:

@@ -9,10 +9,14 @@ straight laser, within a hundredth of a pixel of a curvy laser's pieces at its g
 drawn from fewer nodes where it bends gently, within ``DRAW_TOLERANCE`` of that outline),
 in the laser's colour, between a wider dim glow and a narrower near-white core, all three on
 one black layer added over the field (``BLEND_RGB_ADD``), so what is hit is what reads as the laser.
+The layer is filled in one call (:class:`LaserFill`: every outline, a value each), which
+the renderer runs on its second thread (:mod:`.backstage`) while it draws the rest.
 Presentation only: nothing here changes the world.
 """
 
 from __future__ import annotations
+
+from concurrent.futures import Future
 
 import numpy as np
 import pygame
@@ -20,6 +24,7 @@ import pygame
 from ..collision import Backend, LaserSet
 from ..sim import World
 from ..sim.lasers import frames
+from .backstage import Backstage
 from .palettes import LASER_COLOURS, RGB, BulletPalette
 
 #: Each kind's colour (the body) in the standard palette; the glow is it dimmed, the core
@@ -40,26 +45,47 @@ OVERLAY_WARNING, OVERLAY_NODE = (255, 80, 220), (255, 255, 255)
 
 
 def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPalette = BulletPalette.STANDARD) -> None:
-    """``world``'s lasers over ``surf``, in ``palette``'s colours: warning lines (thin,
-    blinking, brighter as the laser nears turning on), then the lit lasers' glow, body and
-    core. ``tick`` counts render frames."""
+    """``world``'s lasers over ``surf``, in ``palette``'s colours: warning lines
+    (:func:`draw_warnings`), then the lit lasers' glow, body and core (:func:`laser_fill`,
+    filled here and added). ``tick`` counts render frames. The renderer does the same in
+    two halves, the fill on its :class:`~.backstage.Backstage`."""
+    draw_warnings(surf, world, tick, palette)
+    fill = laser_fill(world, surf.get_size(), palette)
+    if fill is not None:
+        fill.run()
+        fill.add_to(surf)
+
+
+def draw_warnings(
+    surf: pygame.Surface, world: World, tick: int, palette: BulletPalette = BulletPalette.STANDARD
+) -> None:
+    """The warning lines of the lasers about to turn on, over ``surf``: thin, blinking
+    (``tick`` counts render frames), brighter as each nears turning on."""
     lasers = world.lasers
     p = lasers.pool
-    if not p.n:
+    warn = lasers.warning_rows() if p.n else []
+    if not warn or (tick // BLINK) % 2:
         return
     colours = LASER_COLOURS[palette]
-    warn = lasers.warning_rows()
-    if warn and (tick // BLINK) % 2 == 0:
-        layer = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
-        for i in warn:
-            s = lasers.spec_of(i)
-            near = int(p.age[i]) / frames(s.warn)  # 0 when fired, 1 as it turns on
-            a, b = p.nodes[i, 0].tolist(), p.nodes[i, 1].tolist()
-            pygame.draw.line(layer, (*colours[s.kind], int(90 + 150 * near)), a, b, 1)
-        surf.blit(layer, (0, 0))
-    live = lasers.live_rows()
+    layer = pygame.Surface(surf.get_size(), pygame.SRCALPHA)
+    for i in warn:
+        s = lasers.spec_of(i)
+        near = int(p.age[i]) / frames(s.warn)  # 0 when fired, 1 as it turns on
+        a, b = p.nodes[i, 0].tolist(), p.nodes[i, 1].tolist()
+        pygame.draw.line(layer, (*colours[s.kind], int(90 + 150 * near)), a, b, 1)
+    surf.blit(layer, (0, 0))
+
+
+def laser_fill(
+    world: World, size: tuple[int, int], palette: BulletPalette = BulletPalette.STANDARD
+) -> LaserFill | None:
+    """``world``'s lit lasers, in ``palette``'s colours, made ready to fill into a layer of
+    ``size`` (:class:`LaserFill`); None when none is lit."""
+    lasers = world.lasers
+    live = lasers.live_rows() if lasers.pool.n else []
     if not live:
-        return
+        return None
+    colours = LASER_COLOURS[palette]
     tested = _collided(world, live)
     chains = []
     for kind, rows in lasers.by_kind(live).items():
@@ -68,7 +94,7 @@ def draw_lasers(surf: pygame.Surface, world: World, tick: int, palette: BulletPa
         else:
             own = tested if len(rows) == len(live) else tested.subset(np.searchsorted(live, rows))
             chains.append(((own.nodes, own.widths, own.starts), colours[kind]))
-    draw_chains(surf, chains, world.pipeline.backend)
+    return LaserFill(size, chains, world.pipeline.backend)
 
 
 def _collided(world: World, live: list[int]) -> LaserSet | None:
@@ -92,37 +118,80 @@ def _collided(world: World, live: list[int]) -> LaserSet | None:
     return tested
 
 
-def draw_chains(
-    surf: pygame.Surface, chains: list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]], backend: Backend
-) -> None:
-    """Lit lasers over ``surf``: each ``((nodes (N, 2), widths (N,), starts (L,)), colour)``
-    of ``chains`` as its glow (``GLOW`` times wider, dimmed), its body (its hit shape: one
-    mitred outline a laser) and its near-white core (``CORE`` times as wide, at least a
-    pixel), filled in that order (every glow, then every body, then every core) into one
-    black 32-bit layer added over the field (``BLEND_RGB_ADD``). Each laser is drawn from
-    the nodes ``backend``'s :meth:`~broadsword.collision.Backend.chain_keep` keeps (every
-    outline within ``DRAW_TOLERANCE`` px of the one through every node). The three outlines of a
-    laser are one call of ``backend``'s
-    :meth:`~broadsword.collision.Backend.chain_outlines` (its mitres made once), each
-    pass's one call of :meth:`~broadsword.collision.Backend.fill_polygons` (pixel centres,
-    nonzero winding). What :func:`draw_lasers` and the palette check (:mod:`.palette_check`) draw."""
-    layer = pygame.Surface(surf.get_size(), 0, 32)
-    pixels = pygame.surfarray.pixels2d(layer)  # (w, h): .T is (h, w), rows of pixels
-    passes = []
-    for (nodes, widths, starts), colour in chains:
-        keep = backend.chain_keep(nodes, widths, starts, DRAW_TOLERANCE, GLOW)
-        if not keep.all():  # the nodes the outlines can do without: fewer edges to fill
-            kept = np.add.reduceat(keep, starts)
-            nodes, widths, starts = nodes[keep], widths[keep], np.concatenate([[0], np.cumsum(kept[:-1])])
-        wide = np.stack([widths * GLOW, widths, np.maximum(widths * CORE, 1.0)])
-        outlines = backend.chain_outlines(nodes, wide, starts)  # (3, 2N, 2)
-        colours = (_dim(colour), colour, _whiten(colour))
-        passes.append([(outline, 2 * starts, layer.map_rgb(c)) for outline, c in zip(outlines, colours, strict=True)])
-    for fills in zip(*passes):  # the glows, then the bodies, then the cores
-        for points, corners, value in fills:
-            backend.fill_polygons(pixels.T, points, corners, value)
-    del pixels  # the view locks the layer: released before the blit
-    surf.blit(layer, (0, 0), special_flags=pygame.BLEND_RGB_ADD)
+Chains = list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]]
+
+
+class LaserFill:
+    """Lit lasers as one frame draws them, in three halves: made (the outlines, on the
+    caller's thread), :meth:`run` (the fill: one call of the backend's
+    :meth:`~broadsword.collision.Backend.fill_polygons`, which the compiled backend runs
+    with the GIL released, so it may run on a second thread) and :meth:`add_to` (the
+    layer added over the field).
+
+    ``chains``: each ``((nodes (N, 2), widths (N,), starts (L,)), colour)`` is drawn as
+    its glow (``GLOW`` times wider, dimmed), its body (its hit shape: one mitred outline a
+    laser) and its near-white core (``CORE`` times as wide, at least a pixel), filled in
+    that order (every glow, then every body, then every core, each chain's lasers in
+    order) into one black 32-bit layer of ``size``, added over the field
+    (``BLEND_RGB_ADD``). Each laser is drawn from the nodes ``backend``'s
+    :meth:`~broadsword.collision.Backend.chain_keep` keeps (every outline within
+    ``DRAW_TOLERANCE`` px of the one through every node); a chain's three outlines are one
+    call of :meth:`~broadsword.collision.Backend.chain_outlines` (its mitres made once)."""
+
+    def __init__(self, size: tuple[int, int], chains: Chains, backend: Backend):
+        self.layer = pygame.Surface(size, 0, 32)
+        outlines, corners, values = [], [], []  # by chain: (3, 2N, 2), (L,), (3,)
+        for (nodes, widths, starts), colour in chains:
+            keep = backend.chain_keep(nodes, widths, starts, DRAW_TOLERANCE, GLOW)
+            if not keep.all():  # the nodes the outlines can do without: fewer edges to fill
+                kept = np.add.reduceat(keep, starts)
+                nodes, widths, starts = nodes[keep], widths[keep], np.concatenate([[0], np.cumsum(kept[:-1])])
+            wide = np.stack([widths * GLOW, widths, np.maximum(widths * CORE, 1.0)])
+            outlines.append(backend.chain_outlines(nodes, wide, starts))
+            corners.append(2 * starts)
+            values.append([self.layer.map_rgb(c) for c in (_dim(colour), colour, _whiten(colour))])
+        sizes = [o.shape[1] for o in outlines]
+        at = np.cumsum([0, *sizes[:-1]], dtype=np.int64)  # each chain's first point in a pass
+        one_pass = sum(sizes)
+        self._points = np.concatenate([o[p] for p in range(3) for o in outlines]) if chains else np.zeros((0, 2))
+        self._starts = np.concatenate(
+            [p * one_pass + a + c for p in range(3) for a, c in zip(at.tolist(), corners, strict=True)]
+            or [np.zeros(0, np.int64)]
+        ).astype(np.int64)
+        self._values = np.concatenate(
+            [np.full(len(c), v[p], np.uint32) for p in range(3) for c, v in zip(corners, values, strict=True)]
+            or [np.zeros(0, np.uint32)]
+        )
+        self._backend = backend
+        self._pixels: np.ndarray | None = pygame.surfarray.pixels2d(self.layer)  # (w, h); locks the layer
+        self._running: Future[None] | None = None
+
+    def run(self) -> None:
+        """Fill the layer (once): every polygon, pass after pass, in one backend call."""
+        assert self._pixels is not None, "a LaserFill runs once, before add_to"
+        self._backend.fill_polygons(self._pixels.T, self._points, self._starts, self._values)
+
+    def start(self, backstage: Backstage) -> None:
+        """:meth:`run` on ``backstage``'s thread, beside the caller; :meth:`add_to` waits for it."""
+        self._running = backstage.start(self.run)
+
+    def add_to(self, surf: pygame.Surface) -> None:
+        """Add the filled layer over ``surf`` (``BLEND_RGB_ADD``): once :meth:`start`'s fill
+        is done (raising what it raised), or after :meth:`run`; the pixel view released first."""
+        if self._running is not None:
+            self._running.result()
+            self._running = None
+        self._pixels = None  # the view locks the layer: released before the blit
+        surf.blit(self.layer, (0, 0), special_flags=pygame.BLEND_RGB_ADD)
+
+
+def draw_chains(surf: pygame.Surface, chains: Chains, backend: Backend) -> None:
+    """Lit lasers over ``surf`` as the game draws them (:class:`LaserFill`: glow, body and
+    core of each ``((nodes, widths, starts), colour)`` of ``chains``), in turn. What
+    :func:`draw_lasers` and the palette check (:mod:`.palette_check`) draw."""
+    fill = LaserFill(surf.get_size(), chains, backend)
+    fill.run()
+    fill.add_to(surf)
 
 
 def _dim(colour: RGB) -> RGB:

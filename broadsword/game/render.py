@@ -4,12 +4,18 @@ Positions are interpolated between the last two simulation steps by ``alpha`` (G
 Programming Patterns, "Game Loop"), so motion is smooth at any display rate. Effects
 (explosions, sparks, flashes) are presentation only: they are driven by the step's
 events and never feed back into the simulation.
+
+The lit lasers' layer is filled on a second thread (:class:`.backstage.Backstage`) while
+the backdrop, the ships and the first bullets are drawn and the enemy bullets' blit list
+is made; it is added over the field where :func:`.lasers.draw_lasers` would draw it, so
+the frame's pixels are the same.
 """
 
 from __future__ import annotations
 
 import math
 import random
+from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import Enum
 
@@ -19,9 +25,10 @@ from ..data.levels import Theme
 from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .backdrop import Backdrop
+from .backstage import Backstage
 from .bullets import BulletSprites
 from .hud import boss_name, draw_boss_bar, draw_midboss_bar, warning_due
-from .lasers import draw_lasers
+from .lasers import draw_warnings, laser_fill
 from .sprites import SpriteBank
 
 LAYER_COLOURS = {  # debug-overlay and armature colours, by layer
@@ -93,6 +100,7 @@ class Renderer:
         self._sprites: BulletSprites | None = None  # the bullets' rotation tables, for the level's kinds
         self.captions: list[Caption] = []
         self.cosmetic = random.Random(seed)  # sparks' directions: never the game's generator
+        self.backstage = Backstage()  # fills the lit lasers' layer beside the rest of a frame
 
     def _explosion_frames(self) -> list[pygame.Surface]:
         strip = self.bank.images.get("explosion")
@@ -128,14 +136,20 @@ class Renderer:
         title fades in over its first seconds (off under a pause or replay screen, whose
         heading would sit on it)."""
         self.tick += 1
+        lasers = laser_fill(world, surf.get_size(), self.bank.palette)
+        if lasers is not None:
+            lasers.start(self.backstage)  # filled beside what follows, up to the enemy bullets' blit list
         self.background(surf, world.frame + alpha, world.level.theme)
         self._enemies(surf, world, alpha)
         self._bullets(surf, world.items.pool, world, alpha)
         self._bullets(surf, world.player_bullets, world, alpha)
         self._bomb(surf, world)
-        draw_lasers(surf, world, self.tick, self.bank.palette)
+        enemy_bullets = self._bullet_blits(world.enemy_bullets, world, alpha)  # made while the lasers fill
+        draw_warnings(surf, world, self.tick, self.bank.palette)
+        if lasers is not None:
+            lasers.add_to(surf)  # once filled
         self._player(surf, world, alpha)
-        self._bullets(surf, world.enemy_bullets, world, alpha)
+        surf.fblits(enemy_bullets)
         self._effects(surf)
         self._hud(surf, world, title_card)
         if show_armature:  # over the bullets and the boss's bar: the one thing to see among them
@@ -173,13 +187,17 @@ class Renderer:
 
     def _bullets(self, surf, pool, world: World, alpha: float) -> None:
         """Every bullet of ``pool`` in one ``fblits`` call (see :mod:`.bullets`)."""
+        surf.fblits(self._bullet_blits(pool, world, alpha))
+
+    def _bullet_blits(self, pool, world: World, alpha: float) -> Iterable[tuple[pygame.Surface, tuple[float, float]]]:
+        """The blit list of every bullet of ``pool`` (:meth:`.bullets.BulletSprites.blits`)."""
         if not pool.n:
-            return
+            return ()
         kinds = world.kinds
         if self._sprites is None or self._sprites.names != kinds.names:
             self._sprites = BulletSprites(self.bank, kinds.names, kinds.frame)
         pos = self._lerp(pool.pos, pool.prev, alpha)
-        surf.fblits(self._sprites.blits(kinds.current(pool.arm, world.time), pool.angle, pos))
+        return self._sprites.blits(kinds.current(pool.arm, world.time), pool.angle, pos)
 
     def _bomb(self, surf, world: World) -> None:
         """The bomb: rings of light at its current radius, fading as it ends (cosmetic; the

@@ -612,6 +612,29 @@ def test_outlines_and_fill__read_only_arrays_taken_alike(backends):
     assert (fill_both(backends, outlines[0], corners) == 0xFFFFFFFF).sum() > 100
 
 
+@PROPERTY
+@given(polygon_sets(), st.lists(st.integers(0, 2**32 - 1), min_size=6, max_size=6))
+def test_fill_polygons__property_a_value_a_polygon_alike(backends, polys, picks):
+    """One value a polygon (later polygons over earlier ones): the same pixels, the same
+    values, from both backends."""
+    points, starts = polys
+    values = np.array(picks[: len(starts)], dtype=np.uint32)
+    got = []
+    for b in backends:
+        buf = np.full((48, 40), 3, dtype=np.uint32)
+        b.fill_polygons(buf, points, starts, values)
+        got.append(buf)
+    assert np.array_equal(got[0], got[1]), f"{np.sum(got[0] != got[1])} pixels differ"
+
+
+def test_fill_polygons__bad_values_named_alike(backends):
+    buf, pts, starts = np.zeros((4, 4), np.uint32), np.zeros((3, 2)), np.zeros(1, np.int64)
+    for b in backends:
+        for bad in (-1, 2**32, np.zeros(2, np.uint32)):
+            with pytest.raises(ValueError, match="^value must"):
+                b.fill_polygons(buf, pts, starts, bad)
+
+
 def test_fill_polygons__bad_arguments_named_alike(backends):
     buf, pts, starts = np.zeros((4, 4), np.uint32), np.zeros((3, 2)), np.zeros(1, np.int64)
     frozen = buf.copy()

@@ -53,6 +53,35 @@ def test_fill__exactly_the_oracles_pixels(polys):
     assert np.array_equal(buf == 5, want), f"{np.argwhere((buf == 5) != want)[:5].tolist()}"
 
 
+@settings(max_examples=60, deadline=None, database=None)
+@given(
+    st.lists(st.lists(st.tuples(quarter, quarter), min_size=1, max_size=7), min_size=1, max_size=5),
+    st.lists(st.integers(1, 3), min_size=5, max_size=5),
+)
+def test_fill__each_polygon_its_own_value_the_later_over_the_earlier(polys, picks):
+    """A value a polygon: each pixel ends with the value of the last polygon covering it
+    (the oracle's per polygon), runs of one value and changes of value alike."""
+    points = np.array([p for poly in polys for p in poly], dtype=np.float64)
+    starts = np.cumsum([0, *[len(p) for p in polys[:-1]]]).astype(np.int64)
+    values = np.array(picks[: len(polys)], dtype=np.uint32)
+    buf = np.zeros((12, 14), dtype=np.uint32)
+    raster.fill_polygons(buf, points, starts, values)
+    want = np.zeros_like(buf)
+    for j, (s, v) in enumerate(zip(starts.tolist(), values.tolist(), strict=True)):
+        e = starts[j + 1] if j + 1 < len(starts) else len(points)
+        want[oracle(points[s:e], np.zeros(1, np.int64), 12, 14)] = v
+    assert np.array_equal(buf, want)
+
+
+def test_fill__bad_values_named():
+    """``value``: an int in [0, 2**32) or one integer a polygon, in range."""
+    for bad in (-1, 2**32, 1.5, True, "7", np.zeros(3, np.uint32), np.zeros(2, np.float64), np.array([0, 2**32])):
+        with pytest.raises(ValueError, match="^value must"):
+            raster.check_values(bad, 2)
+    assert raster.check_values(7, 2).tolist() == [7, 7]
+    assert raster.check_values(np.array([1, 2**32 - 1]), 2).dtype == np.uint32
+
+
 def test_fill__a_region_wound_twice_is_filled_where_even_odd_would_hole_it():
     """A ring traced twice (as a thick line's outline bent back over itself winds twice
     around the overlap) is filled by the nonzero rule; even-odd (the pixel tier) leaves it empty."""

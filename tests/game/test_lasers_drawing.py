@@ -5,16 +5,21 @@ the collision record, coloured by what the tiers did with them."""
 from __future__ import annotations
 
 import dataclasses
+import threading
 
 import numpy as np
 import pygame
 import pytest
 import shipped
 
+from broadsword.collision import backend_for
 from broadsword.data.levels import BossPhaseSpec, FireSpec, LaserKind, LaserSpec
-from broadsword.game.lasers import BLINK, OVERLAY_WARNING, draw_laser_armatures, draw_lasers
+from broadsword.game import lasers as game_lasers
+from broadsword.game.lasers import BLINK, OVERLAY_WARNING, draw_chains, draw_laser_armatures, draw_lasers
 from broadsword.game.overlay import Overlay, PanelPlace, frame_colours, panel_lines
 from broadsword.game.palettes import LASER_COLOURS, BulletPalette
+from broadsword.game.render import Renderer
+from broadsword.game.sprites import SpriteBank
 from broadsword.sim import FIELD, World
 from broadsword.sim.collide import Group
 from broadsword.sim.input import IDLE
@@ -125,9 +130,8 @@ def test_overlay__warning_axis_and_nodes_from_the_world():
     assert 0.3 < column.mean() < 0.7  # dashed
 
 
-def test_lit_lasers__drawn_from_the_collision_record_as_from_the_pool():
-    """After a step the lit lasers are drawn from the record's packed lasers (not gathered
-    again), pixel for pixel as from the pool; a record the pool no longer matches is not used."""
+def two_kinds_lit() -> World:
+    """Stage 3's boss with a straight laser and two curvy ones lit at once."""
     pygame.init()
     curvy = LaserSpec(0, LaserKind.CURVY, angle=160.0, speed=150.0, nodes=24, wave=20.0, on=9.0, every=0.5, count=2)
     level = shipped.level("3-broadsword")
@@ -135,10 +139,17 @@ def test_lit_lasers__drawn_from_the_collision_record_as_from_the_pool():
     boss = dataclasses.replace(level.boss, at=0.0, sway=0.0, phases=(phase,))
     w = World(dataclasses.replace(level, waves=(), boss=boss), shipped.armatures(), 1)
     w.player.invulnerable = 1e9
-    while len(w.lasers.by_kind(w.lasers.live_rows())) < 2:  # both kinds lit: each drawn from a subset
+    while len(w.lasers.by_kind(w.lasers.live_rows())) < 2:
         w.step(IDLE)
     for _ in range(5):
         w.step(IDLE)
+    return w
+
+
+def test_lit_lasers__drawn_from_the_collision_record_as_from_the_pool():
+    """After a step the lit lasers are drawn from the record's packed lasers (not gathered
+    again), pixel for pixel as from the pool; a record the pool no longer matches is not used."""
+    w = two_kinds_lit()  # both kinds lit: each drawn from a subset
     record, drawn = w.collision, []
     for collision in (record, None):
         w.collision = collision
@@ -156,3 +167,48 @@ def test_lit_lasers__drawn_from_the_collision_record_as_from_the_pool():
     draw_lasers(fresh, w, 1)
     assert np.array_equal(pygame.surfarray.array3d(stale), pygame.surfarray.array3d(fresh))
     assert not np.array_equal(pygame.surfarray.array3d(fresh), drawn[1])
+
+
+def test_renderer__fills_the_lasers_on_its_second_thread_with_the_same_pixels(monkeypatch):
+    """The renderer fills the lit lasers' layer beside the rest of the frame (on another
+    thread), and the frame is pixel for pixel the one drawn with the fill in turn."""
+    w = two_kinds_lit()
+    pygame.display.set_mode((8, 8))
+    bank = SpriteBank()
+    bank.convert()
+    threads = []
+    run = game_lasers.LaserFill.run
+
+    def watched(self):
+        threads.append(threading.get_ident())
+        run(self)
+
+    monkeypatch.setattr(game_lasers.LaserFill, "run", watched)
+    beside = blank()
+    Renderer(bank, 0).draw(beside, w, 1.0)
+    monkeypatch.setattr(game_lasers.LaserFill, "start", lambda self, backstage: self.run())
+    in_turn = blank()
+    Renderer(bank, 0).draw(in_turn, w, 1.0)
+    assert threads[0] != threading.get_ident() and threads[1] == threading.get_ident()
+    got, want = pygame.surfarray.array3d(beside), pygame.surfarray.array3d(in_turn)
+    assert np.array_equal(got, want)
+    lasers_only = blank()
+    draw_lasers(lasers_only, w, 1)
+    assert (pygame.surfarray.array3d(lasers_only) > 0).any(axis=2).sum() > 2000  # the lasers are in it
+
+
+def test_draw_chains__every_glow_then_every_body_then_every_core():
+    """Two crossing lasers of two colours: where the second's glow covers the first's body,
+    the body shows (bodies are filled after every glow); at the crossing, the second's core
+    (cores last, chains in order)."""
+    pygame.init()
+    red, blue = (200, 0, 0), (0, 0, 200)
+    across = (np.array([[20.0, 60.0], [140.0, 60.0]]), np.array([10.0, 10.0]), np.zeros(1, np.int64))
+    down = (np.array([[80.0, 0.0], [80.0, 120.0]]), np.array([10.0, 10.0]), np.zeros(1, np.int64))
+    surf = pygame.Surface((160, 120))
+    draw_chains(surf, [(across, red), (down, blue)], backend_for())
+    px = pygame.surfarray.array3d(surf)
+    core = tuple(min(255, 200 + c // 4) for c in blue)
+    assert tuple(px[80, 60]) == core  # the crossing: the later chain's core
+    assert tuple(px[90, 63]) == red  # the first's body (not its core), inside the second's glow (24 px wide)
+    assert tuple(px[80, 30]) == core and tuple(px[83, 30]) == blue  # the second alone: core, body
