@@ -68,3 +68,66 @@ def test_speed__is_clamped_to_max_speed_px_a_frame_on_each_axis():
     frames = run(top(fire(absolute(180), "<speed>1e9</speed>") + fire(absolute(90), "<speed>3</speed>")), 3)
     np.testing.assert_array_equal(frames[2][0], [0.0, 2 * limits.MAX_SPEED])
     assert abs(frames[2][1][0] - 6.0) < 1e-12  # a speed in range is untouched
+
+
+#: A repeat of one fire (the machine's short path: entered, fired and left in one go), in
+#: the emitter's part and, from a bullet's own action, in the bullets' part; random and
+#: sequence directions, so a fire out of place or out of turn changes the bits.
+ONE_FIRE_REPEATS = top(
+    "<repeat><times>30</times><action>"
+    + fire('<direction type="sequence">7 + $rand * 3</direction>', "<speed>1 + $rand</speed>", '<bulletRef label="b"/>')
+    + "</action></repeat><wait>2</wait>"
+    + '<repeat><times>12</times><action><fireRef label="f"/></action></repeat>',
+    '<bullet label="b"><action><wait>1</wait><repeat><times>3</times><action>'
+    + fire('<direction type="aim">$rand * 20</direction>', "<speed>2</speed>")
+    + '</action></repeat></action></bullet><fire label="f">'
+    + fire('<direction type="sequence">11</direction>', "<speed>1.5</speed>")[6:-7]
+    + "</fire>",
+)
+
+
+def _state(eng: Engine) -> tuple:
+    b = eng.bullets
+    cols = tuple(b._data[k][: b.n].tobytes() for k in ("pos", "state", "wake"))
+    return cols, eng.fired, eng.deferred, eng.busiest, repr(eng.scope.rng.bit_generator.state)
+
+
+def _frames(limit: int, fast: bool, monkeypatch, per_frame: int | None = None) -> list:
+    from broadsword.patterns.bulletml import machine
+
+    with monkeypatch.context() as m:
+        if not fast:  # every repeat run by the general path
+            made = machine._Rep.__init__
+
+            def general(self, body, left, params):
+                made(self, body, left, params)
+                self.fire = None
+
+            m.setattr(machine._Rep, "__init__", general)
+        if per_frame is not None:
+            m.setattr(machine, "MAX_STEPS_PER_FRAME", per_frame)
+        eng = Engine(max_steps=limit, seed=3)
+        eng.target = np.array([40.0, 200.0])
+        eng.add_emitter(ONE_FIRE_REPEATS, (0.0, 0.0))
+        out = []
+        for _ in range(14):
+            eng.step()
+            out.append(_state(eng))
+        return out
+
+
+@pytest.mark.parametrize("limit", [*range(1, 40), 10_000])
+def test_one_fire_repeat__cut_anywhere_by_the_budget_as_the_general_path(limit, monkeypatch):
+    """Whatever step of a volley the part's budget runs out at (entering, firing, leaving),
+    the short path leaves the state of the general one: the same bullets, bits, draws,
+    deferrals and step counts, frame after frame."""
+    fast = _frames(limit, True, monkeypatch)
+    assert fast == _frames(limit, False, monkeypatch)
+    fired, deferred = fast[-1][1:3]
+    assert (fired, deferred) == (132, 0) if limit == 10_000 else (fired > 0 or limit == 1) and deferred > 0
+
+
+@pytest.mark.parametrize("per_frame", range(1, 12))
+def test_one_fire_repeat__cut_anywhere_by_the_runners_step_limit_as_the_general_path(per_frame, monkeypatch):
+    """The same where a runner's own limit a frame (MAX_STEPS_PER_FRAME) cuts the volley."""
+    assert _frames(10_000, True, monkeypatch, per_frame) == _frames(10_000, False, monkeypatch, per_frame)

@@ -62,12 +62,16 @@ class _Seq:
 
 class _Rep:
     """A repeat: ``left`` more runs of ``body`` (an Action or an ActionRef, re-entered each
-    time, so an actionRef's params are evaluated afresh)."""
+    time, so an actionRef's params are evaluated afresh). ``fire``: the body's one command
+    when the body is an inline action of a single fire (a ring's or a spread's volley),
+    which :meth:`Thread._run` runs without entering the action (the same steps counted)."""
 
-    __slots__ = ("body", "left", "params")
+    __slots__ = ("body", "left", "params", "fire")
 
     def __init__(self, body, left, params):
         self.body, self.left, self.params = body, left, params
+        one = type(body) is Action and len(body.commands) == 1
+        self.fire = body.commands[0] if one and type(body.commands[0]) in (Fire, FireRef) else None
 
 
 class Thread:
@@ -117,11 +121,26 @@ class Thread:
             eng.budget -= 1
             top = stack[-1]
             if type(top) is _Rep:
-                if top.left > 0:
+                if top.left <= 0:
+                    stack.pop()
+                elif top.fire is None:
                     top.left -= 1
                     self._enter(eng, top.body, top.params)
-                else:
-                    stack.pop()
+                else:  # enter the body, fire, leave it: three steps, as the general path counts them
+                    top.left -= 1
+                    if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before the fire
+                        stack.append(_Seq(top.body.commands, top.params))
+                        continue
+                    steps += 1
+                    eng.budget -= 1
+                    self._fire(eng, movers, row, top.fire, top.params)
+                    if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before leaving the body
+                        done = _Seq(top.body.commands, top.params)
+                        done.i = 1
+                        stack.append(done)
+                        continue
+                    steps += 1
+                    eng.budget -= 1
                 continue
             if top.i >= len(top.commands):
                 stack.pop()
