@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import os
 import sys
+import types
 from collections.abc import Callable
 from enum import Enum
 from typing import Any
@@ -133,13 +134,21 @@ class _Compiled:
     told_in_memory = False
 
 
-def jit(fn, signature: str):
+def jit(fn, signature: str, calls: dict[str, Any] | None = None):
     """``fn`` compiled by numba for ``signature`` (loaded from numba's on-disk cache when it
     holds the kernel, else compiled, saying so on stderr: once, then one line per kernel
     with the seconds it took). Explicit signatures compile at load time, never in a frame,
-    and refuse arguments of another type or layout."""
+    and refuse arguments of another type or layout. ``calls`` binds names ``fn`` calls to
+    compiled kernels (``{"_fill_py": jit(_fill_py, ...)}``: ``fn`` calls the Python twin,
+    its compiled self calls the compiled one): a kernel made of others, with no copy of
+    their code and no module-level name rebound."""
     got = _Compiled.fns.get(fn)  # by the function itself: a frame's look-ups build no string
     if got is None:
+        if calls:  # the same code, its callees' names bound to the compiled ones
+            bound = types.FunctionType(fn.__code__, {**fn.__globals__, **calls}, fn.__name__)
+            bound.__qualname__, bound.__module__ = fn.__qualname__, fn.__module__
+        else:
+            bound = fn
         import time
 
         import numba
@@ -152,7 +161,7 @@ def jit(fn, signature: str):
             )
             _Compiled.told = True
         t0 = time.perf_counter()
-        got = _compile(numba, fn, signature)
+        got = _compile(numba, bound, signature)
         if compiling:
             where = fn.__module__.rsplit(".", 1)[-1]
             print(f"broadsword:   {where}.{fn.__name__} {time.perf_counter() - t0:.1f} s", file=sys.stderr)

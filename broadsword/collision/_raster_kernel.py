@@ -15,10 +15,13 @@ import numpy as np
 from ._kernel import jit, writable
 from .raster import LIMIT
 
-__all__ = ["chain_keep", "chain_outlines", "fill_polygons", "load", "load_outlines"]
+__all__ = ["chain_keep", "chain_outlines", "fill_polygons", "load", "load_outlines", "load_paint", "paint_chains"]
 
 _SIGNATURE = "void(uint32[:, :], float64[:, :], int64[:], uint32[:])"
 _KEEP_SIGNATURE = "void(float64[:, :], float64[:], int64[:], float64, float64, boolean[:])"
+_PAINT_SIGNATURE = (
+    "void(uint32[:, :], float64[:, :], float64[:], int64[:], uint32[:, :], float64[:], float64[:], float64)"
+)
 _LIMIT = LIMIT
 
 
@@ -183,6 +186,47 @@ def _keep_py(nodes, widths, starts, tolerance, widest, keep):  # pragma: no cove
                 keep[i] = False
 
 
+def _paint_py(buf, nodes, widths, starts, values, scales, floors, tolerance):  # pragma: no cover - compiled by numba
+    """:func:`.raster.paint_chains` in one call: :func:`_keep_py`, :func:`_outline_py` and
+    :func:`_fill_py` in turn (their compiled selves: :func:`load_paint` binds the names),
+    and the steps between them the reference's, element by element."""
+    n = nodes.shape[0]
+    k = starts.shape[0]
+    m = scales.shape[0]
+    widest = scales[0]
+    for p in range(1, m):
+        widest = max(widest, scales[p])
+    keep = np.empty(n, np.bool_)
+    _keep_py(nodes, widths, starts, tolerance, widest, keep)
+    count = 0
+    for i in range(n):
+        count += keep[i]
+    kept = np.empty((count, 2))
+    wide = np.empty((m, count))
+    first = np.empty(k, np.int64)
+    at = 0
+    for j in range(k):
+        s = starts[j]
+        e = starts[j + 1] if j + 1 < k else n
+        first[j] = at
+        for i in range(s, e):
+            if keep[i]:
+                kept[at, 0], kept[at, 1] = nodes[i, 0], nodes[i, 1]
+                for p in range(m):
+                    v = widths[i] * scales[p]
+                    wide[p, at] = floors[p] if v < floors[p] else v  # as np.maximum: nan stays
+                at += 1
+    outlines = np.empty((m, 2 * count, 2))
+    _outline_py(kept, wide, first, outlines)
+    corners = np.empty(m * k, np.int64)
+    colour = np.empty(m * k, np.uint32)
+    for p in range(m):
+        for j in range(k):
+            corners[p * k + j] = p * 2 * count + 2 * first[j]
+            colour[p * k + j] = values[p, j]
+    _fill_py(buf, outlines.reshape((m * 2 * count, 2)), corners, colour)
+
+
 def chain_keep(
     nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray, tolerance: float, widest: float
 ) -> np.ndarray:
@@ -207,11 +251,45 @@ def chain_outlines(nodes: np.ndarray, widths: np.ndarray, starts: np.ndarray) ->
 
 
 def load():
-    """The compiled fill and outlines (compiling them, with a message, when numba's cache
-    lacks them); returns the fill."""
-    load_outlines()
-    jit(_keep_py, _KEEP_SIGNATURE)
+    """The compiled fill, outlines, keep and paint (compiling them, with a message, when
+    numba's cache lacks them); returns the fill."""
+    load_paint()
     return jit(_fill_py, _SIGNATURE)
+
+
+def load_paint():
+    """The compiled :func:`_paint_py`, its three kernels bound to their compiled twins."""
+    calls = {
+        "_keep_py": jit(_keep_py, _KEEP_SIGNATURE),
+        "_outline_py": load_outlines(),
+        "_fill_py": jit(_fill_py, _SIGNATURE),
+    }
+    return jit(_paint_py, _PAINT_SIGNATURE, calls)
+
+
+def paint_chains(
+    buf: np.ndarray,
+    nodes: np.ndarray,
+    widths: np.ndarray,
+    starts: np.ndarray,
+    values: np.ndarray,
+    scales: np.ndarray,
+    floors: np.ndarray,
+    tolerance: float,
+) -> None:
+    """:func:`.raster.paint_chains`, compiled (arguments as :func:`.raster.check_paint` states
+    and returns them): one call, the GIL released throughout, so a renderer may run it on a
+    second thread while it draws the rest of the frame."""
+    load_paint()(
+        buf,
+        writable(nodes),
+        writable(widths),
+        writable(starts),
+        values,
+        writable(scales),
+        writable(floors),
+        float(tolerance),
+    )
 
 
 def fill_polygons(buf: np.ndarray, points: np.ndarray, starts: np.ndarray, values: np.ndarray) -> None:

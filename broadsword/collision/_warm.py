@@ -15,14 +15,14 @@ from ._kernel import _cache_present
 
 __all__ = ["kernels_cached", "warm_kernel"]
 
-#: Each kernel module's compiled function (the cache entry names).
+#: Each kernel module's compiled function whose cache entry says the module is cached.
 _KERNEL_FUNCTIONS = {
     "_bounds_kernel": "_overlap_py",
     "_narrow_kernel": "_filter_py",
     "_grid_kernel": "_grid_pairs_py",
     "_laser_kernel": "_pieces_py",
     "_pose_kernel": "_pose_py",
-    "_raster_kernel": "_fill_py",
+    "_raster_kernel": "_paint_py",  # compiled last of the module's kernels (it calls the others)
     "_trig_kernel": "_sincos_py",
 }
 

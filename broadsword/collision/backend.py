@@ -15,14 +15,15 @@ stage (``Backend``)  numpy reference                             compiled twin (
 ``laser_pieces``     ``laserpieces.laser_pieces``                ``_laser_kernel``: the same operations, bits
 ``chain_outlines``   ``raster.chain_outlines``                   ``_raster_kernel``: the same operations, bits
 ``chain_keep``       ``raster.chain_keep``                       ``_raster_kernel``: the same nodes
-``fill_polygons``    ``raster.fill_polygons``                    ``_raster_kernel``: the same rule, pixels,
-                                                                 with the GIL released
+``fill_polygons``    ``raster.fill_polygons``                    ``_raster_kernel``: the same rule, pixels
+``paint_chains``     ``raster.paint_chains``                     ``_raster_kernel``: the three above in one
+                                                                 call, the GIL released
 ===================  ==========================================  ===========================================
 
 ``laser_pieces`` makes the pieces of the lasers the broad phase let through (the pipeline
-passes its backend to :func:`.laserframe.join`). The last three are not pipeline stages:
-they outline chains of nodes, choose the nodes to draw and fill polygons into a pixel
-buffer (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
+passes its backend to :func:`.laserframe.join`). The last four are not pipeline stages:
+they outline chains of nodes, choose the nodes to draw, fill polygons into a pixel
+buffer and do all three at once (the pixel tier's rule, :mod:`.raster`), and the game draws its lasers with
 them through the world's pipeline's backend (200 curvy lasers of 64 nodes are 22,000
 outline edges a pass: the compiled twins take a millisecond or so where pygame's polygon
 fill and the numpy outlines took tens; docs/PERFORMANCE.md).
@@ -210,6 +211,26 @@ class Backend(Protocol):
         (:func:`.raster.check_fill`, :func:`.raster.check_values`)."""
         ...
 
+    def paint_chains(
+        self,
+        buf: np.ndarray,
+        nodes: np.ndarray,
+        widths: np.ndarray,
+        starts: np.ndarray,
+        values: np.ndarray,
+        scales: np.ndarray,
+        floors: np.ndarray,
+        tolerance: float,
+    ) -> None:
+        """Paint the chains ``nodes`` (n, 2), ``widths`` (n,), ``starts`` (k,) into ``buf``
+        (h, w) uint32 in passes, as the game draws its lasers: pass ``p`` fills each chain's
+        outline at ``widths * scales[p]`` (at least ``floors[p]``) with ``values[p, j]``
+        ((m, k) integers), every chain drawn from the nodes :meth:`chain_keep` keeps for
+        ``tolerance`` (:func:`.raster.paint_chains`: :meth:`chain_keep`,
+        :meth:`chain_outlines` and :meth:`fill_polygons` in one call). Raises
+        ``ValueError`` naming the argument that is not as stated (:func:`.raster.check_paint`)."""
+        ...
+
 
 class NumpyBackend:
     """The reference: every stage is the numpy code."""
@@ -296,6 +317,20 @@ class NumpyBackend:
     def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int | np.ndarray) -> None:
         raster.check_fill(buf, points, starts)
         raster.fill_polygons(buf, points, starts, raster.check_values(value, len(starts)))
+
+    def paint_chains(
+        self,
+        buf: np.ndarray,
+        nodes: np.ndarray,
+        widths: np.ndarray,
+        starts: np.ndarray,
+        values: np.ndarray,
+        scales: np.ndarray,
+        floors: np.ndarray,
+        tolerance: float,
+    ) -> None:
+        colours = raster.check_paint(buf, nodes, widths, starts, values, scales, floors, tolerance)
+        raster.paint_chains(buf, nodes, widths, starts, colours, scales, floors, tolerance)
 
 
 class NumbaBackend:
@@ -397,6 +432,20 @@ class NumbaBackend:
     def fill_polygons(self, buf: np.ndarray, points: np.ndarray, starts: np.ndarray, value: int | np.ndarray) -> None:
         raster.check_fill(buf, points, starts)
         _raster_kernel.fill_polygons(buf, points, starts, raster.check_values(value, len(starts)))
+
+    def paint_chains(
+        self,
+        buf: np.ndarray,
+        nodes: np.ndarray,
+        widths: np.ndarray,
+        starts: np.ndarray,
+        values: np.ndarray,
+        scales: np.ndarray,
+        floors: np.ndarray,
+        tolerance: float,
+    ) -> None:
+        colours = raster.check_paint(buf, nodes, widths, starts, values, scales, floors, tolerance)
+        _raster_kernel.paint_chains(buf, nodes, widths, starts, colours, scales, floors, tolerance)
 
 
 def pose_and_box_reference(

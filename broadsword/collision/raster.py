@@ -39,8 +39,10 @@ __all__ = [
     "check_chains",
     "check_fill",
     "check_keep",
+    "check_paint",
     "check_values",
     "fill_polygons",
+    "paint_chains",
 ]
 
 #: The largest coordinate an edge may have and still be filled (pixels; see the module).
@@ -287,3 +289,65 @@ def chain_keep(
     keep[1:-1] = ~(stray <= tolerance)
     keep |= (place % 2 == 0) | (place == last)
     return keep
+
+
+def check_paint(
+    buf: np.ndarray,
+    nodes: np.ndarray,
+    widths: np.ndarray,
+    starts: np.ndarray,
+    values: np.ndarray,
+    scales: np.ndarray,
+    floors: np.ndarray,
+    tolerance: float,
+) -> np.ndarray:
+    """Refuse what :func:`paint_chains` cannot paint: ``ValueError`` naming the argument.
+    ``buf`` as :func:`check_fill`; the chains as :func:`check_keep` (``widths`` (n,));
+    ``scales`` (m,) finite float64 ``>= 0`` and ``floors`` (m,) float64 (not nan; ``-inf``
+    for none), m >= 1; ``values``
+    (m, k) integers in [0, 2**32), returned as uint32; ``tolerance`` as :func:`check_keep`."""
+    check_fill(buf, np.zeros((0, 2)), np.zeros(0, np.int64))
+    for name, a in (("scales", scales), ("floors", floors)):
+        if not isinstance(a, np.ndarray) or a.ndim != 1 or not len(a) or a.dtype != np.float64:
+            raise ValueError(f"{name} must be an (m,) float64 array, m >= 1, got {getattr(a, 'shape', type(a))}")
+    if floors.shape != scales.shape or np.isnan(floors).any():
+        raise ValueError(f"floors must be one a pass, as scales {scales.shape}, and not nan; got {floors!r}")
+    if not np.all((scales >= 0) & (scales < np.inf)):
+        raise ValueError("scales must be finite reals >= 0")
+    check_keep(nodes, widths, starts, tolerance, float(scales.max()))
+    m, k = len(scales), len(starts)
+    if not isinstance(values, np.ndarray) or values.shape != (m, k):
+        raise ValueError(
+            f"values must be an (m, k) = ({m}, {k}) integer array, got {getattr(values, 'shape', type(values))}"
+        )
+    return check_values(values.reshape(-1), m * k).reshape(m, k)
+
+
+def paint_chains(
+    buf: np.ndarray,
+    nodes: np.ndarray,
+    widths: np.ndarray,
+    starts: np.ndarray,
+    values: np.ndarray,
+    scales: np.ndarray,
+    floors: np.ndarray,
+    tolerance: float,
+) -> None:
+    """Paint chains into ``buf`` (h, w) uint32 as the game draws its lasers, in passes:
+    pass ``p`` fills every chain's outline (:func:`chain_outlines`) at ``widths * scales[p]``
+    (at least ``floors[p]``) with ``values[p, j]`` for chain ``j``, pass after pass, chain
+    after chain (:func:`fill_polygons`: the later over the earlier), each chain drawn from
+    the nodes :func:`chain_keep` keeps for ``tolerance`` and the widest pass. Chains as
+    :func:`check_chains` states (``nodes`` (n, 2), ``widths`` (n,), ``starts`` (k,));
+    ``values`` (m, k) uint32, ``scales`` and ``floors`` (m,) float64 (:func:`check_paint`;
+    the callers check). The compiled twin does the same in one call, the GIL released."""
+    keep = chain_keep(nodes, widths, starts, tolerance, float(scales.max()))
+    if len(starts) and not keep.all():  # the nodes the outlines can do without: fewer edges to fill
+        kept = np.add.reduceat(keep, starts)
+        nodes, widths, starts = nodes[keep], widths[keep], np.concatenate([[0], np.cumsum(kept[:-1])])
+    with np.errstate(over="ignore", invalid="ignore"):
+        wide = np.maximum(widths[None, :] * scales[:, None], floors[:, None])  # (m, n)
+    outlines = chain_outlines(nodes, wide, starts)  # (m, 2n, 2)
+    m, k, corners = len(scales), len(starts), 2 * starts
+    polygon_starts = (np.arange(m)[:, None] * (2 * len(nodes)) + corners[None, :]).reshape(-1)
+    fill_polygons(buf, outlines.reshape(-1, 2), polygon_starts.astype(np.int64), values.reshape(m * k))

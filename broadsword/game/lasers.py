@@ -9,7 +9,7 @@ straight laser, within a hundredth of a pixel of a curvy laser's pieces at its g
 drawn from fewer nodes where it bends gently, within ``DRAW_TOLERANCE`` of that outline),
 in the laser's colour, between a wider dim glow and a narrower near-white core, all three on
 one black layer added over the field (``BLEND_RGB_ADD``), so what is hit is what reads as the laser.
-The layer is filled in one call (:class:`LaserFill`: every outline, a value each), which
+The layer is painted in one call (:class:`LaserFill`: the backend's ``paint_chains``), which
 the renderer runs on its second thread (:mod:`.backstage`) while it draws the rest.
 Presentation only: nothing here changes the world.
 """
@@ -122,54 +122,56 @@ Chains = list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]]
 
 
 class LaserFill:
-    """Lit lasers as one frame draws them, in three halves: made (the outlines, on the
-    caller's thread), :meth:`run` (the fill: one call of the backend's
-    :meth:`~broadsword.collision.Backend.fill_polygons`, which the compiled backend runs
+    """Lit lasers as one frame draws them, in three halves: made (the chains gathered into
+    one set, on the caller's thread), :meth:`run` (the painting: one call of the backend's
+    :meth:`~broadsword.collision.Backend.paint_chains`, which the compiled backend runs
     with the GIL released, so it may run on a second thread) and :meth:`add_to` (the
     layer added over the field).
 
     ``chains``: each ``((nodes (N, 2), widths (N,), starts (L,)), colour)`` is drawn as
     its glow (``GLOW`` times wider, dimmed), its body (its hit shape: one mitred outline a
     laser) and its near-white core (``CORE`` times as wide, at least a pixel), filled in
-    that order (every glow, then every body, then every core, each chain's lasers in
+    that order (every glow, then every body, then every core, the chains' lasers in
     order) into one black 32-bit layer of ``size``, added over the field
-    (``BLEND_RGB_ADD``). Each laser is drawn from the nodes ``backend``'s
+    (``BLEND_RGB_ADD``). Each laser is drawn from the nodes
     :meth:`~broadsword.collision.Backend.chain_keep` keeps (every outline within
-    ``DRAW_TOLERANCE`` px of the one through every node); a chain's three outlines are one
-    call of :meth:`~broadsword.collision.Backend.chain_outlines` (its mitres made once)."""
+    ``DRAW_TOLERANCE`` px of the one through every node)."""
+
+    #: The passes: glow, body, core, as multiples of the hit width, and their least widths.
+    SCALES = np.array([GLOW, 1.0, CORE])
+    FLOORS = np.array([-np.inf, -np.inf, 1.0])
 
     def __init__(self, size: tuple[int, int], chains: Chains, backend: Backend):
         self.layer = pygame.Surface(size, 0, 32)
-        outlines, corners, values = [], [], []  # by chain: (3, 2N, 2), (L,), (3,)
-        for (nodes, widths, starts), colour in chains:
-            keep = backend.chain_keep(nodes, widths, starts, DRAW_TOLERANCE, GLOW)
-            if not keep.all():  # the nodes the outlines can do without: fewer edges to fill
-                kept = np.add.reduceat(keep, starts)
-                nodes, widths, starts = nodes[keep], widths[keep], np.concatenate([[0], np.cumsum(kept[:-1])])
-            wide = np.stack([widths * GLOW, widths, np.maximum(widths * CORE, 1.0)])
-            outlines.append(backend.chain_outlines(nodes, wide, starts))
-            corners.append(2 * starts)
-            values.append([self.layer.map_rgb(c) for c in (_dim(colour), colour, _whiten(colour))])
-        sizes = [o.shape[1] for o in outlines]
-        at = np.cumsum([0, *sizes[:-1]], dtype=np.int64)  # each chain's first point in a pass
-        one_pass = sum(sizes)
-        self._points = np.concatenate([o[p] for p in range(3) for o in outlines]) if chains else np.zeros((0, 2))
-        self._starts = np.concatenate(
-            [p * one_pass + a + c for p in range(3) for a, c in zip(at.tolist(), corners, strict=True)]
-            or [np.zeros(0, np.int64)]
-        ).astype(np.int64)
-        self._values = np.concatenate(
-            [np.full(len(c), v[p], np.uint32) for p in range(3) for c, v in zip(corners, values, strict=True)]
-            or [np.zeros(0, np.uint32)]
-        )
+        nodes, widths, starts, values = [], [], [], []
+        at = 0
+        for (n, w, s), colour in chains:
+            nodes.append(n)
+            widths.append(w)
+            starts.append(s + at)
+            at += len(n)
+            values.append([np.full(len(s), self.layer.map_rgb(c)) for c in (_dim(colour), colour, _whiten(colour))])
+        self._nodes = np.concatenate(nodes) if chains else np.zeros((0, 2))
+        self._widths = np.concatenate(widths) if chains else np.zeros(0)
+        self._starts = np.concatenate(starts).astype(np.int64) if chains else np.zeros(0, np.int64)
+        self._values = np.array([np.concatenate(v) for v in zip(*values, strict=True)] if chains else np.zeros((3, 0)))
         self._backend = backend
         self._pixels: np.ndarray | None = pygame.surfarray.pixels2d(self.layer)  # (w, h); locks the layer
         self._running: Future[None] | None = None
 
     def run(self) -> None:
-        """Fill the layer (once): every polygon, pass after pass, in one backend call."""
+        """Paint the layer (once): every pass of every laser, in one backend call."""
         assert self._pixels is not None, "a LaserFill runs once, before add_to"
-        self._backend.fill_polygons(self._pixels.T, self._points, self._starts, self._values)
+        self._backend.paint_chains(
+            self._pixels.T,
+            self._nodes,
+            self._widths,
+            self._starts,
+            self._values,
+            self.SCALES,
+            self.FLOORS,
+            DRAW_TOLERANCE,
+        )
 
     def start(self, backstage: Backstage) -> None:
         """:meth:`run` on ``backstage``'s thread, beside the caller; :meth:`add_to` waits for it."""

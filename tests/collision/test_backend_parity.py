@@ -587,6 +587,85 @@ def test_chain_keep__property_the_same_nodes(backends, chains, tolerance, widest
     assert ref[dropped - 1].all() and ref[dropped + 1].all()
 
 
+@PROPERTY
+@given(
+    chain_sets(),
+    st.lists(st.integers(0, 2**32 - 1), min_size=15, max_size=15),
+    st.lists(st.floats(0, 3), min_size=1, max_size=3),
+    st.lists(st.sampled_from([-np.inf, 0.5, 1.0, 4.0]), min_size=3, max_size=3),
+    st.floats(0, 4),
+)
+def test_paint_chains__property_the_same_pixels(backends, chains, picks, scales, floors, tolerance):
+    """Any chains (far nodes, zero-length segments, sharp bends), one to three passes: the
+    compiled paint sets the reference's pixels to the reference's values."""
+    nodes, widths, starts = chains
+    m, k = len(scales), len(starts)
+    values = np.array(picks[: m * k] + [0] * (m * k - len(picks[: m * k])), dtype=np.uint32).reshape(m, k)
+    args = (nodes, widths, starts, values, np.array(scales), np.array(floors[:m]), tolerance)
+    got = []
+    for b in backends:
+        buf = np.full((48, 40), 3, dtype=np.uint32)
+        b.paint_chains(buf, *args)
+        got.append(buf)
+    assert np.array_equal(got[0], got[1]), f"{np.sum(got[0] != got[1])} pixels differ"
+
+
+def test_paint_chains__the_game_lasers_as_keep_outlines_and_fill_in_turn(backends):
+    """Curvy lasers as the game draws them (glow, body, core): each backend's one call sets
+    the pixels of its own keep, outlines and fills made in turn, pass after pass."""
+    rng = np.random.default_rng(5)
+    parts, starts, at = [], [], 0
+    for _ in range(40):
+        turn = np.cumsum(rng.normal(0, 0.02, 64))
+        parts.append(np.cumsum(np.column_stack([np.sin(turn), np.cos(turn)]) * 2.5, axis=0) + rng.uniform(0, 300, 2))
+        starts.append(at)
+        at += 64
+    nodes, widths, first = (
+        np.concatenate(parts),
+        np.repeat(rng.uniform(4, 14, 40), 64),
+        np.array(starts, dtype=np.int64),
+    )
+    scales, floors = np.array([2.4, 1.0, 0.4]), np.array([-np.inf, -np.inf, 1.0])
+    values = np.arange(1, 121, dtype=np.uint32).reshape(3, 40)
+    for b in backends:
+        painted = np.zeros((320, 300), dtype=np.uint32)
+        b.paint_chains(painted, nodes, widths, first, values, scales, floors, 0.5)
+        keep = b.chain_keep(nodes, widths, first, 0.5, 2.4)
+        assert 0.3 * at < keep.sum() < 0.8 * at  # gentle bends: many nodes left out
+        kept = np.add.reduceat(keep, first)
+        n2, w2, s2 = nodes[keep], widths[keep], np.concatenate([[0], np.cumsum(kept[:-1])]).astype(np.int64)
+        outlines = b.chain_outlines(n2, np.stack([w2 * 2.4, w2, np.maximum(w2 * 0.4, 1.0)]), s2)
+        in_turn = np.zeros_like(painted)
+        for p in range(3):
+            b.fill_polygons(in_turn, outlines[p], 2 * s2, values[p])
+        assert np.array_equal(painted, in_turn) and len(np.unique(painted)) > 100
+
+
+def test_paint_chains__bad_arguments_named_alike(backends):
+    buf, nodes, widths, starts = np.zeros((4, 4), np.uint32), np.zeros((3, 2)), np.ones(3), np.zeros(1, np.int64)
+    values, scales, floors = np.ones((2, 1), np.uint32), np.array([2.0, 1.0]), np.array([-np.inf, 1.0])
+    good = (buf, nodes, widths, starts, values, scales, floors, 0.5)
+    for b in backends:
+        b.paint_chains(*good)
+        for at, bad, name in [
+            (0, buf.astype(np.int32), "buf"),
+            (1, nodes.ravel(), "nodes"),
+            (2, np.ones(2), "widths"),
+            (3, np.array([1], np.int64), "starts"),
+            (4, np.ones((3, 1), np.uint32), "values"),
+            (4, -np.ones((2, 1), np.int64), "value"),
+            (5, np.array([2.0, np.inf]), "scales"),
+            (5, np.zeros(0), "scales"),
+            (6, np.array([np.nan, 1.0]), "floors"),
+            (6, np.zeros(3), "floors"),
+            (7, -1.0, "tolerance"),
+        ]:
+            args = list(good)
+            args[at] = bad
+            with pytest.raises(ValueError, match=f"^{name} must"):
+                b.paint_chains(*args)
+
+
 def test_chain_keep__gentle_curves_lose_every_other_node_alike(backends):
     """Chains as the curvy lasers make them (2.5 px apart, a degree or two a node): the
     compiled twin keeps the reference's nodes, and about half of them."""
