@@ -1,8 +1,8 @@
 """A second thread for the piece of a frame's drawing that can run beside the rest.
 
-Filling the lit lasers' layer (:class:`.lasers.LaserFill`) is one call of a compiled kernel
-that releases the GIL (``nogil``), and nothing else draws on that layer until it is added
-over the field. :class:`Backstage` runs such a job on its own thread while the main thread
+Painting the lit lasers' layer (:class:`.lasers.LaserFill`: the backend's ``paint_chains``)
+is one call of a compiled kernel that releases the GIL (``nogil``), and nothing else draws
+on that layer until it is added over the field. :class:`Backstage` runs such a job on its own thread while the main thread
 draws the backdrop, the ships and the first bullets and makes the enemy bullets' blit list;
 the renderer then waits for it (:meth:`Backstage.start`'s future) and adds the layer. The
 job touches only its own arrays, so the pixels are the same as drawn in turn; what changes

@@ -100,7 +100,7 @@ class Renderer:
         self._sprites: BulletSprites | None = None  # the bullets' rotation tables, for the level's kinds
         self.captions: list[Caption] = []
         self.cosmetic = random.Random(seed)  # sparks' directions: never the game's generator
-        self.backstage = Backstage()  # fills the lit lasers' layer beside the rest of a frame
+        self.backstage = Backstage()  # paints the lit lasers' layer beside the rest of a frame
 
     def _explosion_frames(self) -> list[pygame.Surface]:
         strip = self.bank.images.get("explosion")
