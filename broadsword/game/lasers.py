@@ -122,7 +122,7 @@ Chains = list[tuple[tuple[np.ndarray, np.ndarray, np.ndarray], RGB]]
 
 
 class LaserFill:
-    """Lit lasers as one frame draws them, in three halves: made (the chains gathered into
+    """Lit lasers as one frame draws them, in three steps: made (the chains gathered into
     one set, on the caller's thread), :meth:`run` (the painting: one call of the backend's
     :meth:`~broadsword.collision.Backend.paint_chains`, which the compiled backend runs
     with the GIL released, so it may run on a second thread) and :meth:`add_to` (the
@@ -140,6 +140,7 @@ class LaserFill:
     #: The passes: glow, body, core, as multiples of the hit width, and their least widths.
     SCALES = np.array([GLOW, 1.0, CORE])
     FLOORS = np.array([-np.inf, -np.inf, 1.0])
+    SCALES.flags.writeable = FLOORS.flags.writeable = False
 
     def __init__(self, size: tuple[int, int], chains: Chains, backend: Backend):
         self.layer = pygame.Surface(size, 0, 32)
