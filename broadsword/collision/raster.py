@@ -35,6 +35,7 @@ import numpy as np
 __all__ = [
     "LIMIT",
     "chain_keep",
+    "check_buf",
     "chain_outlines",
     "check_chains",
     "check_fill",
@@ -49,12 +50,18 @@ __all__ = [
 LIMIT = float(2**50)
 
 
+def check_buf(buf: np.ndarray) -> None:
+    """Refuse a pixel buffer that cannot be filled: ``ValueError`` naming ``buf`` unless it is
+    a writable 2-D uint32 array."""
+    if not isinstance(buf, np.ndarray) or buf.ndim != 2 or buf.dtype != np.uint32 or not buf.flags.writeable:
+        raise ValueError("buf must be a writable 2-D uint32 array")
+
+
 def check_fill(buf: np.ndarray, points: np.ndarray, starts: np.ndarray) -> None:
     """Refuse what :func:`fill_polygons` cannot fill: ``ValueError`` naming the argument.
     ``buf`` a writable 2-D uint32 array; ``points`` (n, 2) float64; ``starts`` (k,) int64,
     increasing, from 0, each polygon at least one point."""
-    if not isinstance(buf, np.ndarray) or buf.ndim != 2 or buf.dtype != np.uint32 or not buf.flags.writeable:
-        raise ValueError("buf must be a writable 2-D uint32 array")
+    check_buf(buf)
     if not isinstance(points, np.ndarray) or points.ndim != 2 or points.shape[1:] != (2,) or points.dtype != np.float64:
         raise ValueError(f"points must be an (n, 2) float64 array, got {getattr(points, 'shape', type(points))}")
     if not isinstance(starts, np.ndarray) or starts.ndim != 1 or starts.dtype != np.int64:
@@ -302,11 +309,11 @@ def check_paint(
     tolerance: float,
 ) -> np.ndarray:
     """Refuse what :func:`paint_chains` cannot paint: ``ValueError`` naming the argument.
-    ``buf`` as :func:`check_fill`; the chains as :func:`check_keep` (``widths`` (n,));
+    ``buf`` as :func:`check_buf`; the chains as :func:`check_keep` (``widths`` (n,));
     ``scales`` (m,) finite float64 ``>= 0`` and ``floors`` (m,) float64 (not nan; ``-inf``
-    for none), m >= 1; ``values``
-    (m, k) integers in [0, 2**32), returned as uint32; ``tolerance`` as :func:`check_keep`."""
-    check_fill(buf, np.zeros((0, 2)), np.zeros(0, np.int64))
+    for none), m >= 1; ``values`` (m, k) integers in [0, 2**32), returned as uint32;
+    ``tolerance`` as :func:`check_keep`."""
+    check_buf(buf)
     for name, a in (("scales", scales), ("floors", floors)):
         if not isinstance(a, np.ndarray) or a.ndim != 1 or not len(a) or a.dtype != np.float64:
             raise ValueError(f"{name} must be an (m,) float64 array, m >= 1, got {getattr(a, 'shape', type(a))}")
