@@ -23,7 +23,7 @@ def run_bullet_drawing(n: int = 10_000, frames: int = 30, seed: int = 0) -> dict
     os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     import pygame
 
-    from ..game.bullets import BulletSprites, blit_one_by_one
+    from ..game.bullets import BulletSprites, blit_one_by_one, draw
     from ..game.sprites import SpriteBank
     from ..sim import FIELD
 
@@ -60,7 +60,7 @@ def run_bullet_drawing(n: int = 10_000, frames: int = 30, seed: int = 0) -> dict
         ):
             screen.fill((0, 0, 0))
             t0 = time.perf_counter()
-            screen.fblits(make())
+            draw(screen, make())
             row[way] = time.perf_counter() - t0
         if f >= 2:
             for k, v in row.items():

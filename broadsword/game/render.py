@@ -5,10 +5,11 @@ Programming Patterns, "Game Loop"), so motion is smooth at any display rate. Eff
 (explosions, sparks, flashes) are presentation only: they are driven by the step's
 events and never feed back into the simulation.
 
-The lit lasers' layer is filled on a second thread (:class:`.backstage.Backstage`) while
-the backdrop, the ships and the first bullets are drawn and the enemy bullets' blit list
-is made; it is added over the field where :func:`.lasers.draw_lasers` would draw it, so
-the frame's pixels are the same.
+The lit lasers' layer is painted on a second thread (:class:`.backstage.Backstage`) while
+the backdrop, the ships and the first bullets are drawn and the enemy bullets are gathered
+on a layer of their own (:class:`.bullets.Gathered`); the lasers' layer is added over the
+field where :func:`.lasers.draw_lasers` would draw it, then the player, then the gathered
+bullets are laid over both, as they would have been drawn there (within 3 levels a channel).
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .backdrop import Backdrop
 from .backstage import Backstage
-from .bullets import BulletSprites
+from .bullets import BulletSprites, Gathered
+from .bullets import draw as draw_bullets
 from .hud import boss_name, draw_boss_bar, draw_midboss_bar, warning_due
 from .lasers import draw_warnings, laser_fill
 from .sprites import SpriteBank
@@ -101,6 +103,7 @@ class Renderer:
         self.captions: list[Caption] = []
         self.cosmetic = random.Random(seed)  # sparks' directions: never the game's generator
         self.backstage = Backstage()  # paints the lit lasers' layer beside the rest of a frame
+        self._gathered = Gathered()  # the enemy bullets, drawn while the lasers' layer is painted
 
     def _explosion_frames(self) -> list[pygame.Surface]:
         strip = self.bank.images.get("explosion")
@@ -138,18 +141,23 @@ class Renderer:
         self.tick += 1
         lasers = laser_fill(world, surf.get_size(), self.bank.palette)
         if lasers is not None:
-            lasers.start(self.backstage)  # filled beside what follows, up to the enemy bullets' blit list
+            lasers.start(self.backstage)  # painted beside what follows, up to the enemy bullets
         self.background(surf, world.frame + alpha, world.level.theme)
         self._enemies(surf, world, alpha)
         self._bullets(surf, world.items.pool, world, alpha)
         self._bullets(surf, world.player_bullets, world, alpha)
         self._bomb(surf, world)
-        enemy_bullets = self._bullet_blits(world.enemy_bullets, world, alpha)  # made while the lasers fill
+        enemy_bullets = self._bullet_blits(world.enemy_bullets, world, alpha)
+        if lasers is not None:  # drawn aside while the lasers are painted, laid over them below
+            self._gathered.gather(surf.get_size(), enemy_bullets)
         draw_warnings(surf, world, self.tick, self.bank.palette)
         if lasers is not None:
-            lasers.add_to(surf)  # once filled
+            lasers.add_to(surf)  # once painted
         self._player(surf, world, alpha)
-        surf.fblits(enemy_bullets)
+        if lasers is not None:
+            self._gathered.lay_over(surf)
+        else:
+            draw_bullets(surf, enemy_bullets)
         self._effects(surf)
         self._hud(surf, world, title_card)
         if show_armature:  # over the bullets and the boss's bar: the one thing to see among them
@@ -186,8 +194,8 @@ class Renderer:
                 surf.blit(img, img.get_rect(center=(x, y)))
 
     def _bullets(self, surf, pool, world: World, alpha: float) -> None:
-        """Every bullet of ``pool`` in one ``fblits`` call (see :mod:`.bullets`)."""
-        surf.fblits(self._bullet_blits(pool, world, alpha))
+        """Every bullet of ``pool`` in one ``fblits`` call (:func:`.bullets.draw`)."""
+        draw_bullets(surf, self._bullet_blits(pool, world, alpha))
 
     def _bullet_blits(self, pool, world: World, alpha: float) -> Iterable[tuple[pygame.Surface, tuple[float, float]]]:
         """The blit list of every bullet of ``pool`` (:meth:`.bullets.BulletSprites.blits`)."""

@@ -14,7 +14,8 @@ class SpriteBank:
     """Every sprite image, its armature file, and rotated copies made on first use.
 
     Rotations are cached per integer degree (the paper's table resolution): the
-    ``rotated(name, angle)`` image of an up-facing sprite turned to the armature angle.
+    ``rotated(name, angle)`` image of an up-facing sprite turned to the armature angle, and
+    its ``premultiplied`` twin (colour times alpha), which the bullets are drawn from.
     """
 
     def __init__(self, folder: Path | None = None):
@@ -41,6 +42,7 @@ class SpriteBank:
             self.frames[stem] = [strip.subsurface((i * w, 0, w, strip.get_height())).copy() for i in range(n)]
             self.images[stem] = self.frames[stem][0]
         self._rot: dict[tuple[str, int, int], pygame.Surface] = {}
+        self._premul: dict[tuple[str, int, int], pygame.Surface] = {}
         self._converted = False
         self.version = 0  # bumped when the images change (convert, a palette), so caches of them can tell
         # the bullet sprites as drawn, which every palette repaints from
@@ -53,9 +55,8 @@ class SpriteBank:
             return
         self.frames = {k: [f.convert_alpha() for f in v] for k, v in self.frames.items()}
         self.images = {k: self.frames[k][0] if k in self.frames else v.convert_alpha() for k, v in self.images.items()}
-        self._rot.clear()
         self._converted = True
-        self.version += 1
+        self._changed()
 
     def use_palette(self, palette: BulletPalette) -> None:
         """Show the bullet sprites (:data:`.palettes.BULLETS`) in ``palette``, repainted from
@@ -70,8 +71,13 @@ class SpriteBank:
                 painted = [f.convert_alpha() for f in painted]
             self.frames[name] = painted
             self.images[name] = painted[0]
-        self._rot.clear()
         self.palette = palette
+        self._changed()
+
+    def _changed(self) -> None:
+        """The images changed: forget their turned and premultiplied copies, and say so."""
+        self._rot.clear()
+        self._premul.clear()
         self.version += 1
 
     def image(self, name: str) -> pygame.Surface:
@@ -84,13 +90,34 @@ class SpriteBank:
     def rotated(self, name: str, angle: float, frame: int = 0) -> pygame.Surface:
         """Frame ``frame`` of the sprite turned by ``angle`` degrees (armature convention),
         from the cache."""
-        deg = int(round(angle)) % 360
-        key = (name, frame, deg)
+        key = _turn(name, angle, frame)
         img = self._rot.get(key)
         if img is None:
+            deg = key[2]
             base = self.frame(name, frame)
             img = self._rot[key] = pygame.transform.rotate(base, -deg) if deg else base
         return img
+
+    def premultiplied(self, name: str, angle: float, frame: int = 0) -> pygame.Surface:
+        """:meth:`rotated`'s image with its colour multiplied by its alpha, from the cache: to
+        be drawn with ``BLEND_PREMULTIPLIED`` (:data:`.bullets.BLEND`). A sprite without
+        an alpha channel counts as opaque."""
+        key = _turn(name, angle, frame)
+        img = self._premul.get(key)
+        if img is None:
+            img = self.rotated(name, angle, frame)
+            if not img.get_flags() & pygame.SRCALPHA:
+                opaque = pygame.Surface(img.get_size(), pygame.SRCALPHA, 32)
+                opaque.blit(img, (0, 0))
+                img = opaque
+            img = self._premul[key] = img.premul_alpha()
+        return img
+
+
+def _turn(name: str, angle: float, frame: int) -> tuple[str, int, int]:
+    """The cache key of frame ``frame`` of sprite ``name`` turned ``angle`` degrees: the
+    angle rounded to the integer degree, in [0, 360)."""
+    return name, frame, int(round(angle)) % 360
 
 
 def repaint(surface: pygame.Surface, glow: Glow) -> pygame.Surface:
