@@ -86,29 +86,62 @@ ONE_FIRE_REPEATS = top(
 )
 
 
+#: Volleys whose values read no $rand (the machine evaluates them once a volley, counting
+#: each bullet's evaluations all the same): a sequence direction and speed from params and
+#: $rank (the thread's first fire, so it aims), aimed bullets with their own volley of
+#: relative directions, in the emitter's part and the bullets'; fed params $1 and $2.
+SAME_VALUE_REPEATS = top(
+    "<repeat><times>30</times><action>"
+    + fire('<direction type="sequence">360 / $1 + $rank</direction>', '<speed type="sequence">$2 * 0.01</speed>')
+    + "</action></repeat><wait>2</wait>"
+    + "<repeat><times>12</times><action>"
+    + fire(
+        '<direction type="aim">$1 * 0.5</direction>',
+        "<speed>1 + $2</speed>",
+        "<bullet><action><wait>1</wait><repeat><times>3</times><action>"
+        + fire('<direction type="relative">$2 * 3</direction>', "<speed>2</speed>")
+        + "</action></repeat></action></bullet>",
+    )
+    + "</action></repeat>"
+)
+
+
 def _state(eng: Engine) -> tuple:
     b = eng.bullets
     cols = tuple(b._data[k][: b.n].tobytes() for k in ("pos", "state", "wake"))
     return cols, eng.fired, eng.deferred, eng.busiest, repr(eng.scope.rng.bit_generator.state)
 
 
-def _frames(limit: int, fast: bool, monkeypatch, per_frame: int | None = None) -> list:
+def _frames(
+    limit: int,
+    fast: bool,
+    monkeypatch,
+    per_frame: int | None = None,
+    pattern=ONE_FIRE_REPEATS,
+    params: tuple[float, ...] = (),
+    same: list | None = None,
+) -> list:
+    """14 frames of ``pattern`` (fed ``params``) under a budget of ``limit`` steps a part:
+    with the machine's short path for repeats of one fire (``fast``), or every repeat run
+    by the general path; ``same`` collects each repeat's ``same`` flag."""
     from broadsword.patterns.bulletml import machine
 
     with monkeypatch.context() as m:
-        if not fast:  # every repeat run by the general path
-            made = machine._Rep.__init__
+        made = machine._Rep.__init__
 
-            def general(self, body, left, params):
-                made(self, body, left, params)
+        def spied(self, body, left, params):
+            made(self, body, left, params)
+            if not fast:  # every repeat run by the general path
                 self.fire = None
+            if same is not None:
+                same.append(self.same)
 
-            m.setattr(machine._Rep, "__init__", general)
+        m.setattr(machine._Rep, "__init__", spied)
         if per_frame is not None:
             m.setattr(machine, "MAX_STEPS_PER_FRAME", per_frame)
-        eng = Engine(max_steps=limit, seed=3)
+        eng = Engine(max_steps=limit, seed=3, rank=0.25)
         eng.target = np.array([40.0, 200.0])
-        eng.add_emitter(ONE_FIRE_REPEATS, (0.0, 0.0))
+        eng.add_emitter(pattern, (0.0, 0.0), params)
         out = []
         for _ in range(14):
             eng.step()
@@ -131,3 +164,40 @@ def test_one_fire_repeat__cut_anywhere_by_the_budget_as_the_general_path(limit, 
 def test_one_fire_repeat__cut_anywhere_by_the_runners_step_limit_as_the_general_path(per_frame, monkeypatch):
     """The same where a runner's own limit a frame (MAX_STEPS_PER_FRAME) cuts the volley."""
     assert _frames(10_000, True, monkeypatch, per_frame) == _frames(10_000, False, monkeypatch, per_frame)
+
+
+SAME = {"pattern": SAME_VALUE_REPEATS, "params": (24.0, 1.5)}
+
+
+@pytest.mark.parametrize("limit", [*range(1, 60), 10_000])
+def test_same_value_volley__cut_anywhere_by_the_budget_as_the_general_path(limit, monkeypatch):
+    """A volley whose values are evaluated once (no $rand) counts each bullet's evaluations
+    all the same: cut at any budget, it leaves the general path's state, frame after frame."""
+    same: list = []
+    fast = _frames(limit, True, monkeypatch, same=same, **SAME)
+    assert fast == _frames(limit, False, monkeypatch, **SAME)
+    assert all(same)  # the short path with values evaluated once, every repeat made
+    assert same or limit < 4  # ... and the budget let at least one be made
+    if limit == 10_000:
+        assert fast[-1][1:3] == (30 + 12 + 12 * 3, 0)
+
+
+@pytest.mark.parametrize("per_frame", range(1, 12))
+def test_same_value_volley__cut_anywhere_by_the_runners_step_limit_as_the_general_path(per_frame, monkeypatch):
+    assert _frames(10_000, True, monkeypatch, per_frame, **SAME) == _frames(
+        10_000, False, monkeypatch, per_frame, **SAME
+    )
+
+
+def test_same_value_volley__a_rand_value_is_drawn_each_time():
+    """A fire that reads $rand is not same-valued: each bullet draws its own."""
+    from broadsword.patterns.bulletml.machine import _Rep
+    from broadsword.patterns.bulletml.store import DIR
+
+    p = top("<repeat><times>5</times><action>" + fire(absolute("$rand * 360")) + "</action></repeat>")
+    repeat = p.top[0].commands[0]
+    assert not _Rep(repeat.body, 5, ()).same
+    eng = Engine(seed=1)
+    eng.add_emitter(p, (0.0, 0.0))
+    eng.step()
+    assert eng.bullets.n == 5 and len(set(eng.bullets.state[:5, DIR].tolist())) == 5

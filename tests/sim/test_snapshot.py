@@ -217,8 +217,9 @@ def test_coverage__every_attribute_is_kept_or_declared_static():
     }
     assert set(Runner.__slots__) == {"threads", "gone"}
     assert set(_Seq.__slots__) == {"commands", "i", "params"}
-    # a repeat's fire is its body's one fire: made from body by the constructor runstate calls
-    assert set(_Rep.__slots__) == {"body", "left", "params", "fire"}
+    # a repeat's fire is its body's one fire, and same and cost are read off that fire: all
+    # made from body by the constructor runstate calls
+    assert set(_Rep.__slots__) == {"body", "left", "params", "fire", "same", "cost"}
     assert set(type(w.guns.engine.scope).__slots__) == {"params", "rank", "rng"}  # params: set before each use
 
 

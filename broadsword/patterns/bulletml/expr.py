@@ -68,13 +68,15 @@ class Expr:
     """A compiled expression. ``const`` is its value when it reads no ``$`` variable.
     ``max_param`` is the highest ``$n`` it reads (0 for none). ``steps`` is what evaluating
     it costs the engine's budget (its tokens; 0 for a constant): a 2,000-character expression
-    is hundreds of Python operations, so it counts as hundreds of commands."""
+    is hundreds of Python operations, so it counts as hundreds of commands. ``random``: it
+    reads ``$rand`` (else its value depends only on the ``$n`` parameters and ``$rank``)."""
 
     text: str
     const: float | None
     fn: Fn
     max_param: int
     steps: int = 0
+    random: bool = False
 
     def value(self, scope: Scope) -> float:
         """The expression's value in ``scope`` (finite, clamped; see the module doc)."""
@@ -245,4 +247,4 @@ def compile_expression(text: str) -> Expr:
     if const is not None:
         value = clamp(const)
         return Expr(text, value, lambda s: value, 0)
-    return Expr(text, None, fn, parser.max_param, len(parser.tokens))
+    return Expr(text, None, fn, parser.max_param, len(parser.tokens), ("var", "$rand") in parser.tokens)

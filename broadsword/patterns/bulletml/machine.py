@@ -18,6 +18,7 @@ from .model import (
     Accel,
     Action,
     ActionRef,
+    Bullet,
     BulletRef,
     ChangeDirection,
     ChangeSpeed,
@@ -64,14 +65,49 @@ class _Rep:
     """A repeat: ``left`` more runs of ``body`` (an Action or an ActionRef, re-entered each
     time, so an actionRef's params are evaluated afresh). ``fire``: the body's one command
     when the body is an inline action of a single fire (a ring's or a spread's volley),
-    which :meth:`Thread._run` runs without entering the action (the same steps counted)."""
+    which :meth:`Thread._run` runs without entering the action (the same steps counted).
+    ``same``: that fire is an inline ``<fire>`` of an inline ``<bullet>`` whose values
+    (speeds, directions) read no ``$rand``, so they are the same every time it fires in a
+    frame (the same params and ``$rank``): a volley evaluates them once, and counts each
+    bullet's evaluations (``cost``, the budget they take) all the same."""
 
-    __slots__ = ("body", "left", "params", "fire")
+    __slots__ = ("body", "left", "params", "fire", "same", "cost")
 
     def __init__(self, body, left, params):
         self.body, self.left, self.params = body, left, params
         one = type(body) is Action and len(body.commands) == 1
-        self.fire = body.commands[0] if one and type(body.commands[0]) in (Fire, FireRef) else None
+        self.fire = fire = body.commands[0] if one and type(body.commands[0]) in (Fire, FireRef) else None
+        values = _values_of(fire) if type(fire) is Fire and type(fire.bullet) is Bullet else None
+        self.same = values is not None and not any(v.expr.random for v in values)
+        self.cost = sum(v.expr.steps for v in values) if values is not None else 0
+
+
+def _values_of(fire: Fire) -> list[Speed | Direction]:
+    """The speeds and directions of an inline fire and its inline bullet, in evaluation order."""
+    bullet = fire.bullet
+    assert type(bullet) is Bullet
+    return [v for v in (fire.speed, fire.direction, bullet.speed, bullet.direction) if v is not None]
+
+
+#: A fire's evaluated values: its speed and direction, its bullet's speed and direction
+#: (each None where the file gives none).
+Values = tuple[float | None, float | None, float | None, float | None]
+
+
+def _evaluate(eng, pattern, cmd: Fire, params) -> tuple[Bullet, tuple[float, ...], Values]:
+    """The values of fire ``cmd`` with ``params``, in libBulletML's order (so ``$rand``
+    draws in turn): the fire's speed and direction, then its bullet's params (a
+    ``<bulletRef>``) and its speed and direction. Returns the bullet, its params, the values."""
+    fs = None if cmd.speed is None else eng.evaluate(cmd.speed.expr, params)
+    fd = None if cmd.direction is None else eng.evaluate(cmd.direction.expr, params)
+    bullet = cmd.bullet
+    if type(bullet) is BulletRef:
+        params = eng.eval_params(bullet.params, params)
+        bullet = pattern.bullets[bullet.label]
+    assert type(bullet) is Bullet
+    bs = None if bullet.speed is None else eng.evaluate(bullet.speed.expr, params)
+    bd = None if bullet.direction is None else eng.evaluate(bullet.direction.expr, params)
+    return bullet, params, (fs, fd, bs, bd)
 
 
 class Thread:
@@ -126,21 +162,35 @@ class Thread:
                 elif top.fire is None:
                     top.left -= 1
                     self._enter(eng, top.body, top.params)
-                else:  # enter the body, fire, leave it: three steps, as the general path counts them
-                    top.left -= 1
-                    if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before the fire
-                        stack.append(_Seq(top.body.commands, top.params))
-                        continue
-                    steps += 1
-                    eng.budget -= 1
-                    self._fire(eng, movers, row, top.fire, top.params)
-                    if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before leaving the body
-                        done = _Seq(top.body.commands, top.params)
-                        done.i = 1
-                        stack.append(done)
-                        continue
-                    steps += 1
-                    eng.budget -= 1
+                else:  # a volley: enter the body, fire, leave it, three steps a bullet as the general path counts them
+                    fired = None  # (bullet, params, values) of a same-valued fire, once evaluated
+                    while True:
+                        top.left -= 1
+                        if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before the fire
+                            stack.append(_Seq(top.body.commands, top.params))
+                            break
+                        steps += 1
+                        eng.budget -= 1
+                        if not top.same:
+                            self._fire(eng, movers, row, top.fire, top.params)
+                        else:
+                            if fired is None:
+                                fired = _evaluate(eng, self.pattern, top.fire, top.params)
+                            else:
+                                eng.budget -= top.cost  # what evaluating them again would have cost
+                            self._shoot(eng, movers, row, top.fire, *fired)
+                        if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before leaving the body
+                            done = _Seq(top.body.commands, top.params)
+                            done.i = 1
+                            stack.append(done)
+                            break
+                        steps += 1
+                        eng.budget -= 1
+                        # the loop's next step, which would come straight back here: taken here
+                        if top.left <= 0 or steps + 1 > MAX_STEPS_PER_FRAME or eng.budget <= 0:
+                            break
+                        steps += 1
+                        eng.budget -= 1
                 continue
             if top.i >= len(top.commands):
                 stack.pop()
@@ -165,23 +215,29 @@ class Thread:
         self.stack.append(_Seq(node.commands, params))
 
     def _speed(self, eng, spd: Speed, params, movers: Movers, row: int) -> float:
-        v = eng.evaluate(spd.expr, params)
-        if spd.kind is SpeedKind.RELATIVE:
+        return self._speed_at(spd.kind, eng.evaluate(spd.expr, params), movers, row)
+
+    def _speed_at(self, kind: SpeedKind, v: float, movers: Movers, row: int) -> float:
+        """A speed of ``kind`` whose expression's value is ``v``."""
+        if kind is SpeedKind.RELATIVE:
             v += float(movers.state[row, SPD])
-        elif spd.kind is SpeedKind.SEQUENCE:
+        elif kind is SpeedKind.SEQUENCE:
             v = 1.0 if self.prev_spd is None else v + self.prev_spd
         self.prev_spd = v
         return v
 
     def _direction(self, eng, d: Direction, params, movers: Movers, row: int, remember: bool) -> float:
-        v = eng.evaluate(d.expr, params)
-        aim = d.kind is DirKind.AIM
-        if d.kind is DirKind.ABSOLUTE:
+        return self._direction_at(eng, d.kind, eng.evaluate(d.expr, params), movers, row, remember)
+
+    def _direction_at(self, eng, kind: DirKind, v: float, movers: Movers, row: int, remember: bool) -> float:
+        """A direction of ``kind`` whose expression's value is ``v``."""
+        aim = kind is DirKind.AIM
+        if kind is DirKind.ABSOLUTE:
             if self.pattern.orientation is Orientation.HORIZONTAL:
                 v -= 90.0
-        elif d.kind is DirKind.RELATIVE:
+        elif kind is DirKind.RELATIVE:
             v += float(movers.state[row, DIR])  # as stored, not reduced (libBulletML)
-        elif d.kind is DirKind.SEQUENCE:
+        elif kind is DirKind.SEQUENCE:
             if self.prev_dir is None:
                 v, aim = 0.0, True  # the first fire of a sequence aims (libBulletML)
             else:
@@ -255,25 +311,29 @@ class Thread:
             movers.set_channel(row, ch, self._turn(), self._turn() + term, first, final)
 
     def _fire(self, eng, movers: Movers, row: int, cmd, params) -> None:
-        pattern = self.pattern
         if type(cmd) is FireRef:
             params = eng.eval_params(cmd.params, params)
-            cmd = pattern.fires[cmd.label]
+            cmd = self.pattern.fires[cmd.label]
+        self._shoot(eng, movers, row, cmd, *_evaluate(eng, self.pattern, cmd, params))
+
+    def _shoot(self, eng, movers: Movers, row: int, cmd: Fire, bullet: Bullet, params, values: Values) -> None:
+        """Fire ``bullet`` as ``cmd`` says, their speeds and directions valued ``values``
+        (:func:`_evaluate`): the fire's first, then the bullet's, which win (libBulletML);
+        each updates the sequence memory."""
+        fs, fd, bs, bd = values
         speed = direction = None
-        # The fire's speed and direction first, then the bullet's, which win (libBulletML);
-        # each evaluation updates the sequence memory.
         if cmd.speed is not None:
-            speed = self._speed(eng, cmd.speed, params, movers, row)
+            assert fs is not None
+            speed = self._speed_at(cmd.speed.kind, fs, movers, row)
         if cmd.direction is not None:
-            direction = self._direction(eng, cmd.direction, params, movers, row, remember=True)
-        bullet = cmd.bullet
-        if type(bullet) is BulletRef:
-            params = eng.eval_params(bullet.params, params)
-            bullet = pattern.bullets[bullet.label]
+            assert fd is not None
+            direction = self._direction_at(eng, cmd.direction.kind, fd, movers, row, remember=True)
         if bullet.speed is not None:
-            speed = self._speed(eng, bullet.speed, params, movers, row)
+            assert bs is not None
+            speed = self._speed_at(bullet.speed.kind, bs, movers, row)
         if bullet.direction is not None:
-            direction = self._direction(eng, bullet.direction, params, movers, row, remember=True)
+            assert bd is not None
+            direction = self._direction_at(eng, bullet.direction.kind, bd, movers, row, remember=True)
         if speed is None:
             speed = self.prev_spd = 1.0
         if direction is None:
