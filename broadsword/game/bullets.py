@@ -9,7 +9,7 @@ one call. Round sprites (``ROUND_BULLETS``) are never turned.
 
 The images are premultiplied (colour times alpha, :meth:`.sprites.SpriteBank.premultiplied`)
 and drawn with ``BLEND_PREMULTIPLIED`` (:data:`BLEND`): within 3 levels a channel of a plain
-alpha blit, a fifth quicker in ``fblits`` at 5,000 bullets, and a crowd drawn so onto a
+alpha blit, a sixth to a fifth quicker in ``fblits`` at 5,000 bullets, and a crowd drawn so onto a
 transparent layer (:class:`Gathered`) lays over a field in one blit as it would have been
 drawn there, which lets the renderer draw the enemy bullets while the lasers' layer is
 still being painted (docs/PERFORMANCE.md, "The laser frame, stop 33").
