@@ -41,3 +41,27 @@ def test_themes_differ_and_a_seed_repeats():
     for pair in frames.values():
         assert np.array_equal(*pair)
     assert not np.array_equal(frames[Theme.DEEP_SPACE][0], frames[Theme.CRIMSON_NEBULA][0])
+
+
+@pytest.mark.parametrize("theme", list(Theme))
+def test_stars__a_layer_in_one_call_sets_each_stars_square(theme):
+    """Each star layer is drawn in one ``fblits`` call: the same pixels as filling each
+    star's square (1 px, 2 px when bright) in the layer's colour, at any time."""
+    from broadsword.game.backdrop import CLOUD_SPEED
+
+    pygame.display.init()
+    backdrop = Backdrop(theme, SIZE, seed=4)
+    h = SIZE[1]
+    tint = np.array(backdrop.palette.stars, dtype=np.float64)
+    for t in (0.0, 0.5, 159.9, 4321.25):
+        drawn, filled = pygame.Surface(SIZE), pygame.Surface(SIZE)
+        backdrop.draw(drawn, t)
+        y = int(t * CLOUD_SPEED) % h
+        filled.blit(backdrop.tile, (0, y - h))
+        filled.blit(backdrop.tile, (0, y))
+        for xs, ys, speed, bright in backdrop.stars:
+            colour = tuple(int(c) for c in tint * bright)
+            big = 2 if bright > 0.8 else 1
+            for x, yy in zip(xs.tolist(), ((ys + speed * t) % h).tolist()):
+                filled.fill(colour, (x, yy, big, big))
+        assert np.array_equal(pygame.surfarray.array3d(drawn), pygame.surfarray.array3d(filled))
