@@ -28,6 +28,8 @@ ROUND_BULLETS = ("pellet", "orb")  # rotation-invariant sprites: never rotated
 DEGREES = 360
 #: How a blit list of premultiplied images is drawn, and a :class:`Gathered` layer laid.
 BLEND = pygame.BLEND_PREMULTIPLIED
+#: A blit list: ``(image, (left, top))`` a bullet, later ones drawn over earlier.
+Blits = Iterable[tuple[pygame.Surface, tuple[float, float]]]
 
 
 class BulletSprites:
@@ -102,7 +104,7 @@ def blit_one_by_one(
     return out
 
 
-def draw(surf: pygame.Surface, blits: Iterable[tuple[pygame.Surface, tuple[float, float]]]) -> None:
+def draw(surf: pygame.Surface, blits: Blits) -> None:
     """Draw a blit list of premultiplied images (:meth:`BulletSprites.blits`) over ``surf``
     in one ``fblits`` call, later ones over earlier."""
     surf.fblits(blits, BLEND)
@@ -117,7 +119,7 @@ class Gathered:
     def __init__(self) -> None:
         self._layer: pygame.Surface | None = None
 
-    def gather(self, size: tuple[int, int], blits: Iterable[tuple[pygame.Surface, tuple[float, float]]]) -> None:
+    def gather(self, size: tuple[int, int], blits: Blits) -> None:
         """Clear the layer (``size``: the field's) and draw ``blits`` onto it (:func:`draw`)."""
         if self._layer is None or self._layer.get_size() != size:
             self._layer = pygame.Surface(size, pygame.SRCALPHA, 32)

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 import random
-from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import Enum
 
@@ -27,7 +26,7 @@ from ..sim import FIELD, World
 from ..sim.bombs import FRAMES as BOMB_FRAMES
 from .backdrop import Backdrop
 from .backstage import Backstage
-from .bullets import BulletSprites, Gathered
+from .bullets import Blits, BulletSprites, Gathered
 from .bullets import draw as draw_bullets
 from .hud import boss_name, draw_boss_bar, draw_midboss_bar, warning_due
 from .lasers import draw_warnings, laser_fill
@@ -197,7 +196,7 @@ class Renderer:
         """Every bullet of ``pool`` in one ``fblits`` call (:func:`.bullets.draw`)."""
         draw_bullets(surf, self._bullet_blits(pool, world, alpha))
 
-    def _bullet_blits(self, pool, world: World, alpha: float) -> Iterable[tuple[pygame.Surface, tuple[float, float]]]:
+    def _bullet_blits(self, pool, world: World, alpha: float) -> Blits:
         """The blit list of every bullet of ``pool`` (:meth:`.bullets.BulletSprites.blits`)."""
         if not pool.n:
             return ()
