@@ -23,7 +23,7 @@ _KERNEL_FUNCTIONS = {
     "_laser_kernel": "_pieces_py",
     "_pose_kernel": "_pose_py",
     "_raster_kernel": "_paint_py",  # compiled last of the module's kernels (it calls the others)
-    "_trig_kernel": "_sincos_py",
+    "_trig_kernel": "_sincos_py",  # compiled after the arctangent
 }
 
 

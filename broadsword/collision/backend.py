@@ -7,6 +7,7 @@ kernels (``pip install 'broadsword[fast]'``), with the same answers in the same 
 stage (``Backend``)  numpy reference                             compiled twin (numba)
 ===================  ==========================================  ===========================================
 ``sincos_deg``       ``detmath.sincos_deg`` (``"exact"`` poses)  ``_trig_kernel``: the same operations, bits
+``atan2_deg``        ``detmath.atan2_deg``                       ``_trig_kernel``: the same operations, bits
 ``pose_and_box``     ``posing.pose_checked`` + ``bounds.aabbs``  ``_pose_kernel`` (rotating by ``sincos_deg``)
 ``grid_pairs``       ``BinGrid.reference_query``                 ``BinGrid.compiled_query`` (``_grid_kernel``)
 ``boxes_overlap``    ``bounds.boxes_overlap`` (``aabb`` tier)    ``_bounds_kernel``
@@ -19,6 +20,11 @@ stage (``Backend``)  numpy reference                             compiled twin (
 ``paint_chains``     ``raster.paint_chains``                     ``_raster_kernel``: the three above in one
                                                                  call, the GIL released
 ===================  ==========================================  ===========================================
+
+``sincos_deg`` and ``atan2_deg`` are also what the game's state takes its trigonometry
+from where it has many angles a frame (:class:`Trig`: the curvy lasers' heads, a BulletML
+volley's new bullets), through the world's pipeline's backend: the bits are the same
+either way, so a replay does not depend on the backend.
 
 ``laser_pieces`` makes the pieces of the lasers the broad phase let through (the pipeline
 passes its backend to :func:`.laserframe.join`). The last four are not pipeline stages:
@@ -99,6 +105,19 @@ class GridQuery(Protocol[Stats_co]):
         ...
 
 
+class Trig(Protocol):
+    """Where a game's state takes its trigonometry from, a frame's angles at once: a
+    :class:`Backend` (numpy or compiled), whose bits are :mod:`.detmath`'s either way."""
+
+    def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """As :meth:`Backend.sincos_deg`."""
+        ...
+
+    def atan2_deg(self, y: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """As :meth:`Backend.atan2_deg`."""
+        ...
+
+
 class Backend(Protocol):
     """The stages of a frame that have a compiled twin. Every stage gives the numpy
     reference's answer, in its order (the game applies hits in pipeline order, so a replay
@@ -116,6 +135,12 @@ class Backend(Protocol):
         """``(sin, cos)`` of ``angles`` (n,) float64 degrees: two (n,) float64 arrays with
         :func:`detmath.sincos_deg`'s bits (signed zeros, nan for nan and +-inf included).
         What ``pose_and_box`` rotates by in the ``"exact"`` mode."""
+        ...
+
+    def atan2_deg(self, y: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """The arctangent of ``y / x`` in degrees, ``y`` and ``x`` (n,) float64: an (n,)
+        float64 array with :func:`detmath.atan2_deg`'s bits (signs, zeros, infinities and
+        nan included)."""
         ...
 
     def pose_and_box(
@@ -243,6 +268,9 @@ class NumpyBackend:
     def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return detmath.sincos_deg(np.asarray(angles, dtype=np.float64))
 
+    def atan2_deg(self, y: np.ndarray, x: np.ndarray) -> np.ndarray:
+        return detmath.atan2_deg(np.asarray(y, dtype=np.float64), np.asarray(x, dtype=np.float64))
+
     def pose_and_box(
         self,
         shapes: ArmatureSet,
@@ -344,6 +372,9 @@ class NumbaBackend:
 
     def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return _trig_kernel.sincos_deg(angles)
+
+    def atan2_deg(self, y: np.ndarray, x: np.ndarray) -> np.ndarray:
+        return _trig_kernel.atan2_deg(y, x)
 
     def pose_and_box(
         self,

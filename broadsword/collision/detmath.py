@@ -400,17 +400,21 @@ def atan2_deg(y, x):
         return _atan2(yy, xx)
 
 
-def heading_deg(vx, vy):
+def heading_deg(vx, vy, atan2=None):
     """Heading of velocity ``(vx, vy)`` in the game's (and BulletML's) convention.
 
     Degrees in (-180, 180], 0 = up (-y), clockwise on screen (x right, y down):
     ``atan2_deg(vx, -vy)``, except that a zero ``vy`` of either sign counts as +0 (a zero
-    velocity heads up, 0) and straight down is always +180. Arrays or, for two scalars, a float.
+    velocity heads up, 0) and straight down is always +180. Arrays or, for two scalars, a
+    float. ``atan2``: what gives :func:`atan2_deg`'s bits for arrays (a backend's compiled
+    ``atan2_deg``); ``None``, :func:`atan2_deg`.
     """
     if _is_scalar(vx, vy):
         h = _atan2_1(float(vx), 0.0 - float(vy))  # 0 - (+-0) = +0
         return 180.0 if h == -180.0 else h
-    h = atan2_deg(np.asarray(vx, dtype=np.float64), 0.0 - np.asarray(vy, dtype=np.float64))
+    h = (atan2_deg if atan2 is None else atan2)(
+        np.asarray(vx, dtype=np.float64), 0.0 - np.asarray(vy, dtype=np.float64)
+    )
     return np.where(h == -180.0, 180.0, h)
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..collision.backend import Trig
 from ..collision.detmath import heading_deg
 from ..patterns.bulletml.store import AX, AY, DIR, NEVER, Columns, Movers
 from .field import DT, FIELD
@@ -21,9 +22,10 @@ from .pool import Pool
 CULL_MARGIN = 24.0
 
 
-def enemy_bullets(capacity: int, limit: int) -> EnemyBullets:
-    """The enemy bullets' store (see :class:`EnemyBullets`)."""
-    return EnemyBullets(capacity, limit)
+def enemy_bullets(capacity: int, limit: int, trig: Trig | None = None) -> EnemyBullets:
+    """The enemy bullets' store (see :class:`EnemyBullets`), settling with ``trig``'s
+    trigonometry (the world's pipeline's backend; None: the numpy reference)."""
+    return EnemyBullets(capacity, limit, trig)
 
 
 def bullet_pool(capacity: int, limit: int) -> Pool:
@@ -50,13 +52,15 @@ class EnemyBullets(Movers):
     armature kind (the emitter's tag), ``damage`` (n,), ``grazed`` (n,).
 
     :meth:`add` takes the plain pool's fields (a bullet flying straight at ``vel``, no
-    pattern), as the tests and tools add bullets.
+    pattern), as the tests and tools add bullets. ``trig``: as the Movers' (it also gives
+    the new headings' arctangents).
     """
 
-    def __init__(self, capacity: int, limit: int):
+    def __init__(self, capacity: int, limit: int, trig: Trig | None = None):
         super().__init__(
             capacity,
             limit,
+            trig,
             prev=((2,), float),
             vel=((2,), float),
             angle=((), float),
@@ -109,7 +113,9 @@ class EnemyBullets(Movers):
         step = self.step[rows]
         self.vel[rows] = step / DT
         moving = (step[:, 0] != 0.0) | (step[:, 1] != 0.0)
-        self.angle[rows] = np.where(moving, heading_deg(step[:, 0], step[:, 1]), self.state[rows, DIR])
+        self.angle[rows] = np.where(
+            moving, heading_deg(step[:, 0], step[:, 1], self.trig.atan2_deg), self.state[rows, DIR]
+        )
 
     def move(self, m: int) -> None:
         """One step along ``step``; ``prev`` keeps where they were (for sweeping)."""

@@ -35,12 +35,12 @@ angles, so lasers replay bit for bit.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..collision import detmath
-from ..collision.backend import NumpyBackend
+from ..collision.backend import NumpyBackend, Trig
 from ..collision.lasers import LaserSet, laser_pieces
 from ..data.difficulty import Difficulty
 from ..data.levels import LASER_NODES, LaserKind, LaserSpec, Level
@@ -90,14 +90,6 @@ def laser_pool(capacity: int = 8) -> Pool:
         count=((), int),
         graze_wait=((), int),
     )
-
-
-class Trig(Protocol):
-    """Where the curvy lasers' sines and cosines come from: a collision backend
-    (:class:`~broadsword.collision.Backend`; the world's pipeline's), whose ``sincos_deg``
-    gives :func:`detmath.sincos_deg`'s bits, compiled or not: the state is the same either way."""
-
-    def sincos_deg(self, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
 
 
 #: Every laser kind, in the order :attr:`SpecTable.kind` numbers them.

@@ -149,7 +149,7 @@ class World:
         self.ships = WaveShips(level.waves, self.kinds.base, self.difficulty)
         self.boss = Boss(level.boss, self.difficulty) if level.boss else None
         self.parts = self.boss.parts if self.boss else parts_pool()  # always empty without a boss
-        self.enemy_bullets = enemy_bullets(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT)
+        self.enemy_bullets = enemy_bullets(ENEMY_BULLETS, ENEMY_BULLETS_LIMIT, pipeline.backend)
         self.guns = EnemyGuns(self.enemy_bullets, self.fires, self.seed)
         self.player_bullets = bullet_pool(PLAYER_BULLETS, PLAYER_BULLETS_LIMIT)
         self.lasers = Lasers(level, self.settings.difficulty, pipeline.backend)

@@ -16,7 +16,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import DTypeLike
 
-from ._trig import velocity_deg
+from ._trig import NumpyBackend, Trig, velocity_deg
 from .limits import MAX_SPEED
 
 #: ``wake`` of a row with nothing left to run.
@@ -156,11 +156,14 @@ class Movers(Columns):
     alongside; subclasses fill them in :meth:`_born` and :meth:`_settled`.
 
     ``limit`` caps the rows (None: no cap); adds past it are refused and counted in
-    ``refused``.
+    ``refused``. ``trig`` (:class:`~broadsword.collision.backend.Trig`: a collision
+    backend) gives :meth:`settle` its sines and cosines, the numpy reference's bits
+    compiled or not (None: the reference).
     """
 
-    def __init__(self, capacity: int = 64, limit: int | None = None, **extra):
+    def __init__(self, capacity: int = 64, limit: int | None = None, trig: Trig | None = None, **extra):
         super().__init__(capacity, limit, {**COLUMNS, **extra})
+        self.trig: Trig = NumpyBackend() if trig is None else trig
 
     def add_one(
         self, x: float, y: float, direction: float, speed: float, runner, wake: int, tag: int = 0, owner: int = 0
@@ -247,7 +250,7 @@ class Movers(Columns):
         if not len(rows):
             return
         st = self.state[rows]
-        vx, vy = velocity_deg(st[:, DIR], st[:, SPD])
+        vx, vy = velocity_deg(st[:, DIR], st[:, SPD], self.trig.sincos_deg)
         # at most MAX_SPEED px a frame on each axis (a value in range keeps its bits)
         self.step[rows, 0] = np.clip(vx + st[:, AX], -MAX_SPEED, MAX_SPEED)
         self.step[rows, 1] = np.clip(vy + st[:, AY], -MAX_SPEED, MAX_SPEED)
