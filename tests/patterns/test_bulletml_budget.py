@@ -109,7 +109,7 @@ SAME_VALUE_REPEATS = top(
 def _state(eng: Engine) -> tuple:
     b = eng.bullets
     cols = tuple(b._data[k][: b.n].tobytes() for k in ("pos", "state", "wake"))
-    return cols, eng.fired, eng.deferred, eng.busiest, repr(eng.scope.rng.bit_generator.state)
+    return cols, eng.fired, eng.deferred, eng.busiest, repr(eng.scope.rng.bit_generator.state), b.refused
 
 
 def _frames(
@@ -120,10 +120,12 @@ def _frames(
     pattern=ONE_FIRE_REPEATS,
     params: tuple[float, ...] = (),
     same: list | None = None,
+    max_bullets: int = limits.MAX_LIVE_BULLETS,
 ) -> list:
     """14 frames of ``pattern`` (fed ``params``) under a budget of ``limit`` steps a part:
     with the machine's short path for repeats of one fire (``fast``), or every repeat run
-    by the general path; ``same`` collects each repeat's ``same`` flag."""
+    by the general path; ``same`` collects each repeat's ``same`` flag. The store holds at
+    most ``max_bullets`` (the rest are refused and counted)."""
     from broadsword.patterns.bulletml import machine
 
     with monkeypatch.context() as m:
@@ -139,7 +141,7 @@ def _frames(
         m.setattr(machine._Rep, "__init__", spied)
         if per_frame is not None:
             m.setattr(machine, "MAX_STEPS_PER_FRAME", per_frame)
-        eng = Engine(max_steps=limit, seed=3, rank=0.25)
+        eng = Engine(max_steps=limit, seed=3, rank=0.25, max_bullets=max_bullets)
         eng.target = np.array([40.0, 200.0])
         eng.add_emitter(pattern, (0.0, 0.0), params)
         out = []
@@ -187,6 +189,16 @@ def test_same_value_volley__cut_anywhere_by_the_runners_step_limit_as_the_genera
     assert _frames(10_000, True, monkeypatch, per_frame, **SAME) == _frames(
         10_000, False, monkeypatch, per_frame, **SAME
     )
+
+
+@pytest.mark.parametrize("most", [1, 2, 3, 5, 8, 13, 21, 29, 30, 31, 34, 40, 55, 77])
+def test_same_value_volley__the_store_full_anywhere_as_the_general_path(most, monkeypatch):
+    """A volley whose bullets are fired at once meets the store's limit part way: the
+    same bullets kept, the same refused and counted, as fired one at a time."""
+    fast = _frames(10_000, True, monkeypatch, max_bullets=most, **SAME)
+    assert fast == _frames(10_000, False, monkeypatch, max_bullets=most, **SAME)
+    fired, refused = fast[-1][1], fast[-1][-1]
+    assert fired == min(most, 78) and (refused > 0) == (most < 78)  # the store filled, and fires were refused
 
 
 def test_same_value_volley__a_rand_value_is_drawn_each_time():

@@ -128,29 +128,39 @@ class Engine:
             movers.runner[row].gone = True  # an emitter that vanishes ends its pattern
 
     def spawn(
-        self, movers: Movers, row: int, direction: float, speed: float, pattern: Pattern, actions, params
+        self, movers: Movers, row: int, directions: list[float], speeds: list[float], pattern: Pattern, actions, params
     ) -> None:
-        """Fire one bullet from ``row``: it is queued and joins the store, with every bullet
+        """Fire bullets from ``row``, one a direction and speed (a fire's one, or a volley's
+        many, in the order fired): they are queued and join the store, with every bullet
         fired in the same batch, at :meth:`_flush` (one vectorised add, not a call per
-        bullet). Past the store's limit it is refused and counted."""
-        self.budget -= FIRE_STEPS  # a refused fire cost its evaluations all the same
+        bullet). Past the store's limit the rest are refused and counted."""
+        k = len(directions)
+        self.budget -= FIRE_STEPS * k  # a refused fire cost its evaluations all the same
         data = movers._data
         if data["mute"][row]:
             return
         b, new = self.bullets, self._new
-        if b.limit is not None and b.n + len(new[0]) >= b.limit:
-            b.refused += 1
+        if b.limit is not None:
+            room = max(b.limit - b.n - len(new[0]), 0)
+            if room < k:
+                b.refused += k - room
+                k = room
+                directions, speeds = directions[:k], speeds[:k]
+        if not k:
             return
-        runner = Runner([Thread(pattern, actions, params)]) if actions else None
         x, y = data["pos"][row].tolist()
-        new[0].append(x)
-        new[1].append(y)
-        new[2].append(direction)
-        new[3].append(speed)
-        new[4].append(runner)
-        new[5].append(NEVER if runner is None else self.frame if self._bullet_part else self.frame + 1)
-        new[6].append(data["tag"][row])
-        self.fired += 1
+        new[0].extend([x] * k)
+        new[1].extend([y] * k)
+        new[2].extend(directions)
+        new[3].extend(speeds)
+        if actions:
+            new[4].extend([Runner([Thread(pattern, actions, params)]) for _ in range(k)])
+            new[5].extend([self.frame if self._bullet_part else self.frame + 1] * k)
+        else:
+            new[4].extend([None] * k)
+            new[5].extend([NEVER] * k)
+        new[6].extend([int(data["tag"][row])] * k)
+        self.fired += k
 
     def _flush(self) -> None:
         """Add the queued bullets to the store, in the order fired."""

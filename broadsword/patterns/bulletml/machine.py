@@ -165,6 +165,8 @@ class Thread:
                 else:  # a volley: enter the body, fire, leave it, three steps a bullet as the general path counts them
                     fired = None  # (bullet, params, values) of a same-valued fire, once evaluated
                     while True:
+                        # the budget before a bullet after the evaluated one (None: before the first)
+                        before: int | None = eng.budget if fired is not None else None
                         top.left -= 1
                         if steps >= MAX_STEPS_PER_FRAME or eng.budget <= 0:  # cut before the fire
                             stack.append(_Seq(top.body.commands, top.params))
@@ -191,6 +193,8 @@ class Thread:
                             break
                         steps += 1
                         eng.budget -= 1
+                        if before is not None:  # a same-valued volley's bullets from here on: at once
+                            steps = self._volley(eng, movers, row, top, fired, before - eng.budget, steps)
                 continue
             if top.i >= len(top.commands):
                 stack.pop()
@@ -201,6 +205,26 @@ class Thread:
         if stack or self.next_node < len(self.nodes):
             return max(self.act_turn, now + 1)
         return NEVER
+
+    def _volley(self, eng, movers: Movers, row: int, top: _Rep, fired, per: int, steps: int) -> int:
+        """Fire at once every bullet of a same-valued volley that the loop in :meth:`_run`
+        would fire with no cut and no end between them, and return the steps counted.
+
+        ``per``: the budget the bullet just fired took, past the first (its re-evaluation
+        ``cost``, the fire's, its aims and three steps): every following one takes the same
+        (the same values and kinds, the sequence memory set). A bullet is taken at once
+        when the loop would have gone through all three of its checks and on to the next:
+        ``steps`` and the budget leave room for all its steps (the budget stays positive at
+        its last check: ``per`` each), and another bullet is left after it."""
+        k = min((MAX_STEPS_PER_FRAME - steps) // 3, eng.budget // per, top.left - 1)
+        if k <= 0:
+            return steps
+        bullet, params, values = fired
+        assert type(top.fire) is Fire  # a same-valued volley's: an inline fire
+        self._shoot_many(eng, movers, row, top.fire, bullet, params, values, k)  # takes the fires' and aims' budget
+        eng.budget -= (3 + top.cost) * k
+        top.left -= k
+        return steps + 3 * k
 
     # -- helpers ------------------------------------------------------------------------
     def _turn(self) -> int:
@@ -318,8 +342,24 @@ class Thread:
 
     def _shoot(self, eng, movers: Movers, row: int, cmd: Fire, bullet: Bullet, params, values: Values) -> None:
         """Fire ``bullet`` as ``cmd`` says, their speeds and directions valued ``values``
-        (:func:`_evaluate`): the fire's first, then the bullet's, which win (libBulletML);
-        each updates the sequence memory."""
+        (:func:`_evaluate`): see :meth:`_aimed`."""
+        direction, speed = self._aimed(eng, movers, row, cmd, bullet, values)
+        eng.spawn(movers, row, [direction], [speed], self.pattern, bullet.actions, params)
+
+    def _shoot_many(
+        self, eng, movers: Movers, row: int, cmd: Fire, bullet: Bullet, params, values: Values, k: int
+    ) -> None:
+        """``k`` fires of a same-valued volley at once: as ``k`` calls of :meth:`_shoot`,
+        each bullet's direction and speed in turn (the sequences move on from one to the
+        next), then one spawn of them all. Nothing a spawn changes is read in between (it
+        queues the bullets and takes the budget), so the state is the same bits."""
+        aimed = [self._aimed(eng, movers, row, cmd, bullet, values) for _ in range(k)]
+        eng.spawn(movers, row, [d for d, _ in aimed], [s for _, s in aimed], self.pattern, bullet.actions, params)
+
+    def _aimed(self, eng, movers: Movers, row: int, cmd: Fire, bullet: Bullet, values: Values) -> tuple[float, float]:
+        """``(direction, speed)`` of one fire of ``bullet`` as ``cmd`` says, valued
+        ``values``: the fire's first, then the bullet's, which win (libBulletML); each
+        updates the sequence memory."""
         fs, fd, bs, bd = values
         speed = direction = None
         if cmd.speed is not None:
@@ -338,7 +378,7 @@ class Thread:
             speed = self.prev_spd = 1.0
         if direction is None:
             direction = self.prev_dir = eng.aim(movers, row)  # the aim as it is, (-180, 180] (libBulletML)
-        eng.spawn(movers, row, direction, speed, self.pattern, bullet.actions, params)
+        return direction, speed
 
 
 class Runner:
