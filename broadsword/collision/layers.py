@@ -83,7 +83,12 @@ class LayerTable:
 
     def possible_pairs(self, layers: np.ndarray) -> int:
         """How many pairs the table allows among objects with these layer ids."""
-        counts = np.bincount(np.asarray(layers, dtype=np.int64), minlength=len(self.names)).tolist()
+        return self.pairs_among(np.bincount(np.asarray(layers, dtype=np.int64), minlength=len(self.names)))
+
+    def pairs_among(self, counts: np.ndarray) -> int:
+        """How many pairs the table allows among ``counts[L]`` objects in each layer ``L``
+        ((len(names),) integers)."""
+        counts = counts.tolist()
         total = 0
         for a, b in self.entries:
             total += counts[a] * (counts[a] - 1) // 2 if a == b else counts[a] * counts[b]

@@ -230,10 +230,12 @@ class Pipeline:
             stats = [TierStats("layers", n * (n - 1) // 2, table.possible_pairs(layer), 0.0)]
         else:
             table = self.laser_table
-            piece_layer = np.repeat(laser_layer, 2 * lasers.counts - 3) + len(self.layers.names)
-            p_all = len(piece_layer)
-            alone = self.layers.possible_pairs(layer)
-            allowed = table.possible_pairs(np.concatenate([layer, piece_layer]))
+            names = len(self.layers.names)
+            by_layer = np.bincount(layer, minlength=names)
+            pieces = np.bincount(laser_layer, weights=2 * lasers.counts - 3, minlength=names).astype(np.int64)
+            p_all = int(pieces.sum())  # each laser's pieces are in its layer's shadow, L + names
+            alone = self.layers.pairs_among(by_layer)
+            allowed = table.pairs_among(np.concatenate([by_layer, pieces]))
             stats = [TierStats("layers", n * (n - 1) // 2 + n * p_all, allowed, 0.0, n * p_all, allowed - alone)]
         tier_pairs = {}
 
