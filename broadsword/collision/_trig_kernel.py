@@ -8,10 +8,8 @@ Each angle goes through the same IEEE operations, in the same order, as the nump
 (:func:`detmath._sincos`): the exact ``fmod`` by 360, the nearest quadrant (``rint``, half to
 even), the exact reduction, Dekker's product with the double-double ``pi / 180`` and fdlibm's
 polynomial kernels, then the quadrant's swaps and signs and the zero and nan conventions.
-The arctangent goes through :func:`detmath._atan2_1`'s operations, the scalar twin of the
-array path: the scaling by ``frexp``/``ldexp``, the double-double ratio, the nearest
-breakpoint's table value plus the Taylor series of the rest, then the swaps about 90 and
-180 degrees. numba compiles without ``fastmath``, so LLVM neither contracts ``a * b + c`` into a fused
+The arctangent is the reference's own scalar code, :func:`detmath._atan2_1` (the twin of
+its array path), compiled as it stands with the helpers it calls. numba compiles without ``fastmath``, so LLVM neither contracts ``a * b + c`` into a fused
 multiply-add nor reassociates (``tests/collision/test_backend_parity.py`` compares the bits
 of both on every kind of double, and fails if one operation here is changed).
 """
@@ -36,10 +34,7 @@ _PI180_LO = detmath._PI180_LO
 _SPLITTER = detmath._SPLITTER
 _S1, _S2, _S3, _S4, _S5, _S6 = detmath._S1, detmath._S2, detmath._S3, detmath._S4, detmath._S5, detmath._S6
 _C1, _C2, _C3, _C4, _C5, _C6 = detmath._C1, detmath._C2, detmath._C3, detmath._C4, detmath._C5, detmath._C6
-_DEG_HI, _DEG_LO = detmath._DEG_HI, detmath._DEG_LO
-_ATAN_HI, _ATAN_LO = detmath._ATAN_HI.copy(), detmath._ATAN_LO.copy()
-_A1, _A2, _A3, _A4, _A5, _A6, _A7 = detmath._ATAN_POLY
-_TINY_SHIFT = detmath._TINY_SHIFT
+_atan2_1 = detmath._atan2_1  # the arctangent's Python twin (compiled by load_atan2)
 
 
 def _sincos_py(d, sin, cos):  # pragma: no cover - compiled by numba
@@ -89,106 +84,11 @@ def _sincos_py(d, sin, cos):  # pragma: no cover - compiled by numba
 
 
 def _atan2_py(y, x, out):  # pragma: no cover - compiled by numba
-    """``out[i]``: the arctangent of ``y[i] / x[i]`` in degrees (all (n,) float64), as
-    :func:`detmath._atan2_1` computes it (its ``_two_prod``, ``_two_sum`` and
-    ``_atan_deg_core`` written out in place, operation for operation)."""
+    """``out[i]``: the arctangent of ``y[i] / x[i]`` in degrees (all (n,) float64): the
+    reference's own scalar code, :func:`detmath._atan2_1`, compiled (:func:`load_atan2`
+    binds it and its helpers to their compiled selves)."""
     for i in range(y.shape[0]):
-        yi, xi = y[i], x[i]
-        if np.isnan(xi) or np.isnan(yi):
-            out[i] = np.nan
-            continue
-        ax, ay = abs(xi), abs(yi)
-        if np.isinf(ax) or np.isinf(ay):
-            ax, ay = (1.0 if np.isinf(ax) else 0.0), (1.0 if np.isinf(ay) else 0.0)
-        swap = ay > ax
-        negx = math.copysign(1.0, xi) < 0.0
-        num, den = min(ax, ay), max(ax, ay)
-        if den == 0.0:
-            den = 1.0
-        e = math.frexp(den)[1]
-        den = math.ldexp(den, -e)
-        tiny = num < math.ldexp(den, -500 + e)
-        num = math.ldexp(num, (_TINY_SHIFT if tiny else 0) - e)
-        th = num / den
-        # p, pe = _two_prod(th, den)
-        p = th * den
-        u = _SPLITTER * th
-        ah = u - (u - th)
-        al = th - ah
-        v = _SPLITTER * den
-        bh = v - (v - den)
-        bl = den - bh
-        pe = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-        tl = ((num - p) - pe) / den
-        if tiny and not swap and not negx:
-            # mh, me = _two_prod(th, _DEG_HI)
-            mh = th * _DEG_HI
-            u = _SPLITTER * _DEG_HI
-            bh = u - (u - _DEG_HI)
-            bl = _DEG_HI - bh
-            me = ((ah * bh - mh) + ah * bl + al * bh) + al * bl
-            res = math.ldexp(mh + (me + (th * _DEG_LO + tl * _DEG_HI)), -_TINY_SHIFT)
-        else:
-            if tiny:
-                th = tl = 0.0
-            k = np.int64(np.rint(th * 8.0))
-            c = k * 0.125
-            # _atan_deg_core(th, tl, c, _ATAN_HI[k], _ATAN_LO[k])
-            d = th - c  # nh, nl = _two_sum(th - c, tl)
-            nh = d + tl
-            bb = nh - d
-            nl = (d - (nh - bb)) + (tl - bb)
-            p = th * c  # p, pe = _two_prod(th, c)
-            u = _SPLITTER * th
-            ah = u - (u - th)
-            al = th - ah
-            v = _SPLITTER * c
-            bh = v - (v - c)
-            bl = c - bh
-            pe = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-            dh = 1.0 + p
-            dl = (p - (dh - 1.0)) + (pe + tl * c)
-            uh = nh / dh
-            q = uh * dh  # q, qe = _two_prod(uh, dh)
-            u = _SPLITTER * uh
-            ah = u - (u - uh)
-            al = uh - ah
-            v = _SPLITTER * dh
-            bh = v - (v - dh)
-            bl = dh - bh
-            qe = ((ah * bh - q) + ah * bl + al * bh) + al * bl
-            ul = (((nh - q) - qe) + nl - uh * dl) / dh
-            z = uh * uh
-            poly = _A7
-            poly = _A6 + z * poly
-            poly = _A5 + z * poly
-            poly = _A4 + z * poly
-            poly = _A3 + z * poly
-            poly = _A2 + z * poly
-            poly = _A1 + z * poly
-            w = uh * z * poly
-            mh = uh * _DEG_HI  # mh, me = _two_prod(uh, _DEG_HI)
-            v = _SPLITTER * _DEG_HI
-            bh = v - (v - _DEG_HI)
-            bl = _DEG_HI - bh
-            me = ((ah * bh - mh) + ah * bl + al * bh) + al * bl
-            ml = me + (uh * _DEG_LO + (ul + w) * _DEG_HI)
-            sh = _ATAN_HI[k] + mh  # sh, se = _two_sum(atan_hi, mh)
-            bb = sh - _ATAN_HI[k]
-            se = (_ATAN_HI[k] - (sh - bb)) + (mh - bb)
-            hi, lo = sh, se + (ml + _ATAN_LO[k])
-            if swap:  # h, le = _two_sum(90.0, -hi)
-                h = 90.0 - hi
-                bb = h - 90.0
-                le = (90.0 - (h - bb)) + (-hi - bb)
-                hi, lo = h, le - lo
-            if negx:
-                h = 180.0 - hi
-                bb = h - 180.0
-                le = (180.0 - (h - bb)) + (-hi - bb)
-                hi, lo = h, le - lo
-            res = hi + lo
-        out[i] = math.copysign(res, yi)
+        out[i] = _atan2_1(y[i], x[i])
 
 
 def load():
@@ -204,8 +104,18 @@ def load_sincos():
 
 
 def load_atan2():
-    """The compiled arctangent (numba imported, the kernel loaded or compiled)."""
-    return jit(_atan2_py, _SIGNATURE)
+    """The compiled arctangent (numba imported, the kernel loaded or compiled): the loop
+    over :func:`detmath._atan2_1`, itself compiled with :func:`detmath._atan_deg_core` and
+    the error-free transformations it calls (no copy of their code)."""
+    pair = "UniTuple(float64, 2)"
+    split = jit(detmath._split, f"{pair}(float64)")
+    helpers = {
+        "_two_prod": jit(detmath._two_prod, f"{pair}(float64, float64)", {"_split": split}),
+        "_two_sum": jit(detmath._two_sum, f"{pair}(float64, float64)"),
+    }
+    core = jit(detmath._atan_deg_core, f"{pair}(float64, float64, float64, float64, float64)", helpers)
+    atan2 = jit(detmath._atan2_1, "float64(float64, float64)", {**helpers, "_atan_deg_core": core})
+    return jit(_atan2_py, _SIGNATURE, {"_atan2_1": atan2})
 
 
 def sincos_deg(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

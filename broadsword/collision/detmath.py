@@ -313,7 +313,7 @@ def _atan2_1(y: float, x: float) -> float:
         return math.nan
     ax, ay = abs(x), abs(y)
     if math.isinf(ax) or math.isinf(ay):
-        ax, ay = float(math.isinf(ax)), float(math.isinf(ay))
+        ax, ay = (1.0 if math.isinf(ax) else 0.0), (1.0 if math.isinf(ay) else 0.0)
     swap = ay > ax
     negx = math.copysign(1.0, x) < 0.0
     num, den = min(ax, ay), max(ax, ay)

@@ -137,11 +137,12 @@ def atan2_both(backends, y, x) -> np.ndarray:
 
 def atan2_extremes() -> np.ndarray:
     """Values at the edges of the arctangent: signed zeros, subnormals, the smallest
-    normals, ratios about the 2**-500 cut to the tiny path, the breakpoints k / 8 and their
+    normals, ratios about the 2**-500 cut to the tiny path, the breakpoints k / 8, the ties
+    between them (k + 1/2) / 8 (where the nearest breakpoint rounds half to even) and their
     neighbours, the largest doubles, the infinities and nan."""
     base = [0.0, 5e-324, 1e-320, 2.2250738585072014e-308, 2.0**-500, 2.0**-499, 2.0**-501, 1e-160, 0.5, 1.0, 3.0, 1e160]
     base += [2.0**500, 2.0**1000, 1.7976931348623157e308, np.inf]
-    eighths = (np.arange(9) / 8.0).tolist()
+    eighths = (np.arange(17) / 16.0).tolist()
     near = [np.nextafter(v, w) for v in eighths for w in (-np.inf, np.inf)]
     mags = np.array(sorted(set(base + eighths + near)), dtype=np.float64)
     return np.concatenate([mags, -mags, [np.nan]])
