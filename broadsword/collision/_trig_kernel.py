@@ -9,9 +9,10 @@ Each angle goes through the same IEEE operations, in the same order, as the nump
 even), the exact reduction, Dekker's product with the double-double ``pi / 180`` and fdlibm's
 polynomial kernels, then the quadrant's swaps and signs and the zero and nan conventions.
 The arctangent is the reference's own scalar code, :func:`detmath._atan2_1` (the twin of
-its array path), compiled as it stands with the helpers it calls. numba compiles without ``fastmath``, so LLVM neither contracts ``a * b + c`` into a fused
-multiply-add nor reassociates (``tests/collision/test_backend_parity.py`` compares the bits
-of both on every kind of double, and fails if one operation here is changed).
+its array path), compiled as it stands with the helpers it calls. numba compiles without
+``fastmath``, so LLVM neither contracts ``a * b + c`` into a fused multiply-add nor
+reassociates (``tests/collision/test_backend_parity.py`` compares the bits of both on
+every kind of double, and fails if one operation of the sine and cosine here is changed).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ import math
 import numpy as np
 
 from . import detmath
-from ._kernel import jit
+from ._kernel import jit, writable
 
 __all__ = ["atan2_deg", "load", "load_atan2", "load_sincos", "sincos_deg"]
 
@@ -140,5 +141,5 @@ def atan2_deg(y: np.ndarray, x: np.ndarray) -> np.ndarray:
         a, b = np.broadcast_arrays(a, b)
     out = np.empty(a.size)
     fy, fx = a.ravel(), b.ravel()
-    load_atan2()(fy if fy.flags.writeable else fy.copy(), fx if fx.flags.writeable else fx.copy(), out)
+    load_atan2()(writable(fy), writable(fx), out)
     return out.reshape(a.shape)

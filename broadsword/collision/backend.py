@@ -7,7 +7,7 @@ kernels (``pip install 'broadsword[fast]'``), with the same answers in the same 
 stage (``Backend``)  numpy reference                             compiled twin (numba)
 ===================  ==========================================  ===========================================
 ``sincos_deg``       ``detmath.sincos_deg`` (``"exact"`` poses)  ``_trig_kernel``: the same operations, bits
-``atan2_deg``        ``detmath.atan2_deg``                       ``_trig_kernel``: the same operations, bits
+``atan2_deg``        ``detmath.atan2_deg``                       ``_trig_kernel``: its scalar code compiled, bits
 ``pose_and_box``     ``posing.pose_checked`` + ``bounds.aabbs``  ``_pose_kernel`` (rotating by ``sincos_deg``)
 ``grid_pairs``       ``BinGrid.reference_query``                 ``BinGrid.compiled_query`` (``_grid_kernel``)
 ``boxes_overlap``    ``bounds.boxes_overlap`` (``aabb`` tier)    ``_bounds_kernel``
